@@ -1,0 +1,50 @@
+# racebot: `make run` drives the car, `make test` runs every test. Both set up what is missing first.
+SHELL := /bin/bash
+ROOT := $(CURDIR)
+VENV := $(ROOT)/.venv
+# ROS nodes must run on Debian's interpreter (rospy lives in its dist-packages), never a pyenv shim.
+SYSTEM_PYTHON := /usr/bin/python3
+IN_WS := source $(ROOT)/devel/setup.bash &&
+
+.PHONY: setup debian venv build test unit run demo bench soak clean help
+
+help:
+	@echo "make run    set up, build, start the simulator with the racebot in the room"
+	@echo "make test   set up, build, run every test; ends with 'N passed, N failed'"
+	@echo "make setup  install what is missing (Debian packages, .venv) and build into build/ devel/"
+	@echo "make unit   only the unit tests (no ROS master)"
+	@echo "make clean  remove build/ devel/ (keeps .venv)"
+
+setup: debian venv build
+
+debian:
+	@tools/install_debian_packages.sh tools/debian-packages.txt
+
+venv: $(VENV)/.racebot-installed
+
+$(VENV)/.racebot-installed: tools/requirements.txt
+	@test -x $(VENV)/bin/python3 || $(SYSTEM_PYTHON) -m venv --system-site-packages $(VENV)
+	$(VENV)/bin/pip install --disable-pip-version-check -q -r tools/requirements.txt
+	@touch $@
+
+# catkin_make is incremental: with nothing changed it only re-checks, in seconds. Building with the
+# venv interpreter gives every node script a shebang that sees rospy and pybullet, whatever PATH says.
+build: debian venv
+	@mkdir -p build devel && touch build/CATKIN_IGNORE devel/CATKIN_IGNORE
+	@PATH=$(VENV)/bin:$$PATH catkin_make -C $(ROOT) --source $(ROOT) --build $(ROOT)/build \
+	    -DCATKIN_DEVEL_PREFIX=$(ROOT)/devel -DPYTHON_EXECUTABLE=$(VENV)/bin/python3 \
+	    -DRACEBOT_VENV=$(VENV) > build/catkin_make.log 2>&1 \
+	  || { tail -40 build/catkin_make.log; echo "racebot: build failed; full log in build/catkin_make.log" >&2; exit 1; }
+	@echo "racebot: built; 'source devel/setup.bash' for a shell with every racebot command"
+
+test: setup
+	@$(IN_WS) $(VENV)/bin/python3 tools/run_tests.py
+
+unit: setup
+	@$(IN_WS) $(VENV)/bin/python3 tools/run_tests.py --unit-only
+
+run: setup
+	@$(IN_WS) roslaunch racebot_gazebo racebot.launch $(ARGS)
+
+clean:
+	rm -rf build devel

@@ -1,0 +1,138 @@
+"""ros_control's RobotHW for a simulated robot, as gazebo_ros_control's DefaultRobotHWSim builds it.
+
+One joint per transmission. Each joint has a state handle (position, velocity, effort) and one
+command interface (effort, velocity or position). Positions of revolute and continuous joints are
+unwrapped: accumulated by the shortest angular step, never wrapped to ±pi. Before writing,
+limits are enforced as joint_limits_interface does for an effort joint without soft limits:
+saturate to the URDF effort limit, and allow no effort that pushes further past a position or
+velocity limit. No ROS and no PyBullet here: the simulator passes joint states in, efforts out.
+"""
+import math
+
+EFFORT = 'hardware_interface/EffortJointInterface'
+VELOCITY = 'hardware_interface/VelocityJointInterface'
+POSITION = 'hardware_interface/PositionJointInterface'
+STATE = 'hardware_interface/JointStateInterface'
+COMMAND_INTERFACES = (EFFORT, VELOCITY, POSITION)
+
+
+def cpp_name(interface):
+    """'hardware_interface/EffortJointInterface' -> 'hardware_interface::EffortJointInterface' (as
+    list_controllers reports claimed resources)."""
+    return interface.replace('/', '::')
+
+
+def shortest_angular_distance(a, b):
+    """Signed smallest angle that takes a to b, in (-pi, pi]."""
+    d = math.fmod(b - a, 2.0 * math.pi)
+    if d > math.pi:
+        d -= 2.0 * math.pi
+    elif d <= -math.pi:
+        d += 2.0 * math.pi
+    return d
+
+
+class HardwareError(ValueError):
+    """A controller asked for a joint or an interface this robot does not offer."""
+
+
+class JointHandle(object):
+    """State of one joint and its command, as the controllers see it."""
+
+    __slots__ = ('name', 'kind', 'interface', 'lower', 'upper', 'max_effort', 'max_velocity',
+                 'position', 'velocity', 'effort', 'command', '_raw_position')
+
+    def __init__(self, name, kind, interface, lower=None, upper=None, max_effort=None, max_velocity=None):
+        self.name = name
+        self.kind = kind  # 'revolute', 'continuous' or 'prismatic'
+        self.interface = interface
+        self.lower, self.upper = lower, upper
+        self.max_effort = max_effort if (max_effort is not None and max_effort > 0) else None
+        self.max_velocity = max_velocity if (max_velocity is not None and max_velocity > 0) else None
+        self.position = 0.0
+        self.velocity = 0.0
+        self.effort = 0.0
+        self.command = 0.0
+        self._raw_position = None
+
+    @property
+    def has_position_limits(self):
+        return self.kind in ('revolute', 'prismatic') and self.lower is not None and self.upper is not None \
+            and self.lower < self.upper
+
+    def read(self, raw_position, velocity):
+        if self.kind == 'prismatic' or self._raw_position is None:
+            self.position = raw_position
+        else:
+            self.position += shortest_angular_distance(self._raw_position, raw_position)
+        self._raw_position = raw_position
+        self.velocity = velocity
+
+    def reset_position(self, raw_position):
+        self._raw_position = None
+        self.read(raw_position, 0.0)
+
+    def limited_command(self):
+        """The command after joint_limits_interface's saturation (effort) or clamping (others)."""
+        cmd = self.command
+        if not math.isfinite(cmd):
+            return 0.0
+        if self.interface == EFFORT:
+            lo, hi = (-self.max_effort, self.max_effort) if self.max_effort is not None else (-math.inf, math.inf)
+            if self.has_position_limits:
+                if self.position < self.lower:
+                    lo = 0.0
+                elif self.position > self.upper:
+                    hi = 0.0
+            if self.max_velocity is not None:
+                if self.velocity < -self.max_velocity:
+                    lo = 0.0
+                elif self.velocity > self.max_velocity:
+                    hi = 0.0
+            return min(max(cmd, lo), hi)
+        if self.interface == VELOCITY and self.max_velocity is not None:
+            return min(max(cmd, -self.max_velocity), self.max_velocity)
+        if self.interface == POSITION and self.has_position_limits:
+            return min(max(cmd, self.lower), self.upper)
+        return cmd
+
+
+class RobotHW(object):
+    """The joints of one robot, from its URDF and transmissions (urdf_model.RobotModel)."""
+
+    def __init__(self, model, hardware_joints):
+        """hardware_joints: [(joint_name, interface)] as urdf_model.hardware_joints gives them."""
+        self.handles = {}
+        self.warnings = []
+        for joint_name, interface in hardware_joints:
+            joint = model.joints[joint_name]
+            if interface not in COMMAND_INTERFACES:
+                self.warnings.append("joint '%s': hardware interface '%s' is not supported (use one of %s); "
+                                     "skipped" % (joint_name, interface, ', '.join(COMMAND_INTERFACES)))
+                continue
+            if joint.type not in ('revolute', 'continuous', 'prismatic'):
+                self.warnings.append("joint '%s' of type '%s' cannot be actuated; transmission skipped"
+                                     % (joint_name, joint.type))
+                continue
+            lim = joint.limit
+            self.handles[joint_name] = JointHandle(
+                joint_name, joint.type, interface,
+                lower=lim.lower if lim else None, upper=lim.upper if lim else None,
+                max_effort=lim.effort if lim else None, max_velocity=lim.velocity if lim else None)
+        self.names = sorted(self.handles)  # ros_control's resource managers list names in order
+
+    def handle(self, joint_name, interface):
+        """The handle a controller claims; errors as ros_control's resource manager words them."""
+        h = self.handles.get(joint_name)
+        if h is None or (interface != STATE and h.interface != interface):
+            known = sorted(n for n, x in self.handles.items() if interface == STATE or x.interface == interface)
+            raise HardwareError("Could not find resource '%s' in '%s' (this robot offers: %s)"
+                                % (joint_name, cpp_name(interface), ', '.join(known) or 'none'))
+        return h
+
+    def interfaces(self):
+        return sorted({h.interface for h in self.handles.values()} | {STATE})
+
+    def reset_commands(self):
+        for h in self.handles.values():
+            h.command = 0.0

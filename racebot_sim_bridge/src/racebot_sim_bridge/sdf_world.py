@@ -1,0 +1,713 @@
+"""Read SDF 1.6 world files into plain dataclasses.
+
+Pure Python: no rospy, no pybullet.  ``physics.py`` turns the result into bodies.
+
+What is understood: the world's physics block and gravity; models made of links with box,
+cylinder, sphere and plane geometry, their poses, masses, inertias, ODE friction (mu, mu2) and
+visual colours; ``<include>`` of ``model://ground_plane`` (built in, as Gazebo's model) and
+``model://sun`` (a light: ignored); the first ``<state>`` block's model and link poses, which
+Gazebo applies when it loads a saved world.
+
+Everything else that matters to the physics (mesh, heightmap and polyline geometry, plugins,
+joints of world models, nested models, other includes, actors) is skipped with ONE entry in
+``World.warnings`` naming the element, where it is and why; so are elements whose values are
+unusable (non-numeric, non-finite, zero or negative sizes).  Only a missing file, text that is
+not XML and a document without ``<world>`` raise ``WorldError``.
+
+Poses are 6-tuples ``(x, y, z, roll, pitch, yaw)``; roll, pitch, yaw are fixed-axis rotations
+about X, then Y, then Z (R = Rz(yaw) Ry(pitch) Rx(roll)), as SDF and URDF define them.
+Quaternions are ``(x, y, z, w)``.
+"""
+
+import math
+import os
+import xml.etree.ElementTree as ET
+from dataclasses import dataclass, field
+
+__all__ = [
+    'WorldError', 'World', 'Physics', 'Model', 'Link', 'Collision', 'Visual', 'Shape',
+    'parse_world', 'load_world', 'compose', 'inverse', 'rpy_to_quaternion',
+    'quaternion_to_rpy', 'quaternion_multiply', 'rotate', 'as_transform',
+    'GAZEBO_MATERIALS', 'EMPTY_WORLD_SDF', 'ZERO_POSE',
+]
+
+ZERO_POSE = (0.0, 0.0, 0.0, 0.0, 0.0, 0.0)
+
+# Colours of the Gazebo material scripts worlds commonly name (media/materials/scripts/
+# gazebo.material, diffuse), used when a visual gives a script and no explicit colour.
+GAZEBO_MATERIALS = {
+    'Gazebo/Grey': (0.7, 0.7, 0.7, 1.0),
+    'Gazebo/Gray': (0.7, 0.7, 0.7, 1.0),
+    'Gazebo/DarkGrey': (0.175, 0.175, 0.175, 1.0),
+    'Gazebo/White': (1.0, 1.0, 1.0, 1.0),
+    'Gazebo/Black': (0.0, 0.0, 0.0, 1.0),
+    'Gazebo/Red': (1.0, 0.0, 0.0, 1.0),
+    'Gazebo/Green': (0.0, 1.0, 0.0, 1.0),
+    'Gazebo/Blue': (0.0, 0.0, 1.0, 1.0),
+    'Gazebo/Yellow': (1.0, 1.0, 0.0, 1.0),
+    'Gazebo/Orange': (1.0, 0.5088, 0.0468, 1.0),
+    'Gazebo/Wood': (1.0, 0.8, 0.6, 1.0),
+}
+
+# What Gazebo's worlds/empty.world holds, for world_name:=worlds/empty.world (the default of
+# empty_world.launch), which Gazebo finds in its own resource path.
+EMPTY_WORLD_SDF = """<?xml version="1.0"?>
+<sdf version="1.6">
+  <world name="default">
+    <include><uri>model://ground_plane</uri></include>
+    <include><uri>model://sun</uri></include>
+  </world>
+</sdf>
+"""
+
+_EMPTY_WORLD_NAMES = ('worlds/empty.world', 'empty.world')
+
+
+class WorldError(ValueError):
+    """The world cannot be read at all (missing file, not XML, no <world>)."""
+
+
+# ---------------------------------------------------------------------------------------
+# Rotation maths
+# ---------------------------------------------------------------------------------------
+
+def rpy_to_quaternion(roll, pitch, yaw):
+    """Quaternion (x, y, z, w) of R = Rz(yaw) Ry(pitch) Rx(roll)."""
+    cr, sr = math.cos(roll / 2.0), math.sin(roll / 2.0)
+    cp, sp = math.cos(pitch / 2.0), math.sin(pitch / 2.0)
+    cy, sy = math.cos(yaw / 2.0), math.sin(yaw / 2.0)
+    return (sr * cp * cy - cr * sp * sy,
+            cr * sp * cy + sr * cp * sy,
+            cr * cp * sy - sr * sp * cy,
+            cr * cp * cy + sr * sp * sy)
+
+
+def quaternion_to_rpy(q):
+    """(roll, pitch, yaw) of a unit quaternion (x, y, z, w); inverse of rpy_to_quaternion."""
+    x, y, z, w = q
+    sin_pitch = max(-1.0, min(1.0, 2.0 * (w * y - z * x)))
+    roll = math.atan2(2.0 * (w * x + y * z), 1.0 - 2.0 * (x * x + y * y))
+    pitch = math.asin(sin_pitch)
+    yaw = math.atan2(2.0 * (w * z + x * y), 1.0 - 2.0 * (y * y + z * z))
+    return roll, pitch, yaw
+
+
+def quaternion_multiply(a, b):
+    """Hamilton product a * b of (x, y, z, w) quaternions (apply b, then a)."""
+    ax, ay, az, aw = a
+    bx, by, bz, bw = b
+    return (aw * bx + ax * bw + ay * bz - az * by,
+            aw * by - ax * bz + ay * bw + az * bx,
+            aw * bz + ax * by - ay * bx + az * bw,
+            aw * bw - ax * bx - ay * by - az * bz)
+
+
+def rotate(q, v):
+    """Vector v rotated by the unit quaternion q."""
+    x, y, z, w = q
+    # v' = v + w t + q_vec x t, with t = 2 (q_vec x v)
+    tx = 2.0 * (y * v[2] - z * v[1])
+    ty = 2.0 * (z * v[0] - x * v[2])
+    tz = 2.0 * (x * v[1] - y * v[0])
+    return (v[0] + w * tx + (y * tz - z * ty),
+            v[1] + w * ty + (z * tx - x * tz),
+            v[2] + w * tz + (x * ty - y * tx))
+
+
+def as_transform(pose):
+    """``(xyz, quaternion)`` from a 6-tuple pose or an ``(xyz, quaternion)`` pair."""
+    if len(pose) == 6:
+        return (tuple(float(c) for c in pose[:3]), rpy_to_quaternion(*pose[3:]))
+    xyz, quat = pose
+    return tuple(float(c) for c in xyz), tuple(float(c) for c in quat)
+
+
+def compose(pose_a, pose_b):
+    """Pose b (given in frame a) expressed in a's parent frame: ``a * b``.
+
+    Either argument may be a 6-tuple pose or an ``(xyz, quaternion)`` pair; the result is an
+    ``(xyz, quaternion xyzw)`` pair.
+    """
+    pa, qa = as_transform(pose_a)
+    pb, qb = as_transform(pose_b)
+    moved = rotate(qa, pb)
+    return ((pa[0] + moved[0], pa[1] + moved[1], pa[2] + moved[2]),
+            quaternion_multiply(qa, qb))
+
+
+def inverse(pose):
+    """The inverse transform, as an ``(xyz, quaternion)`` pair."""
+    p, q = as_transform(pose)
+    q_inv = (-q[0], -q[1], -q[2], q[3])
+    back = rotate(q_inv, p)
+    return (-back[0], -back[1], -back[2]), q_inv
+
+
+def _to_six(transform):
+    xyz, quat = transform
+    return tuple(xyz) + tuple(quaternion_to_rpy(quat))
+
+
+# ---------------------------------------------------------------------------------------
+# Data
+# ---------------------------------------------------------------------------------------
+
+@dataclass
+class Physics:
+    """The physics block, with Gazebo's defaults."""
+    type: str = 'ode'
+    max_step_size: float = 0.001
+    real_time_factor: float = 1.0
+    real_time_update_rate: float = 1000.0
+    gravity: tuple = (0.0, 0.0, -9.8)
+
+
+@dataclass
+class Shape:
+    """Geometry.  box: ``size`` (x, y, z); cylinder: ``radius``, ``length`` (along z);
+    sphere: ``radius``; plane: unit ``normal`` and ``size`` (x, y), infinite for physics."""
+    kind: str
+    size: tuple = None
+    radius: float = None
+    length: float = None
+    normal: tuple = None
+
+
+@dataclass
+class Collision:
+    name: str
+    pose: tuple
+    shape: Shape
+    mu: float = None
+    mu2: float = None
+
+
+@dataclass
+class Visual:
+    name: str
+    pose: tuple
+    shape: Shape
+    rgba: tuple = None
+
+
+@dataclass
+class Link:
+    """A link.  ``mass`` is SDF's default 1.0 when no <inertial> gives one; ``inertia`` is
+    ``(ixx, ixy, ixz, iyy, iyz, izz)`` about ``inertial_pose``, or None when not given."""
+    name: str
+    pose: tuple = ZERO_POSE
+    mass: float = 1.0
+    inertia: tuple = None
+    inertial_pose: tuple = ZERO_POSE
+    collisions: list = field(default_factory=list)
+    visuals: list = field(default_factory=list)
+
+
+@dataclass
+class Model:
+    name: str
+    pose: tuple = ZERO_POSE
+    static: bool = False
+    links: list = field(default_factory=list)
+
+    def link(self, name):
+        """The link called ``name``; KeyError naming the model's links otherwise."""
+        for link in self.links:
+            if link.name == name:
+                return link
+        raise KeyError('model %r has no link %r (links: %s)'
+                       % (self.name, name, ', '.join(l.name for l in self.links) or 'none'))
+
+    def world_pose_of(self, link, element=None):
+        """World pose ``(xyz, quaternion xyzw)`` of a link, or of a collision or visual of
+        it when ``element`` is given.  ``link`` is a Link or a link name."""
+        if isinstance(link, str):
+            link = self.link(link)
+        transform = compose(self.pose, link.pose)
+        if element is not None:
+            transform = compose(transform, element.pose)
+        return transform
+
+
+@dataclass
+class World:
+    name: str = 'default'
+    physics: Physics = field(default_factory=Physics)
+    models: list = field(default_factory=list)
+    warnings: list = field(default_factory=list)
+    source: str = '<string>'
+
+    def model(self, name):
+        """The model called ``name``; KeyError naming the world's models otherwise."""
+        for model in self.models:
+            if model.name == name:
+                return model
+        raise KeyError('world %r has no model %r (models: %s)'
+                       % (self.name, name, ', '.join(m.name for m in self.models) or 'none'))
+
+
+# ---------------------------------------------------------------------------------------
+# Parsing
+# ---------------------------------------------------------------------------------------
+
+class _Skip(Exception):
+    """An element's content is unusable; the message says why.  Caught where it is skipped."""
+
+
+_UNSUPPORTED_GEOMETRY = {
+    'mesh': 'mesh geometry is not supported (the mesh files are not available); '
+            'stand in a box, cylinder or sphere of the same size',
+    'heightmap': 'heightmap geometry is not supported',
+    'polyline': 'polyline geometry is not supported; use boxes',
+    'image': 'image geometry is not supported',
+    'capsule': 'capsule geometry is not part of SDF 1.6; use a cylinder',
+    'ellipsoid': 'ellipsoid geometry is not part of SDF 1.6; use a sphere',
+    'empty': 'empty geometry has nothing to simulate',
+}
+_WORLD_SILENT = {'physics', 'gravity', 'light', 'gui', 'scene', 'spherical_coordinates',
+                 'magnetic_field', 'atmosphere', 'wind', 'audio', 'state', 'model', 'include'}
+_WORLD_UNSUPPORTED = {
+    'actor': 'actors (animated people) are not supported',
+    'plugin': 'world plugins are not supported',
+    'road': 'roads are not supported',
+    'population': 'populations are not supported; write the models out',
+    'frame': 'frames are not supported',
+}
+_MODEL_UNSUPPORTED = {
+    'joint': 'joints of world models are not supported; its links are placed as given',
+    'plugin': 'model plugins are not supported',
+    'model': 'nested models are not supported; move it to the world level',
+    'include': 'includes inside a model are not supported',
+    'gripper': 'grippers are not supported',
+}
+_LINK_UNSUPPORTED = {
+    'sensor': 'sensors of world models are not supported',
+    'projector': 'projectors are not supported',
+    'light': 'lights are not simulated',
+    'audio_source': 'audio is not supported',
+    'audio_sink': 'audio is not supported',
+    'battery': 'batteries are not supported',
+    'particle_emitter': 'particle emitters are not supported',
+}
+
+
+def _floats(text, count, what):
+    """``count`` finite floats from whitespace-separated ``text``, else ``_Skip``."""
+    parts = (text or '').split()
+    if len(parts) != count:
+        raise _Skip('%s needs %d numbers, got %r' % (what, count, (text or '').strip()))
+    try:
+        values = tuple(float(p) for p in parts)
+    except ValueError:
+        raise _Skip('%s must be numbers, got %r' % (what, text.strip())) from None
+    if not all(math.isfinite(v) for v in values):
+        raise _Skip('%s must be finite, got %r' % (what, text.strip()))
+    return values
+
+
+def _child_float(elem, tag, default, what):
+    child = elem.find(tag)
+    if child is None:
+        return default
+    return _floats(child.text, 1, what)[0]
+
+
+def _child_bool(elem, tag, default, what):
+    child = elem.find(tag)
+    if child is None:
+        return default
+    text = (child.text or '').strip().lower()
+    if text in ('true', '1'):
+        return True
+    if text in ('false', '0'):
+        return False
+    raise _Skip('%s must be true or false, got %r' % (what, (child.text or '').strip()))
+
+
+def _quote(name):
+    return "'%s'" % name
+
+
+class _WorldReader:
+    def __init__(self, source):
+        self.source = source
+        self.warnings = []
+
+    def warn(self, where, message):
+        self.warnings.append('%s: %s' % (where, message) if where else message)
+
+    # -- small pieces -----------------------------------------------------------------
+
+    def pose(self, elem, where):
+        """The <pose> child of ``elem`` as a 6-tuple (zeros when absent)."""
+        child = elem.find('pose')
+        if child is None:
+            return ZERO_POSE
+        frame = child.get('frame') or child.get('relative_to')
+        if frame:
+            self.warn(where, "pose frame %s is not supported; the pose is taken relative to "
+                             "the parent" % _quote(frame))
+        if not (child.text or '').strip():
+            return ZERO_POSE
+        return _floats(child.text, 6, 'pose')
+
+    def shape(self, geometry, where):
+        """A Shape, or None (with one warning) when it cannot be simulated."""
+        if geometry is None:
+            self.warn(where, 'no <geometry>; skipped')
+            return None
+        kinds = list(geometry)
+        if not kinds:
+            self.warn(where, 'empty <geometry>; skipped')
+            return None
+        if len(kinds) > 1:
+            self.warn(where, 'several shapes in one <geometry> (%s); only the first is used'
+                      % ', '.join(k.tag for k in kinds))
+        elem = kinds[0]
+        kind = elem.tag
+        if kind in _UNSUPPORTED_GEOMETRY or kind not in ('box', 'cylinder', 'sphere', 'plane'):
+            reason = _UNSUPPORTED_GEOMETRY.get(kind, 'unknown geometry <%s>' % kind)
+            self.warn(where, '%s; skipped' % reason)
+            return None
+        if kind == 'box':
+            size_elem = elem.find('size')
+            size = (1.0, 1.0, 1.0) if size_elem is None else _floats(size_elem.text, 3,
+                                                                      'box size')
+            self._positive(size, 'box size')
+            return Shape('box', size=size)
+        if kind == 'cylinder':
+            radius = _child_float(elem, 'radius', 1.0, 'cylinder radius')
+            length = _child_float(elem, 'length', 1.0, 'cylinder length')
+            self._positive((radius,), 'cylinder radius')
+            self._positive((length,), 'cylinder length')
+            return Shape('cylinder', radius=radius, length=length)
+        if kind == 'sphere':
+            radius = _child_float(elem, 'radius', 1.0, 'sphere radius')
+            self._positive((radius,), 'sphere radius')
+            return Shape('sphere', radius=radius)
+        normal_elem, size_elem = elem.find('normal'), elem.find('size')
+        normal = (0.0, 0.0, 1.0) if normal_elem is None else _floats(normal_elem.text, 3,
+                                                                      'plane normal')
+        norm = math.sqrt(sum(c * c for c in normal))
+        if norm == 0.0:
+            raise _Skip('degenerate geometry: plane normal is the zero vector')
+        size = (1.0, 1.0) if size_elem is None else _floats(size_elem.text, 2, 'plane size')
+        self._positive(size, 'plane size')
+        return Shape('plane', size=size, normal=tuple(c / norm for c in normal))
+
+    @staticmethod
+    def _positive(values, what):
+        if not all(v > 0.0 for v in values):
+            raise _Skip('degenerate geometry: %s must be > 0, got %s'
+                        % (what, ' '.join('%g' % v for v in values)))
+
+    @staticmethod
+    def rgba(material):
+        if material is None:
+            return None
+        for tag in ('diffuse', 'ambient'):
+            child = material.find(tag)
+            if child is not None and (child.text or '').strip():
+                parts = child.text.split()
+                values = _floats(child.text, len(parts) if len(parts) in (3, 4) else 4,
+                                 'material %s colour' % tag)
+                return values if len(values) == 4 else values + (1.0,)
+        script = material.find('script/name')
+        if script is not None:
+            return GAZEBO_MATERIALS.get((script.text or '').strip())
+        return None
+
+    # -- elements ---------------------------------------------------------------------
+
+    def collision(self, elem, where):
+        name = elem.get('name', '')
+        where = '%s collision %s' % (where, _quote(name))
+        try:
+            pose = self.pose(elem, where)
+            shape = self.shape(elem.find('geometry'), where)
+            if shape is None:
+                return None
+            ode = elem.find('surface/friction/ode')
+            mu = mu2 = None
+            if ode is not None:
+                mu = _child_float(ode, 'mu', None, 'friction mu')
+                mu2 = _child_float(ode, 'mu2', None, 'friction mu2')
+                for label, value in (('mu', mu), ('mu2', mu2)):
+                    if value is not None and value < 0.0:
+                        raise _Skip('friction %s must be >= 0, got %g' % (label, value))
+        except _Skip as err:
+            self.warn(where, '%s; skipped' % err)
+            return None
+        return Collision(name, pose, shape, mu, mu2)
+
+    def visual(self, elem, where):
+        name = elem.get('name', '')
+        where = '%s visual %s' % (where, _quote(name))
+        try:
+            pose = self.pose(elem, where)
+            shape = self.shape(elem.find('geometry'), where)
+            if shape is None:
+                return None
+            rgba = self.rgba(elem.find('material'))
+        except _Skip as err:
+            self.warn(where, '%s; skipped' % err)
+            return None
+        return Visual(name, pose, shape, rgba)
+
+    def link(self, elem, where, static=False):
+        name = elem.get('name')
+        if not name:
+            self.warn(where, 'a <link> without a name; skipped')
+            return None
+        where = '%s link %s' % (where, _quote(name))
+        try:
+            link = Link(name, pose=self.pose(elem, where))
+            inertial = elem.find('inertial')
+            if inertial is not None:
+                mass = _child_float(inertial, 'mass', 1.0, 'mass')
+                if mass > 0.0:
+                    link.mass = mass
+                elif not static:  # a static link's mass does not matter
+                    self.warn(where, 'mass must be > 0, got %g; using 1.0 (the SDF default)'
+                              % mass)
+                link.inertial_pose = self.pose(inertial, where + ' inertial')
+                inertia = inertial.find('inertia')
+                if inertia is not None:
+                    defaults = {'ixx': 1.0, 'ixy': 0.0, 'ixz': 0.0,
+                                'iyy': 1.0, 'iyz': 0.0, 'izz': 1.0}
+                    link.inertia = tuple(_child_float(inertia, key, default, key)
+                                         for key, default in defaults.items())
+        except _Skip as err:
+            self.warn(where, '%s; skipped' % err)
+            return None
+        for child in elem:
+            if child.tag == 'collision':
+                collision = self.collision(child, where)
+                if collision is not None:
+                    link.collisions.append(collision)
+            elif child.tag == 'visual':
+                visual = self.visual(child, where)
+                if visual is not None:
+                    link.visuals.append(visual)
+            elif child.tag in _LINK_UNSUPPORTED:
+                self.warn(where, '<%s> %s: %s; skipped' % (
+                    child.tag, _quote(child.get('name', '')), _LINK_UNSUPPORTED[child.tag]))
+        return link
+
+    def model(self, elem):
+        name = elem.get('name')
+        if not name:
+            self.warn('world', 'a <model> without a name; skipped')
+            return None
+        where = 'model %s' % _quote(name)
+        try:
+            model = Model(name, pose=self.pose(elem, where),
+                          static=_child_bool(elem, 'static', False, 'static'))
+        except _Skip as err:
+            self.warn(where, '%s; skipped' % err)
+            return None
+        warnings_before = len(self.warnings)
+        for child in elem:
+            if child.tag == 'link':
+                link = self.link(child, where, model.static)
+                if link is None:
+                    continue
+                if any(l.name == link.name for l in model.links):
+                    self.warn(where, 'a second link %s; skipped' % _quote(link.name))
+                    continue
+                model.links.append(link)
+            elif child.tag in _MODEL_UNSUPPORTED:
+                self.warn(where, '<%s> %s: %s; skipped' % (
+                    child.tag, _quote(child.get('name', '')), _MODEL_UNSUPPORTED[child.tag]))
+        if not model.links:
+            if elem.find('link') is not None and len(self.warnings) > warnings_before:
+                # Its links were skipped with a warning each: say the model went with them.
+                self.warnings[-1] += ", and so model %s, which has no usable link left" % (
+                    _quote(name))
+            else:
+                self.warn(where, 'has no links; skipped')
+            return None
+        return model
+
+    def include(self, elem):
+        uri = (elem.findtext('uri') or '').strip()
+        target = uri.rstrip('/')
+        if target == 'model://sun':
+            return None  # a light: nothing to simulate
+        if target != 'model://ground_plane':
+            self.warn('world', '<include> of %s: only model://ground_plane and model://sun '
+                               'are built in (model files are not available); write the model '
+                               'out with primitive shapes; skipped' % _quote(uri or '(no uri)'))
+            return None
+        name = (elem.findtext('name') or '').strip() or 'ground_plane'
+        where = 'include %s' % _quote(name)
+        try:
+            pose = self.pose(elem, where)
+            static = _child_bool(elem, 'static', True, 'static')
+        except _Skip as err:
+            self.warn(where, '%s; skipped' % err)
+            return None
+        # Gazebo's ground_plane model: a static 100 m x 100 m plane, mu 100, mu2 50.
+        def plane():
+            return Shape('plane', size=(100.0, 100.0), normal=(0.0, 0.0, 1.0))
+        link = Link('link',
+                    collisions=[Collision('collision', ZERO_POSE, plane(), 100.0, 50.0)],
+                    visuals=[Visual('visual', ZERO_POSE, plane(), GAZEBO_MATERIALS['Gazebo/Grey'])])
+        return Model(name, pose=pose, static=static, links=[link])
+
+    def physics(self, world_elem):
+        physics = Physics()
+        blocks = world_elem.findall('physics')
+        chosen = None
+        for block in blocks:
+            if (block.get('default') or '').strip().lower() in ('1', 'true'):
+                chosen = block
+                break
+        if chosen is None and blocks:
+            chosen = blocks[0]
+        if chosen is not None:
+            physics.type = (chosen.get('type') or 'ode').strip() or 'ode'
+            # real_time_update_rate 0 means "as fast as possible" in Gazebo.
+            for tag, allow_zero in (('max_step_size', False), ('real_time_factor', False),
+                                    ('real_time_update_rate', True)):
+                default = getattr(physics, tag)
+                try:
+                    value = _child_float(chosen, tag, default, tag)
+                    if value < 0.0 or (value == 0.0 and not allow_zero):
+                        raise _Skip('%s must be %s, got %g'
+                                    % (tag, '>= 0' if allow_zero else '> 0', value))
+                    setattr(physics, tag, value)
+                except _Skip as err:
+                    self.warn('physics', '%s; using the default %g' % (err, default))
+        gravity = world_elem.find('gravity')
+        if gravity is None and chosen is not None:
+            gravity = chosen.find('gravity')  # SDF <= 1.5 kept it in <physics>
+        if gravity is not None:
+            try:
+                physics.gravity = _floats(gravity.text, 3, 'gravity')
+            except _Skip as err:
+                self.warn('world', '%s; using the default %s' % (err, physics.gravity))
+        return physics
+
+    def state(self, state_elem, models):
+        """Apply the model and link poses of a saved <state> (world frame), as Gazebo does."""
+        by_name = {m.name: m for m in models}
+        for tag in ('insertions', 'deletions'):
+            if state_elem.find(tag) is not None:
+                self.warn('state', '<%s> is not supported; ignored' % tag)
+        for model_state in state_elem.findall('model'):
+            model = by_name.get(model_state.get('name'))
+            if model is None:
+                continue
+            where = 'state of model %s' % _quote(model.name)
+            try:
+                scale = model_state.find('scale')
+                if scale is not None and _floats(scale.text, 3, 'scale') != (1.0, 1.0, 1.0):
+                    self.warn(where, 'model scale is not supported; ignored')
+                if model_state.find('pose') is not None:
+                    model_pose = self.pose(model_state, where)
+                else:
+                    model_pose = model.pose
+                link_poses = {}
+                for link_state in model_state.findall('link'):
+                    if link_state.find('pose') is not None:
+                        link_poses[link_state.get('name')] = self.pose(
+                            link_state, '%s link %s' % (where, _quote(link_state.get('name'))))
+            except _Skip as err:
+                self.warn(where, '%s; the state is ignored for this model' % err)
+                continue
+            model.pose = model_pose
+            to_model = inverse(model_pose)
+            for link in model.links:
+                if link.name in link_poses:
+                    link.pose = _to_six(compose(to_model, link_poses[link.name]))
+
+    # -- the world --------------------------------------------------------------------
+
+    def world(self, root):
+        if root.tag == 'world':
+            world_elem = root
+        else:
+            worlds = root.findall('world')
+            if not worlds:
+                has_model = root.find('model') is not None
+                raise WorldError(
+                    '%s has no <world> element (root is <%s>); a world file looks like '
+                    '<sdf version="1.6"><world name="default">...</world></sdf>%s'
+                    % (self.source, root.tag,
+                       '; this looks like a model file: spawn it with spawn_model -sdf -file'
+                       if has_model else ''))
+            if len(worlds) > 1:
+                self.warn('', '%d <world> elements; only the first (%s) is loaded'
+                          % (len(worlds), _quote(worlds[0].get('name', 'default'))))
+            world_elem = worlds[0]
+        world = World(name=world_elem.get('name') or 'default', source=self.source)
+        world.physics = self.physics(world_elem)
+        names = set()
+        for child in world_elem:
+            model = None
+            if child.tag == 'model':
+                model = self.model(child)
+            elif child.tag == 'include':
+                model = self.include(child)
+            elif child.tag in _WORLD_UNSUPPORTED:
+                self.warn('world', '<%s> %s: %s; skipped' % (
+                    child.tag, _quote(child.get('name', '')), _WORLD_UNSUPPORTED[child.tag]))
+            elif child.tag not in _WORLD_SILENT:
+                self.warn('world', 'unknown element <%s>; ignored' % child.tag)
+            if model is None:
+                continue
+            if model.name in names:
+                self.warn('model %s' % _quote(model.name),
+                          'a second model with this name; skipped (names must be unique)')
+                continue
+            names.add(model.name)
+            world.models.append(model)
+        state = world_elem.find('state')
+        if state is not None:
+            self.state(state, world.models)
+        world.warnings = self.warnings
+        return world
+
+
+def parse_world(xml_text, source='<string>'):
+    """Parse SDF world text (str or bytes) into a World.  ``source`` names it in messages."""
+    try:
+        root = ET.fromstring(xml_text)
+    except ET.ParseError as err:
+        # The parser's message ends with "line L, column C" (column counted from 0).
+        raise WorldError('%s is not valid XML: %s; check it with xmllint or `gz sdf -k`'
+                         % (source, err)) from None
+    except (ValueError, LookupError, TypeError) as err:
+        raise WorldError('%s could not be read as XML: %s' % (source, err)) from None
+    return _WorldReader(source).world(root)
+
+
+def load_world(path, search_path=()):
+    """Read the world file at ``path``.
+
+    A relative path that does not exist is looked for under each directory of
+    ``search_path`` (as Gazebo searches GAZEBO_RESOURCE_PATH); ``worlds/empty.world`` not
+    found anywhere is Gazebo's empty world (ground plane and sun), built in.
+    """
+    path = os.path.expanduser(str(path))
+    candidates = [path]
+    if not os.path.isabs(path):
+        candidates += [os.path.join(d, path) for d in search_path if d]
+    found = next((c for c in candidates if os.path.exists(c)), None)
+    if found is None:
+        if os.path.normpath(path) in _EMPTY_WORLD_NAMES:
+            return parse_world(EMPTY_WORLD_SDF, source='%s (built in)' % path)
+        raise WorldError(
+            "world file '%s' not found%s; pass an existing file, e.g. "
+            "world_name:=$(find racebot_gazebo)/worlds/room_mini.world"
+            % (path, ' (also looked under %s)' % ', '.join(search_path) if search_path else ''))
+    if os.path.isdir(found):
+        raise WorldError("world file '%s' is a directory; pass the .world file inside it, e.g. "
+                         "world_name:=$(find racebot_gazebo)/worlds/room_mini.world" % found)
+    try:
+        with open(found, 'rb') as handle:
+            data = handle.read()
+    except OSError as err:
+        raise WorldError("world file '%s' cannot be read: %s" % (found, err.strerror)) from None
+    return parse_world(data, source=found)

@@ -1,0 +1,228 @@
+"""The simulated world: physics, models, spawned robots with their ros_control, and time.
+
+This is what gzserver plus gazebo_ros_control do, minus the ROS services (gazebo_services.py) and
+the pacing loop (world_server.py). One `step()` is one world update, in gazebo_ros_control's order:
+read joints, update the controller manager when a control period has elapsed, write the
+(limited) efforts, step the physics. All mutation happens under `lock`, which service threads take.
+"""
+import threading
+
+from . import physics, urdf_model
+from .controller_manager import ControllerManager
+from .hardware import EFFORT, POSITION, VELOCITY, RobotHW
+
+CONTROL_PLUGIN = 'libgazebo_ros_control.so'
+
+
+class SpawnError(ValueError):
+    """A spawn request that cannot be carried out; the message is the status_message."""
+
+
+class Robot(object):
+    """A spawned URDF model with its RobotHW and (if it declares the control plugin) controllers."""
+
+    def __init__(self, sim, name, body, model, robot_ns, control_period):
+        self.name = name
+        self.body = body
+        self.model = model
+        self.ns = robot_ns
+        self.control_period = control_period
+        self.hw = None
+        self.cm = None
+        self.last_update = None
+        joints = urdf_model.hardware_joints(model) if robot_ns is not None else []
+        self.hw = RobotHW(model, joints) if robot_ns is not None else None
+        self.handles = []
+        if self.hw is not None:
+            missing = [n for n in self.hw.handles if n not in body.joints]
+            if missing:
+                raise SpawnError('SpawnModel: Failure - joints %s of the transmissions are not movable joints of '
+                                 'the model' % missing)
+            self.handles = [self.hw.handles[n] for n in self.hw.names]
+            self.indices = [body.joints[h.name].index for h in self.handles]
+            self.effort_idx = [i for i, h in zip(self.indices, self.handles) if h.interface == EFFORT]
+            self.effort_handles = [h for h in self.handles if h.interface == EFFORT]
+            self.velocity_handles = [h for h in self.handles if h.interface == VELOCITY]
+            self.position_handles = [h for h in self.handles if h.interface == POSITION]
+
+    def read(self, world):
+        if not self.handles:
+            return
+        for h, s in zip(self.handles, world.joint_states(self.body, self.indices)):
+            h.read(s.position, s.velocity)
+
+    def write(self, world):
+        if not self.handles:
+            return
+        if self.effort_handles:
+            efforts = [h.limited_command() for h in self.effort_handles]
+            for h, e in zip(self.effort_handles, efforts):
+                h.effort = e
+            world.apply_efforts(self.body, self.effort_idx, efforts)
+        for hs, drive in ((self.velocity_handles, world.drive_velocities),
+                          (self.position_handles, world.drive_positions)):
+            if hs:
+                drive(self.body, [self.body.joints[h.name].index for h in hs], [h.limited_command() for h in hs],
+                      [h.max_effort or 1e3 for h in hs])
+
+    def reset_joint_readings(self, world):
+        if self.handles:
+            for h, s in zip(self.handles, world.joint_states(self.body, self.indices)):
+                h.reset_position(s.position)
+            self.hw.reset_commands()
+
+
+class Simulator(object):
+    def __init__(self, world_spec, io, log, get_params, gui=False):
+        """world_spec: sdf_world.World; io: controllers.RosIO-like; get_params(path) -> value or None."""
+        self.spec = world_spec
+        self.io = io
+        self.log = log
+        self.get_params = get_params
+        self.step_size = world_spec.physics.max_step_size
+        self.world = physics.PhysicsWorld(self.step_size, world_spec.physics.gravity, gui=gui)
+        self.lock = threading.RLock()
+        self.time = 0.0
+        self.steps = 0
+        self.paused = False
+        self.robots = {}
+        self.world_models = self.world.load_world(world_spec)
+        self._reset_controllers = False
+        self.timed_efforts = []  # [body, joint, effort, start, end] from /gazebo/apply_joint_effort
+
+    # -- spawning -------------------------------------------------------------------------------
+    def spawn_urdf(self, name, xml, robot_namespace='', position=(0, 0, 0), orientation=(0, 0, 0, 1)):
+        """Spawns a URDF; returns the Robot. Raises SpawnError with gazebo_ros's status wording."""
+        with self.lock:
+            if not name:
+                raise SpawnError('SpawnModel: Failure - no model name given; pass -model NAME')
+            if name in self.world.bodies:
+                raise SpawnError('SpawnModel: Failure - model name %s already exist.' % name)
+            try:
+                model = urdf_model.parse_urdf(xml)
+            except urdf_model.UrdfError as err:
+                raise SpawnError('SpawnModel: Failure - the URDF of %s is not valid: %s' % (name, err))
+            plugin = model.control_plugin()
+            robot_ns = None
+            period = self.step_size
+            if plugin is not None:
+                robot_ns = robot_namespace or plugin.robot_namespace or name
+                robot_ns = '/' + robot_ns.strip('/') if robot_ns.strip('/') else ''
+                if plugin.control_period:
+                    period = plugin.control_period
+                    if period < self.step_size:
+                        self.log.warn('%s: controlPeriod %g s is shorter than the physics step %g s; using the step'
+                                      % (name, period, self.step_size))
+                        period = self.step_size
+                try:
+                    urdf_model.hardware_joints(model)
+                except urdf_model.UrdfError as err:
+                    raise SpawnError('SpawnModel: Failure - %s' % err)
+                for w in model.warnings:
+                    self.log.warn('%s: %s' % (name, w))
+            else:
+                self.log.info("%s declares no %s plugin: no controller manager for it" % (name, CONTROL_PLUGIN))
+            for r in self.robots.values():
+                if robot_ns is not None and r.ns == robot_ns:
+                    raise SpawnError("SpawnModel: Failure - robot namespace '%s' is already used by model '%s'; "
+                                     "spawn with another -robot_namespace" % (robot_ns, r.name))
+            try:
+                body = self.world.spawn_urdf(name, model, xml, position, orientation)
+            except physics.PhysicsError as err:
+                raise SpawnError('SpawnModel: Failure - %s' % err)
+            try:
+                robot = Robot(self, name, body, model, robot_ns, period)
+            except SpawnError:
+                self.world.remove(name)
+                raise
+            if robot.hw is not None:
+                for w in robot.hw.warnings:
+                    self.log.warn('%s: %s' % (name, w))
+                ns = robot_ns
+                robot.cm = ControllerManager(
+                    ns, robot.hw, lambda c, ns=ns: self.get_params('%s/%s' % (ns, c)), self.io, self.log)
+                robot.read(self.world)
+            self.robots[name] = robot
+            return robot
+
+    def delete_model(self, name):
+        with self.lock:
+            if name not in self.world.bodies:
+                raise KeyError(name)
+            robot = self.robots.pop(name, None)
+            if robot is not None and robot.cm is not None:
+                robot.cm.shutdown()
+            self.world.remove(name)
+
+    # -- time ---------------------------------------------------------------------------------
+    def step(self):
+        """One world update (physics step), gazebo_ros_control's read-update-write around it."""
+        with self.lock:
+            t = self.time
+            for r in self.robots.values():
+                if r.cm is None:
+                    continue
+                r.read(self.world)
+                if r.last_update is None or t - r.last_update >= r.control_period - 1e-9:
+                    period = 0.0 if r.last_update is None else t - r.last_update
+                    r.cm.update(t, period if period > 0 else r.control_period, self._reset_controllers)
+                    r.last_update = t
+                r.write(self.world)
+            if self.timed_efforts:
+                self._apply_timed_efforts(t)
+            self._reset_controllers = False
+            self.world.step()
+            self.steps += 1
+            self.time = self.steps * self.step_size
+
+    def add_timed_effort(self, body, joint, effort, start, end):
+        with self.lock:
+            self.timed_efforts.append([body, joint, effort, start, end])
+
+    def _apply_timed_efforts(self, t):
+        """apply_joint_effort's efforts, added to what the joint's controller commands this step."""
+        self.timed_efforts = [e for e in self.timed_efforts if e[4] > t and e[0].name in self.world.bodies]
+        for body, joint, effort, start, end in self.timed_efforts:
+            if start <= t:
+                robot = self.robots.get(body.name)
+                h = robot.hw.handles.get(joint) if robot is not None and robot.hw is not None else None
+                base = h.effort if h is not None else 0.0
+                self.world.apply_joint_effort(body, joint, base + effort)
+
+    def clear_joint_efforts(self, joint=None):
+        with self.lock:
+            self.timed_efforts = [e for e in self.timed_efforts if joint is not None and e[1] != joint]
+
+    def reset_simulation(self):
+        """Poses, velocities, joints, controllers' state and time back to the start."""
+        with self.lock:
+            self.reset_world()
+            self.steps = 0
+            self.time = 0.0
+            for r in self.robots.values():
+                r.last_update = None
+
+    def reset_world(self):
+        """Poses, velocities and joints back to the start; time goes on."""
+        with self.lock:
+            for name, body in self.world.bodies.items():
+                if not body.static:
+                    self.world.reset_to_spawn(body)
+            for r in self.robots.values():
+                r.reset_joint_readings(self.world)
+            self._reset_controllers = True
+
+    # -- queries ------------------------------------------------------------------------------
+    def model_names(self):
+        return list(self.world.bodies)
+
+    def body(self, name):
+        return self.world.bodies.get(name)
+
+    def close(self):
+        with self.lock:
+            for r in self.robots.values():
+                if r.cm is not None:
+                    r.cm.shutdown()
+            self.world.close()
+

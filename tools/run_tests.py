@@ -1,0 +1,125 @@
+#!/usr/bin/env python3
+"""Runs racebot's whole test suite and ends with one line `N passed, N failed[, N skipped]`.
+
+Two tiers: pytest unit tests in tests/unit (no ROS master) and every rostest file in
+tests/integration (each brings up its own master, roslaunch and nodes). Results are counted
+from the JUnit XML both write, so a test node that crashes or never reports counts as failed.
+Run it from a shell where `devel/setup.bash` is sourced (the Makefile does that).
+"""
+import argparse
+import glob
+import os
+import shutil
+import subprocess
+import sys
+import time
+import xml.etree.ElementTree as ET
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+OUT = os.path.join(ROOT, 'out', 'test-results')
+ROSTEST_TIMEOUT_S = 420
+
+
+def count_junit(path):
+    """(passed, failed, skipped, names of failures) of one JUnit XML file."""
+    try:
+        root = ET.parse(path).getroot()
+    except (ET.ParseError, OSError) as err:
+        return 0, 1, 0, ['%s: unreadable results (%s)' % (path, err)]
+    passed = failed = skipped = 0
+    failures = []
+    for case in root.iter('testcase'):
+        name = '%s.%s' % (case.get('classname', ''), case.get('name', ''))
+        if case.find('failure') is not None or case.find('error') is not None:
+            failed += 1
+            failures.append(name)
+        elif case.find('skipped') is not None:
+            skipped += 1
+        else:
+            passed += 1
+    return passed, failed, skipped, failures
+
+
+def run_unit(python):
+    xml = os.path.join(OUT, 'unit.xml')
+    cmd = [python, '-m', 'pytest', os.path.join(ROOT, 'tests', 'unit'), '-q', '-p', 'no:cacheprovider',
+           '--junitxml', xml]
+    print('== unit tests: %s' % ' '.join(cmd), flush=True)
+    code = subprocess.call(cmd, cwd=ROOT)
+    if not os.path.exists(xml):
+        return 0, 1, 0, ['pytest exited %d without results' % code]
+    result = count_junit(xml)
+    if code not in (0, 1) and result[1] == 0:  # collection/usage errors: pytest wrote no failing case
+        return result[0], result[1] + 1, result[2], result[3] + ['pytest exited %d' % code]
+    return result
+
+
+def rostest_cases(test_file):
+    """Runs one rostest file; counts the test cases of its results XML."""
+    name = os.path.splitext(os.path.basename(test_file))[0]
+    results = os.path.join(OUT, 'rostest-%s.xml' % name)
+    if os.path.exists(results):
+        os.remove(results)
+    cmd = ['rostest', '--results-filename', os.path.basename(results), '--results-base-dir', OUT,
+           '--package', 'racebot_tests', test_file]
+    print('== rostest %s' % os.path.relpath(test_file, ROOT), flush=True)
+    start = time.time()
+    log = os.path.join(OUT, 'rostest-%s.log' % name)
+    with open(log, 'w') as out:
+        try:
+            code = subprocess.call(cmd, stdout=out, stderr=subprocess.STDOUT, timeout=ROSTEST_TIMEOUT_S)
+        except subprocess.TimeoutExpired:
+            code = 'timeout'
+    found = glob.glob(os.path.join(OUT, '**', os.path.basename(results)), recursive=True)
+    if found:
+        passed, failed, skipped, failures = count_junit(found[0])
+    else:
+        passed, failed, skipped, failures = 0, 0, 0, []
+    if (code != 0 and failed == 0) or passed + failed + skipped == 0:
+        failed += 1
+        failures.append('%s: rostest exited %s' % (name, code))
+    print('   %d passed, %d failed in %.0f s (log: %s)' % (passed, failed, time.time() - start,
+                                                         os.path.relpath(log, ROOT)), flush=True)
+    if failures:
+        with open(log) as f:
+            tail = f.read()[-4000:]
+        print('   --- last lines of the log ---\n' + tail, flush=True)
+    return passed, failed, skipped, failures
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument('--unit-only', action='store_true', help='only the unit tests')
+    parser.add_argument('-k', dest='only', help='only the rostest files whose name contains this')
+    args = parser.parse_args()
+    if 'ROS_PACKAGE_PATH' not in os.environ or ROOT not in os.environ['ROS_PACKAGE_PATH']:
+        sys.exit('racebot: source devel/setup.bash first (or use `make test`)')
+    shutil.rmtree(OUT, ignore_errors=True)
+    os.makedirs(OUT)
+    os.environ.setdefault('ROS_LOG_DIR', os.path.join(ROOT, 'out', 'ros_log'))
+    totals = [0, 0, 0]
+    failures = []
+
+    def add(result):
+        for i in range(3):
+            totals[i] += result[i]
+        failures.extend(result[3])
+
+    if not args.only:
+        add(run_unit(sys.executable))
+    if not args.unit_only:
+        for test_file in sorted(glob.glob(os.path.join(ROOT, 'tests', 'integration', '*.test'))):
+            if args.only and args.only not in os.path.basename(test_file):
+                continue
+            add(rostest_cases(test_file))
+    if failures:
+        print('\nfailed:\n  ' + '\n  '.join(failures))
+    line = '%d passed, %d failed' % (totals[0], totals[1])
+    if totals[2]:
+        line += ', %d skipped' % totals[2]
+    print(line)
+    sys.exit(0 if totals[1] == 0 and totals[0] > 0 else 1)
+
+
+if __name__ == '__main__':
+    main()
