@@ -55,13 +55,14 @@ def run_unit(python):
 
 
 def rostest_cases(test_file):
-    """Runs one rostest file; counts the test cases of its results XML."""
+    """Runs one rostest file; counts the test cases its test nodes report.
+
+    Each test node writes rosunit-<test-name>.xml with its cases; rostest's own summary file
+    (rostest-*.xml) has one case per node and marks a node that crashed or wrote nothing.
+    """
     name = os.path.splitext(os.path.basename(test_file))[0]
-    results = os.path.join(OUT, 'rostest-%s.xml' % name)
-    if os.path.exists(results):
-        os.remove(results)
-    cmd = ['rostest', '--results-filename', os.path.basename(results), '--results-base-dir', OUT,
-           '--package', 'racebot_tests', test_file]
+    results_dir = os.path.join(OUT, name)
+    cmd = ['rostest', '--results-base-dir', results_dir, '--package', 'racebot_tests', test_file]
     print('== rostest %s' % os.path.relpath(test_file, ROOT), flush=True)
     start = time.time()
     log = os.path.join(OUT, 'rostest-%s.log' % name)
@@ -69,12 +70,18 @@ def rostest_cases(test_file):
         try:
             code = subprocess.call(cmd, stdout=out, stderr=subprocess.STDOUT, timeout=ROSTEST_TIMEOUT_S)
         except subprocess.TimeoutExpired:
-            code = 'timeout'
-    found = glob.glob(os.path.join(OUT, '**', os.path.basename(results)), recursive=True)
-    if found:
-        passed, failed, skipped, failures = count_junit(found[0])
-    else:
-        passed, failed, skipped, failures = 0, 0, 0, []
+            code = 'timeout after %d s' % ROSTEST_TIMEOUT_S
+    passed = failed = skipped = 0
+    failures = []
+    for xml in sorted(glob.glob(os.path.join(results_dir, '**', 'rosunit-*.xml'), recursive=True)):
+        p, f, s, names = count_junit(xml)
+        passed, failed, skipped = passed + p, failed + f, skipped + s
+        failures += ['%s: %s' % (name, n) for n in names]
+    if failed == 0:  # node-level failures (a test node that crashed or reported nothing)
+        for xml in glob.glob(os.path.join(results_dir, '**', 'rostest-*.xml'), recursive=True):
+            _, f, _, names = count_junit(xml)
+            failed += f
+            failures += ['%s: %s' % (name, n) for n in names]
     if (code != 0 and failed == 0) or passed + failed + skipped == 0:
         failed += 1
         failures.append('%s: rostest exited %s' % (name, code))

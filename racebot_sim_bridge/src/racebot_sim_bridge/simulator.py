@@ -89,6 +89,11 @@ class Simulator(object):
         self.world_models = self.world.load_world(world_spec)
         self._reset_controllers = False
         self.timed_efforts = []  # [body, joint, effort, start, end] from /gazebo/apply_joint_effort
+        # Extension points (sensors, odometry truth): on_spawn(robot) after a URDF robot is spawned,
+        # on_delete(robot) before it goes, after_step(time) after every physics step; all under `lock`.
+        self.on_spawn = []
+        self.on_delete = []
+        self.after_step = []
 
     # -- spawning -------------------------------------------------------------------------------
     def spawn_urdf(self, name, xml, robot_namespace='', position=(0, 0, 0), orientation=(0, 0, 0, 1)):
@@ -143,6 +148,8 @@ class Simulator(object):
                     ns, robot.hw, lambda c, ns=ns: self.get_params('%s/%s' % (ns, c)), self.io, self.log)
                 robot.read(self.world)
             self.robots[name] = robot
+            for hook in self.on_spawn:
+                hook(robot)
             return robot
 
     def delete_model(self, name):
@@ -150,8 +157,11 @@ class Simulator(object):
             if name not in self.world.bodies:
                 raise KeyError(name)
             robot = self.robots.pop(name, None)
-            if robot is not None and robot.cm is not None:
-                robot.cm.shutdown()
+            if robot is not None:
+                for hook in self.on_delete:
+                    hook(robot)
+                if robot.cm is not None:
+                    robot.cm.shutdown()
             self.world.remove(name)
 
     # -- time ---------------------------------------------------------------------------------
@@ -174,6 +184,8 @@ class Simulator(object):
             self.world.step()
             self.steps += 1
             self.time = self.steps * self.step_size
+            for hook in self.after_step:
+                hook(self.time)
 
     def add_timed_effort(self, body, joint, effort, start, end):
         with self.lock:
