@@ -13,6 +13,7 @@ help:
 	@echo "make test   set up, build, run every test; ends with 'N passed, N failed'"
 	@echo "make setup  install what is missing (Debian packages, .venv) and build into build/ devel/"
 	@echo "make unit   only the unit tests (no ROS master)"
+	@echo "            extra roslaunch arguments: make run ARGS='paused:=true x_pos:=1'"
 	@echo "make clean  remove build/ devel/ (keeps .venv)"
 
 setup: debian venv build
@@ -43,8 +44,13 @@ test: setup
 unit: setup
 	@$(IN_WS) $(VENV)/bin/python3 tools/run_tests.py --unit-only
 
+# With no display there is no window to drive from: headless, and say how to drive from a shell.
+HEADLESS_ARGS = $(if $(DISPLAY),,gui:=false teleop:=false)
 run: setup
-	@$(IN_WS) roslaunch racebot_gazebo racebot.launch $(ARGS)
+	@$(if $(DISPLAY),,echo "racebot: no display (DISPLAY is unset): running headless. In another shell, drive with:"; \
+	  echo "  cd $(ROOT) && source devel/setup.bash"; \
+	  echo "  rostopic pub -r 10 /ackermann_cmd_mux/output ackermann_msgs/AckermannDriveStamped '{drive: {speed: 0.5, steering_angle: 0.3}}'";)
+	@$(IN_WS) roslaunch racebot_gazebo racebot.launch $(HEADLESS_ARGS) $(ARGS)
 
 clean:
 	rm -rf build devel

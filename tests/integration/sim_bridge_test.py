@@ -179,6 +179,26 @@ class SimBridgeTest(unittest.TestCase):
                                                'joint': 'no_such_joint', 'pid': {'p': 1.0}},
                       "Could not find resource 'no_such_joint'")
 
+    def test_8_second_robot_gets_its_own_controller_manager(self):
+        from gazebo_msgs.srv import SpawnModel
+        from geometry_msgs.msg import Pose
+        spawn = rospy.ServiceProxy('/gazebo/spawn_urdf_model', SpawnModel)
+        pose = Pose()
+        pose.position.y, pose.orientation.w = 1.0, 1.0
+        res = spawn('racebot2', rospy.get_param('/robot_description'), '/racebot2', pose, 'world')
+        self.assertTrue(res.success, res.status_message)
+        rospy.wait_for_service('/racebot2/controller_manager/load_controller', timeout=WALL_TIMEOUT)
+        rospy.set_param('/racebot2/joint_state_controller',
+                        {'type': 'joint_state_controller/JointStateController', 'publish_rate': 50})
+        load = rospy.ServiceProxy('/racebot2/controller_manager/load_controller', LoadController)
+        self.assertTrue(load('joint_state_controller').ok)
+        listed = rospy.ServiceProxy('/racebot2/controller_manager/list_controllers', ListControllers)()
+        self.assertEqual([c.name for c in listed.controller], ['joint_state_controller'])
+        self.assertEqual(self.running(), set(CONTROLLERS), 'the first robot keeps its own controllers')
+        duplicate = spawn('racebot2', rospy.get_param('/robot_description'), '/racebot3', pose, 'world')
+        self.assertFalse(duplicate.success)
+        self.assertIn('already exist', duplicate.status_message)
+
 
 if __name__ == '__main__':
     rostest.rosrun('racebot_tests', 'sim_bridge', SimBridgeTest)
