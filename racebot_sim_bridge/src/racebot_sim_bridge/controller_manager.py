@@ -62,6 +62,10 @@ class ControllerManager(object):
             except ControllerInitError as err:
                 self.log.error("Initializing controller '%s' failed: %s" % (name, err))
                 return False
+            except Exception as err:  # a malformed configuration: ros_control catches init's exceptions too
+                self.log.error("Initializing controller '%s' failed: its configuration under '%s' is malformed "
+                               "(%s: %s)" % (name, where, type(err).__name__, err))
+                return False
             self.loaded[name] = Entry(controller, type_name)
             self.state[name] = 'initialized'
             self.log.info("Loaded '%s' (%s)" % (name, type_name))

@@ -121,23 +121,34 @@ class JointStateController(Controller):
                                       "e.g. publish_rate: 50" % self.param_ns)
         self.period = 1.0 / float(rate)
         names = self.params.get('joints') or self.hw.names
+        if not isinstance(names, list) or not all(isinstance(n, str) for n in names):
+            raise ControllerInitError("'%s/joints' must be a list of joint names, got %r" % (self.param_ns, names))
         try:
             self.handles = [self.hw.handle(n, STATE) for n in names]
         except hardware.HardwareError as err:
             raise ControllerInitError('%s: %s' % (self.param_ns, err))
-        self.extra = []
-        for extra in self.params.get('extra_joints') or []:
-            if isinstance(extra, str):
-                self.extra.append((extra, 0.0, 0.0, 0.0))
-            elif isinstance(extra, dict) and len(extra) == 1:
-                (n, v), = extra.items()
-                v = v if isinstance(v, dict) else {}
-                self.extra.append((n, float(v.get('position', 0.0)), float(v.get('velocity', 0.0)),
-                                   float(v.get('effort', 0.0))))
+        extra = self.params.get('extra_joints') or []
+        if not isinstance(extra, list):
+            raise ControllerInitError("'%s/extra_joints' must be a list of {name: ..., position: ..., velocity: ..., "
+                                      "effort: ...}" % self.param_ns)
+        self.extra = [self._extra_joint(e) for e in extra]
         self.msg = JointState()
         self.msg.name = [h.name for h in self.handles] + [e[0] for e in self.extra]
         self.pub = self._pub(self.ns + '/joint_states', JointState, 100)
         self.last_publish = None
+
+    def _extra_joint(self, extra):
+        """One entry of extra_joints, ros_controllers' form: {name: j, position: p, velocity: v, effort: e},
+        the last three optional (0)."""
+        if isinstance(extra, dict) and isinstance(extra.get('name'), str):
+            try:
+                values = [float(extra.get(k, 0.0)) for k in ('position', 'velocity', 'effort')]
+            except (TypeError, ValueError):
+                raise ControllerInitError("'%s/extra_joints' entry %r: position, velocity and effort must be "
+                                          "numbers" % (self.param_ns, extra))
+            return (extra['name'],) + tuple(values)
+        raise ControllerInitError("'%s/extra_joints' entry %r has no 'name'; write {name: joint, position: 0.0}"
+                                  % (self.param_ns, extra))
 
     def starting(self, time):
         self.last_publish = None
@@ -165,10 +176,20 @@ class _CommandController(Controller):
         super(_CommandController, self).__init__(name, ns, params, hw, io)
         self.joint = self._joint_param()
         self.command = 0.0
+        self._init_extra()  # everything that can fail comes before the subscription
         self._sub(self.topic('command'), Float64, self._on_command)
 
+    def _init_extra(self):
+        pass
+
     def _on_command(self, msg):
-        self.command = msg.data  # a float assignment is atomic: the update loop reads the latest
+        value = msg.data
+        if not math.isfinite(value):
+            self.io.warn_throttle(self.param_ns, 5.0, '%s: ignored a non-finite command (%r) on %s; the last command (%g) stays in '
+                                  'force. Publish a finite number.' % (self.param_ns, value, self.topic('command'),
+                                                                       self.command))
+            return
+        self.command = value  # a float assignment is atomic: the update loop reads the latest
 
     def claimed_resources(self):
         return [(self.interface, [self.joint.name])]
@@ -200,8 +221,7 @@ class PositionForwardController(_ForwardController):
 
 
 class _PidController(_CommandController):
-    def __init__(self, name, ns, params, hw, io):
-        super(_PidController, self).__init__(name, ns, params, hw, io)
+    def _init_extra(self):
         self.pid = self._pid()
         self.state_pub = self._pub(self.topic('state'), JointControllerState, 1)
         self.loop_count = 0
@@ -294,6 +314,7 @@ class RosIO(object):
 
     def __init__(self, rospy):
         self.rospy = rospy
+        self._last_warning = {}  # key -> wall time of its last warning
 
     def publisher(self, topic, cls, queue_size):
         return self.rospy.Publisher(topic, cls, queue_size=queue_size)
@@ -303,3 +324,12 @@ class RosIO(object):
 
     def stamp(self, time):
         return self.rospy.Time.from_sec(time)
+
+    def warn_throttle(self, key, period, message):
+        """A warning at most every `period` wall seconds per key (one bad publisher must not flood
+        the log, nor hide another controller's warning)."""
+        import time
+        now = time.monotonic()
+        if now - self._last_warning.get(key, -math.inf) >= period:
+            self._last_warning[key] = now
+            self.rospy.logwarn(message)

@@ -14,6 +14,7 @@ Gazebo behaviours reproduced here, because the car drives differently without th
 """
 import math
 import os
+import shutil
 import tempfile
 import xml.etree.ElementTree as ET
 from collections import namedtuple
@@ -247,15 +248,12 @@ class PhysicsWorld(object):
         except pb.error as err:
             raise PhysicsError("PyBullet could not load the URDF of '%s': %s" % (name, err))
         body = Body(self.client, name, body_id, False, 'urdf')
-        mu_by_link = {}
-        for ref, props in urdf_model.gazebo_refs.items():
-            mus = [float(props[k]) for k in ('mu1', 'mu2') if k in props]
-            if mus:
-                mu_by_link[ref] = min(mus)
         for link, index in body.link_index.items():
-            mu = mu_by_link.get(link, 1.0)
-            pb.changeDynamics(body_id, index, lateralFriction=min(mu, self.ground_mu),
+            # PyBullet's default link damping (0.04) has no counterpart in Gazebo: a free wheel would slow down.
+            pb.changeDynamics(body_id, index, lateralFriction=min(link_friction(urdf_model, link), self.ground_mu),
                               physicsClientId=self.client)
+            # separate call: PyBullet ignores the friction when damping comes in the same call
+            pb.changeDynamics(body_id, index, linearDamping=0.0, angularDamping=0.0, physicsClientId=self.client)
         for joint in body.joints.values():
             pb.setJointMotorControl2(body_id, joint.index, pb.VELOCITY_CONTROL, force=0.0,
                                      physicsClientId=self.client)
@@ -334,6 +332,21 @@ class PhysicsWorld(object):
             except pb.error:
                 pass
             self.client = -1
+        shutil.rmtree(self._tmpdir, ignore_errors=True)
+
+
+def link_friction(urdf_model, link):
+    """mu of a (merged) PyBullet link: the smaller of mu1/mu2 of the URDF links merged into it that
+    carry collision geometry (Gazebo keeps friction per collision; Bullet has one per link), 1 if none says."""
+    mus = []
+    for name, spec in urdf_model.links.items():
+        if urdf_model.lumped_link(name) != link or not spec.collisions:
+            continue
+        props = urdf_model.gazebo_refs.get(name, {})
+        values = [float(props[k]) for k in ('mu1', 'mu2') if k in props]
+        if values:
+            mus.append(min(values))
+    return min(mus) if mus else 1.0
 
 
 def prepare_urdf_for_bullet(urdf_xml, urdf_model):
@@ -354,4 +367,5 @@ def prepare_urdf_for_bullet(urdf_xml, urdf_model):
                 geom = el.find('geometry')
                 if geom is not None and geom.find('mesh') is not None:
                     link.remove(el)
+    ET.indent(root)  # PyBullet's URDF reader fails on some very long lines (a one-line document)
     return ET.tostring(root, encoding='unicode')

@@ -3,7 +3,7 @@
     spawn_model -urdf|-sdf (-file F | -param P | -stdin | -database NAME) -model NAME
                 [-robot_namespace NS] [-reference_frame FRAME] [-gazebo_namespace /gazebo]
                 [-x X -y Y -z Z -R R -P P -Y Y] [-J JOINT POSITION]... [-unpause] [-wait MODEL]
-                [-timeout SECONDS]
+                [-timeout SECONDS] [-b] [-package_to_model]
 
 Exits 0 when the model was spawned, 1 (with the reason) otherwise.
 """
@@ -17,54 +17,68 @@ class UsageError(ValueError):
     pass
 
 
+KINDS = ('-urdf', '-sdf')
+SOURCES = ('-file', '-param', '-database', '-stdin')
+TEXT_OPTIONS = ('-model', '-robot_namespace', '-reference_frame', '-gazebo_namespace', '-wait')
+POSE_OPTIONS = ('-x', '-y', '-z', '-R', '-P', '-Y')
+
+
+def _number(flag, text):
+    try:
+        v = float(text)
+    except ValueError:
+        raise UsageError('%s takes a number, got %r' % (flag, text))
+    if not math.isfinite(v):
+        raise UsageError('%s must be finite, got %r' % (flag, text))
+    return v
+
+
 def parse_args(argv):
     """gazebo_ros spawn_model's options (single dash) -> dict. Raises UsageError with what to fix."""
     opts = dict(kind=None, source=None, value=None, model=None, robot_namespace='', reference_frame='',
                 gazebo_namespace='/gazebo', pose=dict(x=0.0, y=0.0, z=0.0, R=0.0, P=0.0, Y=0.0), joints=[],
-                unpause=False, wait=None, timeout=None)
+                unpause=False, wait=None, timeout=None, bond=False, package_to_model=False)
     i = 0
 
-    def value(flag):
-        if i + 1 >= len(argv):
-            raise UsageError('%s needs a value' % flag)
-        return argv[i + 1]
+    def value(flag, count=1):
+        if i + count >= len(argv):
+            raise UsageError('%s needs %s' % (flag, 'a value' if count == 1 else '%d values' % count))
+        return argv[i + 1] if count == 1 else argv[i + 1:i + 1 + count]
 
     while i < len(argv):
         a = argv[i]
-        if a in ('-urdf', '-sdf', '-gazebo', '-trimesh'):
-            if a in ('-gazebo', '-trimesh'):
-                raise UsageError('%s models are not supported; use -urdf or -sdf' % a)
+        if a in KINDS:
+            if opts['kind'] is not None and opts['kind'] != a[1:]:
+                raise UsageError('give one of -urdf or -sdf, not both')
             opts['kind'] = a[1:]
-        elif a in ('-file', '-param', '-database'):
-            opts['source'], opts['value'] = a[1:], value(a)
-            i += 1
-        elif a == '-stdin':
-            opts['source'] = 'stdin'
-        elif a in ('-model', '-robot_namespace', '-reference_frame', '-gazebo_namespace', '-wait'):
+        elif a in ('-gazebo', '-trimesh'):
+            raise UsageError('%s models are not supported; use -urdf or -sdf' % a)
+        elif a in SOURCES:
+            if opts['source'] is not None:
+                raise UsageError('give one model source (-file, -param, -database or -stdin), not several')
+            opts['source'] = a[1:]
+            if a != '-stdin':
+                opts['value'] = value(a)
+                i += 1
+        elif a in TEXT_OPTIONS:
             opts[a[1:]] = value(a)
             i += 1
-        elif a in ('-x', '-y', '-z', '-R', '-P', '-Y'):
-            try:
-                v = float(value(a))
-            except ValueError:
-                raise UsageError('%s takes a number, got %r' % (a, argv[i + 1]))
-            if not math.isfinite(v):
-                raise UsageError('%s must be finite, got %r' % (a, argv[i + 1]))
-            opts['pose'][a[1:]] = v
+        elif a in POSE_OPTIONS:
+            opts['pose'][a[1:]] = _number(a, value(a))
             i += 1
         elif a == '-J':
-            if i + 2 >= len(argv):
-                raise UsageError('-J needs a joint name and a position')
-            try:
-                opts['joints'].append((argv[i + 1], float(argv[i + 2])))
-            except ValueError:
-                raise UsageError('-J %s takes a number as position, got %r' % (argv[i + 1], argv[i + 2]))
+            joint, position = value(a, 2)
+            opts['joints'].append((joint, _number('-J %s' % joint, position)))
             i += 2
+        elif a == '-timeout':
+            opts['timeout'] = _number(a, value(a))
+            i += 1
         elif a == '-unpause':
             opts['unpause'] = True
-        elif a == '-timeout':
-            opts['timeout'] = float(value(a))
-            i += 1
+        elif a == '-b':
+            opts['bond'] = True  # delete the model when this program exits
+        elif a == '-package_to_model':
+            opts['package_to_model'] = True  # package:// URIs are not resolved by the simulator: no effect
         elif a in ('-h', '--help', '-help'):
             raise UsageError('')
         else:
@@ -135,6 +149,11 @@ def main(argv=None):
             sys.exit(1)
     if opts['unpause']:
         rospy.ServiceProxy(ns + '/unpause_physics', Empty)()
+    if opts['bond']:  # -b: the model lives as long as this program
+        from gazebo_msgs.srv import DeleteModel
+        delete = rospy.ServiceProxy(ns + '/delete_model', DeleteModel)
+        rospy.on_shutdown(lambda: delete(opts['model']))
+        rospy.spin()
     sys.exit(0)
 
 
