@@ -6,8 +6,6 @@ lets a test deliver command messages. No ROS master.
 """
 import copy
 import math
-import os
-from pathlib import Path
 
 import pytest
 import rospy
@@ -22,8 +20,6 @@ from racebot_sim_bridge.controllers import (CONTROLLER_TYPES, STATE_PUBLISH_EVER
                                             shortest_angular_distance_with_limits)
 from racebot_sim_bridge.hardware import EFFORT, STATE, RobotHW
 
-REPO = Path(__file__).resolve().parents[2]
-XACRO_FILE = REPO / 'racebot_description' / 'urdf' / 'ackermann' / 'racecar.xacro'
 NS = '/racebot'
 DT = 0.001
 RACEBOT_JOINTS = sorted(['left_steering_hinge_joint', 'right_steering_hinge_joint', 'left_front_wheel_joint',
@@ -76,24 +72,6 @@ class FakeIO(object):
 
     def published(self, topic):
         return self.publishers[topic].messages
-
-
-def render_racebot():
-    import xacro
-    old = os.environ.get('ROS_PACKAGE_PATH')
-    os.environ['ROS_PACKAGE_PATH'] = os.pathsep.join([str(REPO)] + ([old] if old else []))
-    try:
-        return xacro.process_file(str(XACRO_FILE)).toprettyxml(indent='  ')
-    finally:
-        if old is None:
-            del os.environ['ROS_PACKAGE_PATH']
-        else:
-            os.environ['ROS_PACKAGE_PATH'] = old
-
-
-@pytest.fixture(scope='module')
-def racebot_xml():
-    return render_racebot()
 
 
 def make_hw(xml):

@@ -14,10 +14,10 @@ import pybullet as pb
 import pytest
 
 from racebot_sim_bridge import sdf_world, urdf_model
+from conftest import render_racebot
 from racebot_sim_bridge.physics import NEGLIGIBLE_MASS, PhysicsError, PhysicsWorld
 
 REPO = Path(__file__).resolve().parents[2]
-XACRO_FILE = REPO / 'racebot_description' / 'urdf' / 'ackermann' / 'racecar.xacro'
 EMPTY_WORLD = REPO / 'racebot_sim_bridge' / 'worlds' / 'empty.world'
 
 CAR_MASS = 13.25  # 4 chassis + 2 x 0.5 hinges + 4 x 2 wheels + 0.25 sensors (RACEBOT.md)
@@ -29,26 +29,6 @@ MOVABLE = {
     'left_rear_wheel_joint': 'revolute', 'right_rear_wheel_joint': 'revolute',
 }
 WHEEL_LINKS = ('left_front_wheel', 'right_front_wheel', 'left_rear_wheel', 'right_rear_wheel')
-
-
-def render(pretty=True):
-    import xacro
-    old = os.environ.get('ROS_PACKAGE_PATH')
-    os.environ['ROS_PACKAGE_PATH'] = os.pathsep.join([str(REPO)] + ([old] if old else []))
-    try:
-        doc = xacro.process_file(str(XACRO_FILE))
-        # The xacro executable (and so robot_description) writes the pretty form.
-        return doc.toprettyxml(indent='  ') if pretty else doc.toxml()
-    finally:
-        if old is None:
-            del os.environ['ROS_PACKAGE_PATH']
-        else:
-            os.environ['ROS_PACKAGE_PATH'] = old
-
-
-@pytest.fixture(scope='module')
-def racebot_xml():
-    return render()
 
 
 @pytest.fixture(scope='module')
@@ -124,7 +104,7 @@ def test_six_movable_joints(car):
 def test_single_line_urdf_loads(world, racebot_model):
     # xacro's toxml(), `rosparam set robot_description "$(cat compact.urdf)"` or any generator that
     # writes no newlines: the model must load as the pretty form does.
-    xml = render(pretty=False)
+    xml = render_racebot(pretty=False)
     body = world.spawn_urdf('compact', urdf_model.parse_urdf(xml), xml)
     assert total_mass(world, body) == pytest.approx(CAR_MASS, abs=0.001)
 
