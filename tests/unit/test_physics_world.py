@@ -7,7 +7,6 @@ model pose is the root link's frame (base_footprint, at wheel-bottom level), fri
 the ground is min(wheel mu, ground mu), and stepping is deterministic.
 """
 import math
-import os
 from pathlib import Path
 
 import pybullet as pb
