@@ -6,12 +6,13 @@ VENV := $(ROOT)/.venv
 SYSTEM_PYTHON := /usr/bin/python3
 IN_WS := source $(ROOT)/devel/setup.bash &&
 
-.PHONY: setup debian venv build test unit run demo bench soak clean help
+.PHONY: setup debian venv build test unit run demo bench bench-quick soak clean help
 
 help:
 	@echo "make run    set up, build, start the simulator with the racebot in the room"
 	@echo "make test   set up, build, run every test; ends with 'N passed, N failed'"
 	@echo "make setup  install what is missing (Debian packages, .venv) and build into build/ devel/"
+	@echo "make demo   headless: drive a scripted route, print it, draw it (out/demo/demo_path.png)"
 	@echo "make unit   only the unit tests (no ROS master)"
 	@echo "            extra roslaunch arguments: make run ARGS='paused:=true x_pos:=1'"
 	@echo "make clean  remove build/ devel/ (keeps .venv)"
@@ -51,6 +52,19 @@ run: setup
 	  echo "  cd $(ROOT) && source devel/setup.bash"; \
 	  echo "  rostopic pub -r 10 /ackermann_cmd_mux/output ackermann_msgs/AckermannDriveStamped '{drive: {speed: 0.5, steering_angle: 0.3}}'";)
 	@$(IN_WS) roslaunch racebot_gazebo racebot.launch $(HEADLESS_ARGS) $(ARGS)
+
+# Headless: a scripted route through the room (~20 s of sim time), then the distance, the final pose
+# and out/demo/demo_path.png (the path over the room's walls).
+demo: setup
+	@$(IN_WS) $(VENV)/bin/python3 tools/demo.py
+
+# Speed against the physics ceiling and fidelity against the kinematic model: prints the table, writes
+# out/bench/ (bench.json, PNG plots). About 6 minutes; bench-quick runs every part briefly (< 1 min).
+bench: setup
+	@$(IN_WS) $(VENV)/bin/python3 tools/bench.py
+
+bench-quick: setup
+	@$(IN_WS) $(VENV)/bin/python3 tools/bench.py --quick
 
 clean:
 	rm -rf build devel

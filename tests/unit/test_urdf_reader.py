@@ -394,9 +394,6 @@ def test_normalise_interface():
      r"link 'a' <visual> #1 has no <geometry> shape"),
     (with_body('<link name="a"><visual><geometry><torus/></geometry></visual></link>'),
      'unknown geometry <torus>'),
-    (with_body('<link name="a"/><transmission name="t"><joint name="ghost_joint"/>'
-               '</transmission>'),
-     "transmission 't' names joint 'ghost_joint', which does not exist"),
     (with_body('<link name="a"/><gazebo><plugin name="c" filename="libgazebo_ros_control.so">'
                '<controlPeriod>fast</controlPeriod></plugin></gazebo>'),
      r"plugin 'c' <controlPeriod>: 'fast' is not a number"),

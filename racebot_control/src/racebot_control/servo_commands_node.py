@@ -17,11 +17,16 @@ Parameters (read once at start)
     speed 0 and the last steering angle is sent; ROS time, i.e. /clock under sim time),
     ~namespace (/racebot, the controllers' namespace).
 
-Every command is forwarded, in order: one subscriber thread, queues of QUEUE_SIZE, TCP_NODELAY.
-Commands with a non-finite speed or angle are skipped with a throttled warning.
+Every command is forwarded, in order: one subscriber thread (queue of QUEUE_SIZE), synchronous
+publishers, TCP_NODELAY.
+Commands with a non-finite speed or angle are skipped with a throttled warning; a steering angle
+beyond half a turn is clamped like any other, with a throttled warning. Speeds are not limited here:
+the wheel controllers clamp commands beyond the joints' URDF velocity limit, with their own warning.
 """
 
+import math
 import threading
+import warnings
 
 import rospy
 from ackermann_msgs.msg import AckermannDriveStamped
@@ -42,6 +47,10 @@ CONTROLLERS = (
 # Enough that a burst of commands (50 Hz teleop, navigation) is never dropped.
 QUEUE_SIZE = 100
 WARN_PERIOD_S = 5.0
+# Beyond this |steering_angle| [rad] (half a turn) a command is warned about (still clamped to the
+# hinge limit, as every angle beyond it is): such a number is a unit or a wiring mistake, while
+# angles a little past the limit are everyday (transform passes yaw rates through).
+ABSURD_STEERING_ANGLE = math.pi
 
 
 class ServoCommands(object):
@@ -71,10 +80,14 @@ class ServoCommands(object):
         self._lock = threading.Lock()
         self._last_command_time = None   # ROS time of the last command; None once stopped
         self._last_steering_angle = 0.0
-        self._publishers = [
-            rospy.Publisher('%s/%s/command' % (namespace, name), Float64, queue_size=QUEUE_SIZE,
-                            tcp_nodelay=True)
-            for name in CONTROLLERS]
+        # Synchronous publishers (queue_size=None): each command is written to the controllers' sockets
+        # in this callback, in order, with no hand-off to a writer thread (which cost milliseconds of
+        # latency under load) and no queue that could overflow and drop a command.
+        with warnings.catch_warnings():  # rospy warns that queue_size=None means synchronous: it is meant
+            warnings.simplefilter('ignore', SyntaxWarning)
+            self._publishers = [
+                rospy.Publisher('%s/%s/command' % (namespace, name), Float64, queue_size=None, tcp_nodelay=True)
+                for name in CONTROLLERS]
         self._timer = None
         if self.command_timeout > 0.0:
             period = min(0.05, self.command_timeout / 5.0)
@@ -103,6 +116,11 @@ class ServoCommands(object):
                                        'finite (speed %r, steering_angle %r)'
                                        % (msg.drive.speed, msg.drive.steering_angle))
                 return
+            if abs(msg.drive.steering_angle) > ABSURD_STEERING_ANGLE:
+                rospy.logwarn_throttle(WARN_PERIOD_S, 'servo_commands: steering_angle %g rad is more than half a '
+                                       'turn, not a steering angle; clamped to the hinge limit +-%g rad. Send an '
+                                       'angle in radians within the limit.'
+                                       % (msg.drive.steering_angle, self.geometry.max_steering_angle))
             self._last_steering_angle = msg.drive.steering_angle
             self._last_command_time = rospy.get_rostime()
 

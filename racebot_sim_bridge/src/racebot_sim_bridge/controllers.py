@@ -22,6 +22,9 @@ from .hardware import EFFORT, POSITION, STATE, VELOCITY, shortest_angular_distan
 from .pid import Pid
 
 STATE_PUBLISH_EVERY = 10  # ros_controllers publish their state topic every 10th update
+# A command further than this beyond its joint's limit is warned about (clamping is exact; rounding
+# of a command computed right at the limit, e.g. by servo_commands, is not worth a warning).
+LIMIT_WARN_TOLERANCE = 1e-6
 
 
 class ControllerInitError(ValueError):
@@ -170,14 +173,20 @@ class JointStateController(Controller):
 
 
 class _CommandController(Controller):
-    """A single-joint controller with a std_msgs/Float64 `command` topic."""
+    """A single-joint controller with a std_msgs/Float64 `command` topic. Non-finite commands are
+    ignored and commands beyond the joint's URDF limit clamped, each with a throttled warning."""
+    setpoint = None  # what the command sets: 'position', 'velocity' or 'effort'
 
     def __init__(self, name, ns, params, hw, io):
         super(_CommandController, self).__init__(name, ns, params, hw, io)
         self.joint = self._joint_param()
         self.command = 0.0
         self._init_extra()  # everything that can fail comes before the subscription
-        self._sub(self.topic('command'), Float64, self._on_command)
+        on_command = self._on_command
+        trace = getattr(io, 'command_trace', None)
+        if trace is not None:  # measurements only (make bench); see CommandTrace
+            on_command = trace.wrap(self)
+        self._sub(self.topic('command'), Float64, on_command)
 
     def _init_extra(self):
         pass
@@ -189,7 +198,33 @@ class _CommandController(Controller):
                                   'force. Publish a finite number.' % (self.param_ns, value, self.topic('command'),
                                                                        self.command))
             return
-        self.command = value  # a float assignment is atomic: the update loop reads the latest
+        kept, bounds, reaches = self.limit_command(value)
+        if bounds is not None:
+            self.io.warn_throttle(self.param_ns + '/limit', 5.0, '%s: command %g on %s is beyond the %s limit of joint '
+                                  '%s (%s); %s %g. Publish a value within the URDF <limit> of the joint.'
+                                  % (self.param_ns, value, self.topic('command'), self.setpoint, self.joint.name, bounds,
+                                     'the hardware saturates it to' if kept == value else 'clamped to', reaches))
+        self.command = kept  # a float assignment is atomic: the update loop reads the latest
+
+    def limit_command(self, value):
+        """(command to keep, None, value) for a command within the joint's URDF limit for what it
+        sets; else (command to keep, the limit as text, what reaches the joint). A velocity or a
+        position is clamped here, as ros_control's joint_limits_interface clamps what reaches the
+        joint; an effort is kept and saturated by the hardware (hardware.JointHandle.limited_command)."""
+        j = self.joint
+        if self.setpoint == 'velocity' and j.max_velocity is not None:
+            lo, hi, text = -j.max_velocity, j.max_velocity, '+-%g' % j.max_velocity
+        elif self.setpoint == 'effort' and j.max_effort is not None:
+            lo, hi, text = -j.max_effort, j.max_effort, '+-%g' % j.max_effort
+        elif self.setpoint == 'position' and j.has_position_limits:
+            lo, hi, text = j.lower, j.upper, '[%g, %g]' % (j.lower, j.upper)
+        else:
+            return value, None, value
+        reaches = min(max(value, lo), hi)
+        kept = value if self.setpoint == 'effort' else reaches
+        if lo - LIMIT_WARN_TOLERANCE <= value <= hi + LIMIT_WARN_TOLERANCE:
+            return kept, None, reaches
+        return kept, text, reaches
 
     def claimed_resources(self):
         return [(self.interface, [self.joint.name])]
@@ -208,16 +243,19 @@ class _ForwardController(_CommandController):
 class EffortForwardController(_ForwardController):
     type_name = 'effort_controllers/JointEffortController'
     interface = EFFORT
+    setpoint = 'effort'
 
 
 class VelocityForwardController(_ForwardController):
     type_name = 'velocity_controllers/JointVelocityController'
     interface = VELOCITY
+    setpoint = 'velocity'
 
 
 class PositionForwardController(_ForwardController):
     type_name = 'position_controllers/JointPositionController'
     interface = POSITION
+    setpoint = 'position'
 
 
 class _PidController(_CommandController):
@@ -226,9 +264,12 @@ class _PidController(_CommandController):
         self.state_pub = self._pub(self.topic('state'), JointControllerState, 1)
         self.loop_count = 0
         self.state = JointControllerState()
+        # The message is filled only when somebody listens (publishing it to nobody is a no-op anyway).
+        connections = getattr(self.state_pub, 'get_num_connections', None)
+        self._state_wanted = (lambda: connections() > 0) if connections is not None else (lambda: True)
 
     def _publish_state(self, time, period, set_point, process_value, process_value_dot, error, command):
-        if self.loop_count % STATE_PUBLISH_EVERY == 0:
+        if self.loop_count % STATE_PUBLISH_EVERY == 0 and self._state_wanted():
             s = self.state
             s.header.stamp = self.io.stamp(time)
             s.set_point = set_point
@@ -248,6 +289,7 @@ class JointVelocityController(_PidController):
     """effort_controllers/JointVelocityController: effort = PID(command - velocity)."""
     type_name = 'effort_controllers/JointVelocityController'
     interface = EFFORT
+    setpoint = 'velocity'
 
     def starting(self, time):
         self.command = 0.0
@@ -266,6 +308,7 @@ class JointPositionController(_PidController):
     clamped to the joint's URDF limits; holds the current position when started."""
     type_name = 'effort_controllers/JointPositionController'
     interface = EFFORT
+    setpoint = 'position'
 
     def clamp(self, position):
         j = self.joint
@@ -309,8 +352,52 @@ CONTROLLER_TYPES = {c.type_name: c for c in (
     VelocityForwardController, VelocityJointPositionController, PositionForwardController)}
 
 
+class CommandTrace(object):
+    """Opt-in record of the command path, for measurements (make bench): for every command a
+    controller receives, a line `arrived <wall time> <controller> <value>` when its callback runs,
+    and `applied <wall time> <controller> <value>` at the first update that uses it (a command
+    overtaken by a newer one before any update is never applied). Wall time is time.monotonic()
+    (CLOCK_MONOTONIC, comparable across processes on one machine). Controllers built with an I/O
+    object without a `command_trace` take the untraced path, which this class leaves untouched."""
+
+    def __init__(self, path, clock=None):
+        import threading
+        import time
+        self.clock = clock or time.monotonic
+        self._file = open(path, 'a', buffering=1)  # line-buffered: a reader sees whole lines
+        self._lock = threading.Lock()
+
+    def record(self, event, controller, value, when):
+        with self._lock:
+            self._file.write('%s %.9f %s %r\n' % (event, when, controller, value))
+
+    def wrap(self, controller):
+        """Traces one controller: replaces its update on the instance and returns the command
+        callback to subscribe."""
+        on_command, update = controller._on_command, controller.update
+        arrived = []  # values received since the last update
+        name = controller.param_ns
+
+        def traced_on_command(msg):
+            self.record('arrived', name, msg.data, self.clock())
+            on_command(msg)
+            arrived.append(msg.data)
+
+        def traced_update(time, period):
+            update(time, period)
+            if arrived:
+                del arrived[:]
+                self.record('applied', name, controller.command, self.clock())
+        controller.update = traced_update
+        return traced_on_command
+
+    def close(self):
+        self._file.close()
+
+
 class RosIO(object):
     """Publishers and subscribers through rospy (the simulator's real I/O)."""
+    command_trace = None  # a CommandTrace to record the command path (measurements only)
 
     def __init__(self, rospy):
         self.rospy = rospy

@@ -183,7 +183,7 @@ class GazeboServices(object):
         res = srv.GetWorldPropertiesResponse()
         res.sim_time = self.sim.time
         res.model_names = self.sim.model_names()
-        res.rendering_enabled = bool(self.sim.world.gui)
+        res.rendering_enabled = bool(self.sim.rendering)
         res.success, res.status_message = True, 'GetWorldProperties: got properties'
         return res
 

@@ -112,11 +112,19 @@ class PhysicsWorld(object):
         self._tmpdir = tempfile.mkdtemp(prefix='racebot_urdf_')
 
     # -- world --------------------------------------------------------------------------------
-    def load_world(self, world):
-        """Creates every model of a parsed sdf_world.World; returns the names created."""
+    def load_world(self, world, warn=None):
+        """Creates every model of a parsed sdf_world.World; returns the names created. With `warn`,
+        a model that cannot be built (no link with usable geometry left) is skipped and warn(message)
+        told, as the reader skips degenerate elements; without it, PhysicsError."""
         created = []
         for model in world.models:
-            self.add_sdf_model(model)
+            try:
+                self.add_sdf_model(model)
+            except PhysicsError as err:
+                if warn is None:
+                    raise
+                warn('%s; the model is skipped, the world loads without it' % err)
+                continue
             created.append(model.name)
         return created
 
@@ -130,13 +138,16 @@ class PhysicsWorld(object):
             if body_id is not None:
                 ids.append((link.name, body_id))
         if not ids:
-            raise PhysicsError("model '%s' has no link with supported geometry" % model.name)
+            raise PhysicsError("model '%s' has no link with supported geometry (give it a box, cylinder, sphere "
+                               "or plane of positive size)" % model.name)
         # A multi-link SDF model is kept as its first link's body plus extra bodies named model::link.
         first_link, first_id = ids[0]
-        self.bodies[model.name] = Body(self.client, model.name, first_id, model.static, 'sdf')
-        self.bodies[model.name].link_index = {first_link: -1}
-        self.bodies[model.name].extra_bodies = ids[1:]
-        return self.bodies[model.name]
+        body = Body(self.client, model.name, first_id, model.static, 'sdf')
+        body.link_index = {first_link: -1}
+        body.extra_bodies = ids[1:]
+        body.source = ('sdf', model)  # what a viewer needs to build its own copy
+        self.bodies[model.name] = body
+        return body
 
     def _create_sdf_link(self, model, link):
         shapes, visuals = [], []
@@ -248,6 +259,7 @@ class PhysicsWorld(object):
         except pb.error as err:
             raise PhysicsError("PyBullet could not load the URDF of '%s': %s" % (name, err))
         body = Body(self.client, name, body_id, False, 'urdf')
+        body.source = ('urdf', urdf_model, urdf_xml)
         for link, index in body.link_index.items():
             # PyBullet's default link damping (0.04) has no counterpart in Gazebo: a free wheel would slow down.
             pb.changeDynamics(body_id, index, lateralFriction=min(link_friction(urdf_model, link), self.ground_mu),
@@ -270,6 +282,11 @@ class PhysicsWorld(object):
     def joint_states(self, body, indices):
         states = pb.getJointStates(body.id, indices, physicsClientId=self.client)
         return [JointState(s[0], s[1]) for s in states]
+
+    def joint_states_raw(self, body, indices):
+        """PyBullet's own tuples (position, velocity, reaction forces, applied torque) of the joints:
+        the update loop's read, without building a JointState per joint."""
+        return pb.getJointStates(body.id, indices, physicsClientId=self.client)
 
     def apply_efforts(self, body, indices, efforts):
         """Torques (or forces) for one step: PyBullet clears them after every stepSimulation."""

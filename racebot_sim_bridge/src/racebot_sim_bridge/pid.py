@@ -30,6 +30,9 @@ __all__ = ['Pid']
 _PARAM_KEYS = ('p', 'i', 'd', 'i_clamp', 'i_clamp_min', 'i_clamp_max', 'antiwindup')
 
 
+_INF = float('inf')
+
+
 def _is_number(value):
     """True for int/float values (bool excluded: YAML ``true`` is not a gain)."""
     return isinstance(value, (int, float)) and not isinstance(value, bool)
@@ -200,7 +203,10 @@ class Pid:
 
         Returns 0.0, changing nothing, when ``dt <= 0`` or either value is not finite.
         """
-        if not self._usable(dt, error):
+        # Fast path for what the controllers pass (two floats, dt > 0, both finite: x - x is nan for
+        # inf and nan); anything else takes the full check.
+        if not (error.__class__ is float and dt.__class__ is float and 0.0 < dt < _INF and error - error == 0.0) \
+                and not self._usable(dt, error):
             return 0.0
         error_dot = (error - self._previous_error) / dt if self._has_previous else 0.0
         self._previous_error = float(error)
@@ -229,7 +235,7 @@ class Pid:
         # i == 0 gives a zero term even if the integral state has overflowed to inf.
         i_term = self._i * self._i_error if self._i != 0.0 else 0.0
         if not self._antiwindup:
-            i_term = _clamp(i_term, self._i_min, self._i_max)
+            i_term = max(self._i_min, min(i_term, self._i_max))  # _clamp, inlined: every update passes here
         self._i_term = i_term
 
         self._d_term = self._d * error_dot

@@ -44,26 +44,29 @@ class Robot(object):
             self.effort_handles = [h for h in self.handles if h.interface == EFFORT]
             self.velocity_handles = [h for h in self.handles if h.interface == VELOCITY]
             self.position_handles = [h for h in self.handles if h.interface == POSITION]
+            # What write() passes every step, built once.
+            self._drives = [(hs, drive, [body.joints[h.name].index for h in hs], [h.max_effort or 1e3 for h in hs])
+                            for hs, drive in ((self.velocity_handles, 'drive_velocities'),
+                                              (self.position_handles, 'drive_positions')) if hs]
 
     def read(self, world):
         if not self.handles:
             return
-        for h, s in zip(self.handles, world.joint_states(self.body, self.indices)):
-            h.read(s.position, s.velocity)
+        # one PyBullet call for all joints; raw tuples (position, velocity, ...), no per-joint objects
+        for h, s in zip(self.handles, world.joint_states_raw(self.body, self.indices)):
+            h.read(s[0], s[1])
 
     def write(self, world):
         if not self.handles:
             return
         if self.effort_handles:
-            efforts = [h.limited_command() for h in self.effort_handles]
-            for h, e in zip(self.effort_handles, efforts):
-                h.effort = e
+            efforts = []
+            for h in self.effort_handles:
+                h.effort = e = h.limited_command()
+                efforts.append(e)
             world.apply_efforts(self.body, self.effort_idx, efforts)
-        for hs, drive in ((self.velocity_handles, world.drive_velocities),
-                          (self.position_handles, world.drive_positions)):
-            if hs:
-                drive(self.body, [self.body.joints[h.name].index for h in hs], [h.limited_command() for h in hs],
-                      [h.max_effort or 1e3 for h in hs])
+        for hs, drive, indices, forces in self._drives:
+            getattr(world, drive)(self.body, indices, [h.limited_command() for h in hs], forces)
 
     def reset_joint_readings(self, world):
         if self.handles:
@@ -73,20 +76,21 @@ class Robot(object):
 
 
 class Simulator(object):
-    def __init__(self, world_spec, io, log, get_params, gui=False):
+    def __init__(self, world_spec, io, log, get_params):
         """world_spec: sdf_world.World; io: controllers.RosIO-like; get_params(path) -> value or None."""
         self.spec = world_spec
         self.io = io
         self.log = log
         self.get_params = get_params
         self.step_size = world_spec.physics.max_step_size
-        self.world = physics.PhysicsWorld(self.step_size, world_spec.physics.gravity, gui=gui)
+        self.world = physics.PhysicsWorld(self.step_size, world_spec.physics.gravity)  # DIRECT: see viewer.py
+        self.rendering = False  # a window shows this world (set by the world server)
         self.lock = threading.RLock()
         self.time = 0.0
         self.steps = 0
         self.paused = False
         self.robots = {}
-        self.world_models = self.world.load_world(world_spec)
+        self.world_models = self.world.load_world(world_spec, warn=lambda m: self.log.warn('world: %s' % m))
         self._reset_controllers = False
         self.timed_efforts = []  # [body, joint, effort, start, end] from /gazebo/apply_joint_effort
         # Extension points (sensors, odometry truth): on_spawn(robot) after a URDF robot is spawned,
@@ -102,7 +106,9 @@ class Simulator(object):
             if not name:
                 raise SpawnError('SpawnModel: Failure - no model name given; pass -model NAME')
             if name in self.world.bodies:
-                raise SpawnError('SpawnModel: Failure - model name %s already exist.' % name)
+                raise SpawnError('SpawnModel: Failure - model name %s already exist. Delete it first '
+                                 '(rosservice call /gazebo/delete_model %s) or spawn with another -model name'
+                                 % (name, name))
             try:
                 model = urdf_model.parse_urdf(xml)
             except urdf_model.UrdfError as err:
@@ -122,9 +128,23 @@ class Simulator(object):
                 try:
                     urdf_model.hardware_joints(model)
                 except urdf_model.UrdfError as err:
-                    raise SpawnError('SpawnModel: Failure - %s' % err)
+                    # gazebo_ros_control: "Could not initialize robot simulation interface"; the model
+                    # stays in the world, without a controller manager.
+                    self.log.error("%s: %s. gazebo_ros_control is not active for this model: it is spawned without "
+                                   "a controller manager (as Gazebo does), so no controller can be loaded for it. "
+                                   "Fix the URDF, delete the model and spawn it again" % (name, err))
+                    robot_ns = None
+                else:
+                    if not model.transmissions:
+                        self.log.warn("%s: the %s plugin is declared but the URDF has no <transmission>: its "
+                                      "controller manager under %s has no joints to control; add a <transmission> "
+                                      "per actuated joint" % (name, CONTROL_PLUGIN, robot_ns or '/'))
                 for w in model.warnings:
                     self.log.warn('%s: %s' % (name, w))
+            elif model.transmissions:
+                self.log.warn("%s has <transmission>s but declares no %s plugin: no controller manager for it, so "
+                              "its controllers cannot be loaded; add <gazebo><plugin name=\"gazebo_ros_control\" "
+                              "filename=\"%s\"/></gazebo> to the URDF" % (name, CONTROL_PLUGIN, CONTROL_PLUGIN))
             else:
                 self.log.info("%s declares no %s plugin: no controller manager for it" % (name, CONTROL_PLUGIN))
             for r in self.robots.values():

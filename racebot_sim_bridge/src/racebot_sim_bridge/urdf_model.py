@@ -593,9 +593,9 @@ class _UrdfReader:
             joint_name = joint.get('name')
             if not joint_name:
                 raise UrdfError('%s has a <joint> without a name; add name="..."' % what)
-            if joint_name not in self.model.joints:
-                raise UrdfError("%s names joint '%s', which does not exist; fix the name or add "
-                                'the joint' % (what, joint_name))
+            # A joint that does not exist is gazebo_ros_control's business, not the URDF's (urdfdom
+            # ignores transmissions): hardware_joints() raises for it, and the robot is spawned
+            # without a controller manager, as in Gazebo.
             transmission.joints.append(
                 (joint_name, self.interfaces(joint, "%s joint '%s'" % (what, joint_name))))
         for actuator in elem.findall('actuator'):

@@ -5,8 +5,17 @@ options, ignored] WORLD_FILE`. `-u` starts paused. Private parameters:
   ~gui (bool, false)             PyBullet's window, the camera following the first robot (needs a display)
   ~pub_clock_frequency (Hz, 0)   if > 0, /clock at most this often in sim time (gazebo_ros's
                                  /gazebo/pub_clock_frequency); 0 = every world update, as Gazebo
+  ~fast_clock_wall_period (s, 0.001)  as fast as possible only (real_time_update_rate 0): /clock at
+                                 most once per this many wall seconds, carrying the latest update's
+                                 time, so subscribers see sim time advance in steps of about
+                                 real-time factor x 1 ms; 0 = every update. In real-time mode every
+                                 update is published, as Gazebo does. A pause or a reset is
+                                 published at once.
   ~states_publish_rate (Hz, 100) /gazebo/model_states and link_states in sim time when subscribed
                                  (Gazebo: every update; 0 here means that too)
+  ~command_trace (path, '')      measurements only (make bench): append to this file when each
+                                 controller command arrives and when an update first applies it
+                                 (controllers.CommandTrace); '' = off, and then it costs nothing
 Pacing is in wall time (this node drives ROS time, so rospy's timers cannot pace it): the world's
 real_time_update_rate updates per wall second, or as fast as possible when it is 0.
 """
@@ -20,18 +29,58 @@ import rospy
 from rosgraph_msgs.msg import Clock
 
 from . import sdf_world
-from .controllers import RosIO
+from .controllers import CommandTrace, RosIO
 from .gazebo_services import GazeboServices
 from .physics import PhysicsError
+from .sensors import SensorManager
 from .simulator import Simulator
+from .viewer import SYNC_PERIOD as VIEWER_SYNC_PERIOD, Viewer
 
 PAUSED_CLOCK_PERIOD = 0.2  # wall seconds between /clock repeats while paused (late joiners get the time)
+# As fast as possible, /clock at every update (10,000+ a second) costs the world server and every
+# subscriber more than the physics itself; one per wall millisecond is what real time gives them.
+FAST_CLOCK_WALL_PERIOD = 0.001
+# Real time: the loop sleeps whenever it is this far ahead of its schedule, i.e. after nearly every
+# update. A command that arrives while it sleeps is applied at the next update (within one period);
+# sleeping only every few updates (in bursts) would make it wait for the next burst.
+PACING_SLACK = 0.0002
+# /clock is written to its subscribers' sockets from the update loop (no writer thread per subscriber,
+# see clock_publisher); a subscriber that takes nothing for this long is disconnected.
+CLOCK_SEND_TIMEOUT = 1.0
+
+
+def clock_publisher():
+    """The /clock publisher, synchronous: rospy's queued publisher hands every message to a writer
+    thread per subscriber and yields the interpreter (time.sleep(0)) after each, which at 1000
+    messages a second costs the update loop more than the physics on a busy machine. Written
+    directly, a message costs one send per subscriber. A subscriber that stops reading (a process
+    stopped in a debugger) would block the loop once its socket buffers are full: its socket gets
+    a send timeout, after which rospy drops the connection."""
+    import warnings
+
+    class SendTimeout(rospy.SubscribeListener):
+        def peer_subscribe(self, topic_name, topic_publish, peer_publish):
+            for conn in list(getattr(pub.impl, 'connections', [])):
+                sock = getattr(conn, 'socket', None)
+                if sock is not None and sock.gettimeout() is None:
+                    sock.settimeout(CLOCK_SEND_TIMEOUT)
+
+    with warnings.catch_warnings():  # rospy warns that queue_size=None means synchronous: it is meant
+        warnings.simplefilter('ignore', SyntaxWarning)
+        pub = rospy.Publisher('/clock', Clock, queue_size=None, subscriber_listener=SendTimeout())
+    return pub
 
 
 class RospyLog(object):
     error = staticmethod(rospy.logerr)
     warn = staticmethod(rospy.logwarn)
     info = staticmethod(rospy.loginfo)
+
+
+# gzserver options that take a value: their value must not be mistaken for the world file.
+GZSERVER_VALUE_OPTIONS = {'-s', '--server-plugin', '-o', '--profile', '--seed', '--iters', '--record_path',
+                          '--record_period', '--record_filter', '--record_resources', '--record_encoding',
+                          '-p', '--play'}
 
 
 def parse_args(argv):
@@ -47,6 +96,8 @@ def parse_args(argv):
             engine = next(it, 'ode')
             if engine != 'ode':
                 ignored.append('-e %s (the physics engine is always PyBullet here)' % engine)
+        elif a in GZSERVER_VALUE_OPTIONS:
+            ignored.append('%s %s' % (a, next(it, '')))
         elif a.startswith('-'):
             ignored.append(a)
         elif a.strip():
@@ -90,18 +141,30 @@ class WorldServer(object):
         if gui and not display_available():
             rospy.logwarn('gui:=true but there is no display (DISPLAY is unset): running headless')
             gui = False
-        try:
-            self.sim = Simulator(spec, RosIO(rospy), RospyLog, self._get_param, gui=gui)
-        except PhysicsError as err:
-            if not gui:
-                raise
-            rospy.logwarn('could not open the PyBullet window (%s): running headless' % err)
-            self.sim = Simulator(spec, RosIO(rospy), RospyLog, self._get_param, gui=False)
+        io = RosIO(rospy)
+        trace_path = rospy.get_param('~command_trace', '')
+        if trace_path:
+            io.command_trace = CommandTrace(trace_path)
+            rospy.logwarn('command trace on (~command_trace): every controller command is logged to %s; '
+                          'for measurements only' % trace_path)
+        self.sim = Simulator(spec, io, RospyLog, self._get_param)
+        self.viewer = None
+        if gui:
+            try:
+                self.viewer = Viewer(self.sim.world)
+            except PhysicsError as err:
+                rospy.logwarn('could not open the PyBullet window (%s): running headless' % err)
+        self.sim.rendering = self.viewer is not None
         self.sim.paused = paused
         self.update_rate = ph.real_time_update_rate
         self.clock_period = self._rate_param('~pub_clock_frequency', 0.0)
+        self.clock_wall_period = 0.0
+        if self.update_rate <= 0:
+            self.clock_wall_period = self._seconds_param('~fast_clock_wall_period', FAST_CLOCK_WALL_PERIOD)
+        self.last_clock_wall = -math.inf
         self.states_period = self._rate_param('~states_publish_rate', 100.0)
-        self.clock_pub = rospy.Publisher('/clock', Clock, queue_size=10)
+        self.clock_pub = clock_publisher()
+        self.sensors = SensorManager(rospy, self.sim)  # before the services: every spawn gets its sensors
         self.services = GazeboServices(rospy, self.sim)
         self.clock_msg = Clock()
         self.last_clock = -math.inf
@@ -128,65 +191,108 @@ class WorldServer(object):
             rate = default
         return 1.0 / rate if rate > 0 and math.isfinite(rate) else 0.0
 
+    @staticmethod
+    def _seconds_param(name, default):
+        value = rospy.get_param(name, default)
+        try:
+            value = float(value)
+            if value >= 0 and math.isfinite(value):
+                return value
+        except (TypeError, ValueError):
+            pass
+        rospy.logwarn('%s must be a number of seconds >= 0, got %r; using %g' % (name, value, default))
+        return default
+
     def publish_clock(self, force=False):
         t = self.sim.time
-        if not force and self.clock_period and t - self.last_clock < self.clock_period - 1e-9:
-            return
+        if not force:
+            if self.clock_period and t - self.last_clock < self.clock_period - 1e-9:
+                return
+            if self.clock_wall_period:
+                now = time.perf_counter()
+                if now - self.last_clock_wall < self.clock_wall_period:
+                    return
+                self.last_clock_wall = now
         self.last_clock = t
         self.clock_msg.clock = rospy.Time.from_sec(t)
         self.clock_pub.publish(self.clock_msg)
+        if _OWN_SIM_TIME:
+            rospy.rostime._set_rostime(self.clock_msg.clock)
 
     def run(self):
         self.publish_clock(force=True)
         wall_start, steps_since = time.perf_counter(), 0
         last_paused_clock = 0.0
-        follow = self._follow_target()
+        last_view = 0.0
         while not rospy.is_shutdown():
             if self.sim.paused:
                 now = time.perf_counter()
-                if now - last_paused_clock >= PAUSED_CLOCK_PERIOD:
+                # at once if the latest update's time was held back (fast mode), then now and then
+                if self.last_clock != self.sim.time or now - last_paused_clock >= PAUSED_CLOCK_PERIOD:
                     self.publish_clock(force=True)
                     last_paused_clock = now
                 time.sleep(0.002)
                 wall_start, steps_since = time.perf_counter(), 0
                 continue
-            before = self.sim.time
             self.sim.step()
             steps_since += 1
-            if self.sim.time < before:  # a reset sent time back: publish it at once
-                self.last_clock = self.last_states = -math.inf
+            # A reset sent time back (perhaps while paused, between two of our steps): publish at once.
+            if self.sim.time < self.last_clock or self.sim.time < self.last_states:
+                self.last_clock = self.last_states = self.last_clock_wall = -math.inf
             self.publish_clock()
             if self.sim.time - self.last_states >= self.states_period - 1e-9:
                 self.last_states = self.sim.time
                 self.services.publish_states()
-            if follow is not None and self.sim.steps % 33 == 0:
-                follow()
+            if self.viewer is not None and time.perf_counter() - last_view >= VIEWER_SYNC_PERIOD:
+                last_view = time.perf_counter()
+                with self.sim.lock:
+                    self.viewer.sync()
             if self.update_rate > 0:
                 ahead = wall_start + steps_since / self.update_rate - time.perf_counter()
-                if ahead > 0.002:
+                if ahead > PACING_SLACK:  # sleep until this update's wall time: Gazebo's one update per period
                     time.sleep(ahead)
                 elif ahead < -0.5:  # far behind (a slow machine, a debugger): do not sprint to catch up
                     wall_start, steps_since = time.perf_counter(), 0
 
-    def _follow_target(self):
-        if not self.sim.world.gui:
-            return None
-
-        def follow():
-            robots = list(self.sim.robots.values())
-            if robots:
-                with self.sim.lock:
-                    self.sim.world.follow_with_camera(robots[0].body)
-        return follow
-
     def shutdown(self):
         self.services.shutdown()
+        if self.viewer is not None:
+            self.viewer.close()
         self.sim.close()
+
+
+_OWN_SIM_TIME = False  # True when this node's ROS time is set by publish_clock (see init_clock_source)
+
+
+def init_clock_source(name):
+    """rospy.init_node for the node that publishes /clock. With /use_sim_time set, rospy would
+    subscribe this node to its own /clock: a receive thread, a second connection and a message to
+    deserialize for every one we send. Instead the node's ROS time (log stamps) is set where /clock
+    is published, to the same value, so it reads exactly what its subscribers read."""
+    global _OWN_SIM_TIME
+    import rospy.impl.simtime as simtime
+    real_check = getattr(simtime, '_is_use_simtime', None)
+    if real_check is None or not hasattr(rospy.rostime, '_set_rostime'):  # another rospy: its own way
+        rospy.init_node(name, anonymous=False)
+        return
+    wanted = []
+
+    def no_self_subscription():
+        wanted.append(real_check())
+        return False
+    simtime._is_use_simtime = no_self_subscription
+    try:
+        rospy.init_node(name, anonymous=False)
+    finally:
+        simtime._is_use_simtime = real_check
+    if wanted and wanted[0]:
+        _OWN_SIM_TIME = True
+        rospy.rostime._set_rostime(rospy.Time(0))
 
 
 def main(argv=None):
     argv = rospy.myargv(argv if argv is not None else sys.argv)[1:]
-    rospy.init_node('gazebo', anonymous=False)
+    init_clock_source('gazebo')
     world, paused, verbose, ignored = parse_args(argv)
     for opt in ignored:
         rospy.loginfo('gzserver option %s has no meaning here; ignored' % opt)

@@ -17,6 +17,12 @@ Command line and behaviour follow ros_control's Noetic spawner:
 4. unless ``--stopped``, start them all with one STRICT switch_controller call;
 5. spin; on shutdown stop them (one switch) and unload them in reverse order.
 
+Beyond ros_control: while spinning, the spawner watches the controller manager it loaded into
+(the node serving load_controller). If that goes away or is replaced (the simulator stopped or
+restarted), its controllers went with it: the spawner says so once, with what to do, and forgets
+them, so that its own shutdown later does not stop and unload the same-named controllers a new
+spawner loaded into the new controller manager. ros_control's spawner would not notice.
+
 ``parse_args`` is pure (no ROS import) so it can be tested without a master.
 """
 
@@ -25,6 +31,7 @@ import os
 import sys
 
 DEFAULT_TIMEOUT = 30.0
+WATCH_PERIOD = 1.0  # wall seconds between checks that the controller manager is still the same
 SERVICE_SUFFIXES = ('load_controller', 'switch_controller', 'unload_controller')
 
 
@@ -100,6 +107,7 @@ class Spawner(object):
         self.loaded = []
         self.started = False
         self.exit_code = 0
+        self.manager_uri = None  # the node serving load_controller when the controllers were loaded
 
     # -- waiting ---------------------------------------------------------------------------------
     def _sim_time_not_started(self):
@@ -296,8 +304,44 @@ class Spawner(object):
             rospy.signal_shutdown('controller_manager service call failed')
             return 1
 
-        rospy.spin()
+        self.manager_uri = self._provider(self.load_name)
+        self.watch()
         return self.exit_code
+
+    def _provider(self, service):
+        """The URI of the node serving ``service`` now, or None."""
+        try:
+            import rosgraph
+            return rosgraph.Master(self.rospy.get_name()).lookupService(self.rospy.resolve_name(service))
+        except Exception:  # not served (rosgraph.MasterError) or master gone
+            return None
+
+    def watch(self):
+        """Spin until shutdown, checking that the controller manager is still the one loaded into."""
+        rospy = self.rospy
+        try:
+            while not rospy.is_shutdown():
+                rospy.rostime.wallsleep(WATCH_PERIOD)
+                self._check_manager()
+        except KeyboardInterrupt:  # as rospy.spin(): SIGINT shuts the node down, quietly
+            rospy.signal_shutdown('keyboard interrupt')
+
+    def _check_manager(self):
+        """Warn once and forget the controllers if their controller manager is gone or replaced."""
+        rospy = self.rospy
+        if not self.loaded or self.manager_uri is None or rospy.is_shutdown():
+            return
+        uri = self._provider(self.load_name)
+        if uri != self.manager_uri:
+            rospy.logwarn(
+                'Controller Spawner: the controller manager this spawner loaded %s into (%s) %s: the '
+                'simulator stopped or restarted, and those controllers went with it. This spawner '
+                'will not load them again; start a new spawner (or give this one respawn="true" and '
+                'restart it) to load them into the new controller manager.',
+                ', '.join(self.loaded), rospy.resolve_name(self.load_name),
+                'is gone' if uri is None else 'was replaced by another')
+            self.loaded = []
+            self.started = False
 
 
 def main(argv=None):

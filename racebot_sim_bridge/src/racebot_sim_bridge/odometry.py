@@ -1,0 +1,98 @@
+"""Odometry maths: the Ackermann car's wheel odometry and the ground-truth twist in the body frame.
+
+Pure Python: no rospy, no pybullet (odometry_nodes.py wraps these in ROS nodes).
+
+AckermannOdometry integrates the kinematic bicycle model of a car with rear-wheel speed and
+front steering: the rear axle centre moves at v = wheel radius x mean rear wheel speed, along the
+heading; the heading turns at v x kappa with curvature kappa = mean(tan(steering angle)) /
+wheelbase (exact for parallel steering, as the tutorial's servo_commands steers, and for ideal
+Ackermann the mean of the two tangents is within a fraction of a percent of it at these angles).
+Each interval uses the mean of the speeds and curvatures at its two ends and moves the rear axle
+along the arc. The pose reported is that of the child frame (base_footprint), whose origin is
+-rear_axle_x metres ahead of the rear axle centre (0.13 m for the racebot).
+"""
+import math
+
+# The racebot's model (racebot_description/urdf/ackermann/racecar.xacro).
+WHEEL_RADIUS = 0.032   # m, collision cylinder of every wheel
+WHEELBASE = 0.26       # m, rear axle to steering hinges (2 x axle_x)
+REAR_AXLE_X = -0.13    # m, x of the rear wheels' axle in base_footprint
+REAR_WHEEL_JOINTS = ('left_rear_wheel_joint', 'right_rear_wheel_joint')
+STEERING_JOINTS = ('left_steering_hinge_joint', 'right_steering_hinge_joint')
+
+
+def yaw_to_quaternion(yaw):
+    return 0.0, 0.0, math.sin(yaw / 2.0), math.cos(yaw / 2.0)
+
+
+def quaternion_to_yaw(x, y, z, w):
+    return math.atan2(2.0 * (w * z + x * y), 1.0 - 2.0 * (y * y + z * z))
+
+
+def rotate_into(q, v):
+    """Vector v (world) expressed in the frame whose world orientation is the unit quaternion q."""
+    x, y, z, w = -q[0], -q[1], -q[2], q[3]  # the inverse rotation
+    tx = 2.0 * (y * v[2] - z * v[1])
+    ty = 2.0 * (z * v[0] - x * v[2])
+    tz = 2.0 * (x * v[1] - y * v[0])
+    return (v[0] + w * tx + (y * tz - z * ty),
+            v[1] + w * ty + (z * tx - x * tz),
+            v[2] + w * tz + (x * ty - y * tx))
+
+
+class AckermannOdometry(object):
+    def __init__(self, wheel_radius=WHEEL_RADIUS, wheelbase=WHEELBASE, rear_axle_x=REAR_AXLE_X):
+        if not wheel_radius > 0 or not wheelbase > 0:
+            raise ValueError('wheel radius and wheelbase must be > 0, got %r and %r' % (wheel_radius, wheelbase))
+        self.wheel_radius = float(wheel_radius)
+        self.wheelbase = float(wheelbase)
+        self.rear_axle_x = float(rear_axle_x)
+        self.reset()
+
+    def reset(self, x=0.0, y=0.0, yaw=0.0):
+        """Starts over with the child frame at (x, y, yaw)."""
+        self.yaw = yaw
+        self.rear_x = x + self.rear_axle_x * math.cos(yaw)
+        self.rear_y = y + self.rear_axle_x * math.sin(yaw)
+        self.last = None  # (time, speed, curvature)
+        self.speed = 0.0
+        self.curvature = 0.0
+        self.distance = 0.0
+
+    def update(self, time, rear_wheel_velocities, steering_angles):
+        """Integrates up to sim `time` (s) from rear wheel speeds (rad/s) and steering angles
+        (rad). A sample not later than the previous one restarts the interval (e.g. after a
+        simulation reset) without moving."""
+        speed = self.wheel_radius * sum(rear_wheel_velocities) / len(rear_wheel_velocities)
+        curvature = sum(math.tan(a) for a in steering_angles) / len(steering_angles) / self.wheelbase
+        if self.last is not None and time > self.last[0]:
+            dt = time - self.last[0]
+            v = 0.5 * (speed + self.last[1])
+            k = 0.5 * (curvature + self.last[2])
+            self._advance(v * dt, k)
+        self.last = (time, speed, curvature)
+        self.speed, self.curvature = speed, curvature
+
+    def _advance(self, ds, curvature):
+        dyaw = ds * curvature
+        if abs(dyaw) < 1e-9:
+            self.rear_x += ds * math.cos(self.yaw)
+            self.rear_y += ds * math.sin(self.yaw)
+        else:  # along the arc of radius 1 / curvature
+            radius = 1.0 / curvature
+            self.rear_x += radius * (math.sin(self.yaw + dyaw) - math.sin(self.yaw))
+            self.rear_y -= radius * (math.cos(self.yaw + dyaw) - math.cos(self.yaw))
+        self.yaw = math.atan2(math.sin(self.yaw + dyaw), math.cos(self.yaw + dyaw))
+        self.distance += abs(ds)
+
+    @property
+    def pose(self):
+        """(x, y, yaw) of the child frame."""
+        ahead = -self.rear_axle_x
+        return (self.rear_x + ahead * math.cos(self.yaw), self.rear_y + ahead * math.sin(self.yaw), self.yaw)
+
+    @property
+    def twist(self):
+        """(vx, vy, yaw rate) of the child frame, in the child frame."""
+        yaw_rate = self.speed * self.curvature
+        return self.speed, yaw_rate * -self.rear_axle_x, yaw_rate

@@ -1,0 +1,161 @@
+"""What gazebo_ros's sensor plugins would publish for a URDF <sensor>: kind, topics, frame, rate.
+
+Pure Python: no rospy, no pybullet. `sensor_config(spec)` reads a urdf_model.SensorSpec and the
+<plugin> inside it, applying each plugin's own defaults and naming rules:
+
+| plugin (filename)                              | kind   | topics                                        |
+| gazebo_ros_laser, gazebo_ros_gpu_laser         | laser  | topicName                                     |
+| gazebo_ros_camera                              | camera | cameraName/{imageTopicName,cameraInfoTopicName} |
+| gazebo_ros_openni_kinect, gazebo_ros_depth_camera | depth | cameraName/{imageTopicName, cameraInfoTopicName, depthImageTopicName, depthImageCameraInfoTopicName, pointCloudTopicName} |
+| gazebo_ros_imu_sensor                          | imu    | topicName                                     |
+
+Relative topic names resolve in the plugin's robotNamespace (the root namespace when it has
+none); absolute ones stay. Frame ids are the plugin's frameName without a leading slash (tf2
+rejects one). The update rate is the sensor's <update_rate>, throttled further by the plugin's
+own rate where the plugin throttles (gazebo_ros_camera's updateRate, gazebo_ros_imu_sensor's
+updateRateHZ); 0 means every world update, as in Gazebo.
+
+One deliberate difference: gazebo_ros_imu_sensor without <robotNamespace> publishes under
+/<model name>/; the racebot's contract (its URDF comment and issue) is the root-namespace
+/imu, so every plugin here uses the root namespace when it names none.
+"""
+from dataclasses import dataclass, field
+
+KINDS = {
+    'gazebo_ros_laser': 'laser',
+    'gazebo_ros_gpu_laser': 'laser',
+    'gazebo_ros_camera': 'camera',
+    'gazebo_ros_openni_kinect': 'depth',
+    'gazebo_ros_depth_camera': 'depth',
+    'gazebo_ros_imu_sensor': 'imu',
+}
+# Which sensor types each kind of plugin can sit in.
+SENSOR_TYPES = {
+    'laser': ('ray', 'gpu_ray'),
+    'camera': ('camera',),
+    'depth': ('depth',),
+    'imu': ('imu',),
+}
+
+
+class SensorConfigError(ValueError):
+    """A sensor block that cannot be simulated as written; the message says why."""
+
+
+@dataclass
+class SensorConfig:
+    name: str
+    kind: str                       # laser, camera, depth, imu
+    reference: str                  # the URDF link the <gazebo reference> names
+    frame_id: str
+    rate: float                     # Hz of sim time; 0 = every world update
+    topics: dict = field(default_factory=dict)   # role -> absolute topic name
+    params: dict = field(default_factory=dict)   # kind-specific numbers (cutoffs, baseline, noise)
+    warnings: list = field(default_factory=list)
+
+
+def plugin_kind(filename):
+    """'libgazebo_ros_laser.so' -> 'laser'; None for a plugin we do not simulate."""
+    base = (filename or '').rsplit('/', 1)[-1]
+    if base.endswith('.so'):
+        base = base[:-3]
+    if base.startswith('lib'):
+        base = base[3:]
+    return KINDS.get(base)
+
+
+def join_topic(namespace, *parts):
+    """Resolves a topic as a ros::NodeHandle in `namespace` would: an absolute last part stays."""
+    names = [p for p in parts if p]
+    if names and names[-1].startswith('/'):
+        return '/' + names[-1].strip('/')
+    pieces = [namespace] + names
+    return '/' + '/'.join(p.strip('/') for p in pieces if p and p.strip('/'))
+
+
+def _number(params, key, default, warnings, what):
+    text = params.get(key)
+    if text is None or text == '':
+        return default
+    try:
+        return float(text)
+    except ValueError:
+        warnings.append('%s: <%s> %r is not a number; using %g' % (what, key, text, default))
+        return default
+
+
+def sensor_config(spec):
+    """The SensorConfig of a urdf_model.SensorSpec, or None when none of its plugins publishes to
+    ROS (Gazebo would run such a sensor for nobody). Raises SensorConfigError for a plugin that
+    does not fit its sensor (e.g. a camera plugin in a ray sensor)."""
+    plugin, kind = None, None
+    for p in spec.plugins:
+        kind = plugin_kind(p.filename)
+        if kind is not None:
+            plugin = p
+            break
+    if plugin is None:
+        return None
+    what = "sensor '%s' plugin '%s'" % (spec.name, plugin.name)
+    if spec.type not in SENSOR_TYPES[kind]:
+        raise SensorConfigError('%s: %s is a %s plugin but the sensor is of type %r (expected %s)'
+                                % (what, plugin.filename, kind, spec.type, ' or '.join(SENSOR_TYPES[kind])))
+    if kind in ('camera', 'depth') and spec.camera is None:
+        raise SensorConfigError('%s: the sensor has no <camera> block' % what)
+    if kind == 'laser' and spec.ray is None:
+        raise SensorConfigError('%s: the sensor has no <ray> block' % what)
+    params = plugin.params
+    warnings = []
+    ns = (params.get('robotNamespace') or '').strip()
+    frame = (params.get('frameName') or '').strip().lstrip('/')
+    if not frame:
+        frame = spec.reference
+        warnings.append('%s has no <frameName>; using its link %r' % (what, frame))
+    rate = spec.update_rate
+    config = SensorConfig(spec.name, kind, spec.reference, frame, rate, warnings=warnings)
+    if kind == 'laser':
+        config.topics['scan'] = join_topic(ns, params.get('topicName') or 'scan')
+    elif kind == 'imu':
+        config.topics['imu'] = join_topic(ns, params.get('topicName') or 'imu_data')
+        throttle = _number(params, 'updateRateHZ', 1.0, warnings, what)
+        config.rate = _throttled(rate, throttle)
+        config.params['gaussian_noise'] = _number(params, 'gaussianNoise', 0.0, warnings, what)
+        rpy = (params.get('rpyOffset') or '0 0 0').split()
+        try:
+            config.params['rpy_offset'] = tuple(float(v) for v in rpy) if len(rpy) == 3 else (0.0, 0.0, 0.0)
+        except ValueError:
+            config.params['rpy_offset'] = (0.0, 0.0, 0.0)
+            warnings.append('%s: <rpyOffset> %r is not three numbers; using 0 0 0' % (what, params.get('rpyOffset')))
+    else:
+        camera_name = (params.get('cameraName') or '').strip()
+        config.params['baseline'] = _number(params, 'hackBaseline', 0.0, warnings, what)
+        config.params['distortion'] = [_number(params, k, 0.0, warnings, what) for k in
+                                       ('distortionK1', 'distortionK2', 'distortionT1', 'distortionT2',
+                                        'distortionK3')]
+        if kind == 'camera':
+            config.rate = _throttled(rate, _number(params, 'updateRate', 0.0, warnings, what))
+            config.topics['image'] = join_topic(ns, camera_name, params.get('imageTopicName') or 'image_raw')
+            config.topics['info'] = join_topic(ns, camera_name, params.get('cameraInfoTopicName') or 'camera_info')
+        else:
+            config.topics['image'] = join_topic(ns, camera_name, params.get('imageTopicName') or 'ir/image_raw')
+            config.topics['info'] = join_topic(ns, camera_name, params.get('cameraInfoTopicName') or 'ir/camera_info')
+            config.topics['depth'] = join_topic(ns, camera_name,
+                                                params.get('depthImageTopicName') or 'depth/image_raw')
+            config.topics['depth_info'] = join_topic(ns, camera_name, params.get('depthImageCameraInfoTopicName')
+                                                     or 'depth/camera_info')
+            config.topics['points'] = join_topic(ns, camera_name, params.get('pointCloudTopicName') or 'points')
+            config.params['cutoff'] = _number(params, 'pointCloudCutoff', 0.4, warnings, what)
+            config.params['cutoff_max'] = _number(params, 'pointCloudCutoffMax', 5.0, warnings, what)
+        for key in ('focalLength', 'Cx', 'Cy', 'CxPrime'):
+            if _number(params, key, 0.0, warnings, what):
+                warnings.append('%s: <%s> is ignored; the intrinsics follow from the image size and '
+                                'horizontal_fov' % (what, key))
+        if any(config.params['distortion']):
+            warnings.append('%s: lens distortion is not rendered; camera_info reports the coefficients' % what)
+    return config
+
+
+def _throttled(sensor_rate, plugin_rate):
+    """The rate a plugin publishes at: the sensor's, or the plugin's own if that is lower."""
+    rates = [r for r in (sensor_rate, plugin_rate) if r and r > 0]
+    return min(rates) if rates else 0.0

@@ -1,0 +1,87 @@
+"""ROS messages of the simulated sensors, filled as gazebo_ros's plugins fill them.
+
+Message classes only (no rospy node, no master): every builder takes the stamp (a rospy.Time or
+genpy.Time), the frame id and numpy data.
+- LaserScan (gazebo_ros_laser): time_increment = 0 ("instantaneous simulator scan") and
+  scan_time = 0, as the plugin sets them; intensities all 0 (no retro-reflectors here).
+- Image: rgb8 (3 bytes a pixel) and 32FC1 (little-endian float32 metres).
+- CameraInfo (gazebo_ros_camera_utils): plumb_bob with the plugin's distortion coefficients,
+  K and P of the pinhole (P[3] = -f * hackBaseline), R identity.
+- PointCloud2 (gazebo_ros_openni_kinect): fields x, y, z (float32 at 0, 4, 8) and rgb (float32
+  at 16, packed as PCL does: bytes b, g, r, 0), point_step 32, one row per image row,
+  is_dense False when any point is NaN. (The Gazebo plugin writes r and b the other way round,
+  which shows swapped colours in RViz; this follows PCL.)
+- Imu (gazebo_ros_imu_sensor): covariances diagonal with the plugin's gaussianNoise squared.
+"""
+import numpy as np
+from sensor_msgs.msg import CameraInfo, Image, Imu, LaserScan, PointCloud2, PointField
+from std_msgs.msg import Header
+
+
+def header(stamp, frame_id):
+    return Header(stamp=stamp, frame_id=frame_id)
+
+
+def laser_scan(stamp, frame_id, geometry, ranges):
+    """`geometry`: sensors_ray.ScanGeometry; `ranges`: the reported ranges (inf allowed)."""
+    ranges = np.asarray(ranges, dtype=np.float32)
+    return LaserScan(header=header(stamp, frame_id), angle_min=geometry.angle_min, angle_max=geometry.angle_max,
+                     angle_increment=geometry.angle_increment, time_increment=0.0, scan_time=0.0,
+                     range_min=geometry.range_min, range_max=geometry.range_max,
+                     ranges=ranges.tolist(), intensities=[0.0] * len(ranges))
+
+
+def rgb_image(stamp, frame_id, rgb):
+    rgb = np.ascontiguousarray(rgb, dtype=np.uint8)
+    height, width = rgb.shape[:2]
+    return Image(header=header(stamp, frame_id), height=height, width=width, encoding='rgb8', is_bigendian=0,
+                 step=3 * width, data=rgb.tobytes())
+
+
+def depth_image(stamp, frame_id, depth):
+    depth = np.ascontiguousarray(depth, dtype='<f4')
+    height, width = depth.shape
+    return Image(header=header(stamp, frame_id), height=height, width=width, encoding='32FC1', is_bigendian=0,
+                 step=4 * width, data=depth.tobytes())
+
+
+def camera_info(stamp, frame_id, camera, baseline=0.0, distortion=(0.0, 0.0, 0.0, 0.0, 0.0)):
+    """`camera`: sensors_camera.PinholeCamera."""
+    return CameraInfo(header=header(stamp, frame_id), height=camera.height, width=camera.width,
+                      distortion_model='plumb_bob', D=list(distortion), K=camera.K(),
+                      R=[1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0], P=camera.P(baseline))
+
+
+POINT_FIELDS = [PointField(name='x', offset=0, datatype=PointField.FLOAT32, count=1),
+                PointField(name='y', offset=4, datatype=PointField.FLOAT32, count=1),
+                PointField(name='z', offset=8, datatype=PointField.FLOAT32, count=1),
+                PointField(name='rgb', offset=16, datatype=PointField.FLOAT32, count=1)]
+POINT_STEP = 32
+
+
+def point_cloud(stamp, frame_id, points, rgb):
+    """`points`: height x width x 3 float32 (NaN for no point); `rgb`: height x width x 3 uint8."""
+    height, width = points.shape[:2]
+    buf = np.zeros((height, width, POINT_STEP), dtype=np.uint8)
+    buf[:, :, 0:12] = np.ascontiguousarray(points, dtype='<f4').view(np.uint8).reshape(height, width, 12)
+    buf[:, :, 16] = rgb[:, :, 2]
+    buf[:, :, 17] = rgb[:, :, 1]
+    buf[:, :, 18] = rgb[:, :, 0]
+    dense = not bool(np.isnan(points).any())
+    return PointCloud2(header=header(stamp, frame_id), height=height, width=width, fields=POINT_FIELDS,
+                       is_bigendian=False, point_step=POINT_STEP, row_step=POINT_STEP * width,
+                       data=buf.tobytes(), is_dense=dense)
+
+
+def imu(stamp, frame_id, orientation, angular_velocity, linear_acceleration, noise_stddev=0.0):
+    msg = Imu(header=header(stamp, frame_id))
+    msg.orientation.x, msg.orientation.y, msg.orientation.z, msg.orientation.w = (float(c) for c in orientation)
+    msg.angular_velocity.x, msg.angular_velocity.y, msg.angular_velocity.z = (float(c) for c in angular_velocity)
+    msg.linear_acceleration.x, msg.linear_acceleration.y, msg.linear_acceleration.z = \
+        (float(c) for c in linear_acceleration)
+    variance = noise_stddev * noise_stddev
+    diagonal = [variance, 0.0, 0.0, 0.0, variance, 0.0, 0.0, 0.0, variance]
+    msg.orientation_covariance = list(diagonal)
+    msg.angular_velocity_covariance = list(diagonal)
+    msg.linear_acceleration_covariance = list(diagonal)
+    return msg

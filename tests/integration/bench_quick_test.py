@@ -1,0 +1,90 @@
+#!/usr/bin/env python3
+"""tools/bench.py --quick completes, exits 0 and writes bench.json with every part's figures, the
+table and two PNG plots. Checks that figures exist and are physically possible (finite, positive,
+all commands delivered, determinism exact), never that they reach a target: the suite must not
+fail on a busy machine, and a quick run's timings are not measurements.
+"""
+import json
+import math
+import os
+import subprocess
+import sys
+import unittest
+
+import rostest
+
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+OUT = os.path.join(ROOT, 'out', 'test-results', 'bench_quick_output')
+TIMEOUT_S = 360
+
+
+def finite(x):
+    return isinstance(x, (int, float)) and math.isfinite(x)
+
+
+class BenchQuickTest(unittest.TestCase):
+
+    @classmethod
+    def setUpClass(cls):
+        cmd = [sys.executable, os.path.join(ROOT, 'tools', 'bench.py'), '--quick', '--out', OUT]
+        run = subprocess.run(cmd, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, timeout=TIMEOUT_S, cwd=ROOT)
+        cls.code, cls.output = run.returncode, run.stdout.decode(errors='replace')
+        cls.results = None
+        path = os.path.join(OUT, 'bench.json')
+        if os.path.exists(path):
+            with open(path) as f:
+                cls.results = json.load(f)
+
+    def test_runs_to_the_end_without_a_failed_part(self):
+        self.assertEqual(self.code, 0, 'bench --quick exited %d:\n%s' % (self.code, self.output[-4000:]))
+        self.assertIsNotNone(self.results, 'no bench.json:\n' + self.output[-2000:])
+        self.assertEqual(self.results['errors'], {})
+        self.assertIn('| figure', self.output)
+
+    def test_speed_figures(self):
+        sp = self.results['speed']
+        plain = sp['plain']
+        for key in ('ceiling_steps_per_s', 'bridge_rtf', 'ratio'):
+            self.assertTrue(finite(plain[key]) and plain[key] > 0, (key, plain[key]))
+        self.assertTrue(plain['rounds'])
+        self.assertIn('available', sp['sensors'])
+        self.assertGreater(sp['rss_end_bytes'], 10e6)
+        self.assertGreaterEqual(sp['memory_sim_s'], 10.0)
+
+    def test_real_time_and_command_path(self):
+        rt = self.results['realtime']
+        self.assertTrue(0.1 < rt['window']['rtf'] < 10.0, rt['window'])
+        self.assertTrue(0.0 < rt['window']['cpu'] < 2.0, rt['window'])
+        lat = rt['latency']
+        self.assertEqual(lat['delivered'], lat['sent'], lat)
+        self.assertGreater(lat['applied'], 0.9 * lat['sent'], lat)
+        for part in ('callback_ms', 'applied_ms'):
+            self.assertTrue(finite(lat[part]['p50']) and 0 < lat[part]['p50'] <= lat[part]['p99'], lat)
+        self.assertTrue(finite(rt['startup_warm_s']) and rt['startup_warm_s'] > 0)
+
+    def test_fidelity_figures(self):
+        par = self.results['fidelity']['parallel']
+        for s in par['speeds']:
+            self.assertTrue(finite(s['measured']) and s['measured'] > 0, s)
+        for c in par['circles']:
+            self.assertTrue(finite(c['measured_m']) and c['measured_m'] > 0, {k: c[k] for k in c if k != 'trajectory'})
+            self.assertGreater(len(c['trajectory']), 10)
+        for lock in par['full_lock']:
+            self.assertTrue(lock['finite'], lock)
+
+    def test_in_process_figures_and_determinism(self):
+        h = self.results['inprocess']['hinge']
+        self.assertTrue(finite(h['rise_time_s']) and h['rise_time_s'] > 0, h)
+        self.assertTrue(0.0 < h['final_rad'] < 0.6, h)
+        d = self.results['determinism']
+        self.assertGreater(d['samples'], 10)
+        self.assertLessEqual(d['max_diff_m'], 1e-9, 'two runs of the same script differ')
+
+    def test_plots_are_png_files(self):
+        for name in ('turning_circles.png', 'hinge_step.png'):
+            with open(os.path.join(OUT, name), 'rb') as f:
+                self.assertEqual(f.read(8), b'\x89PNG\r\n\x1a\n', name)
+
+
+if __name__ == '__main__':
+    rostest.rosrun('racebot_tests', 'bench_quick', BenchQuickTest)

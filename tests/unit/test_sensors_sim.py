@@ -1,0 +1,276 @@
+"""SensorManager on a real Simulator (PyBullet DIRECT, the room world, the racebot from its xacro)
+with a stand-in for rospy: no master. Checks what the sensors publish against the world's
+geometry, the pinhole model and physics, and that sensors nobody listens to cost nothing."""
+import math
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+import rospy
+
+from racebot_sim_bridge import sdf_world, sensors, urdf_model
+from racebot_sim_bridge.sensors import SensorManager
+from racebot_sim_bridge.simulator import Simulator
+
+REPO = Path(__file__).resolve().parents[2]
+ROOM = REPO / 'racebot_gazebo' / 'worlds' / 'room_mini.world'
+sys.path.insert(0, str(REPO / 'tests' / 'integration'))
+import sensors_geometry  # noqa: E402  (the rostest's own geometry, shared)
+
+
+class FakePublisher(object):
+    def __init__(self, topic):
+        self.topic = topic
+        self.connections = 0
+        self.messages = []
+
+    def get_num_connections(self):
+        return self.connections
+
+    def publish(self, msg):
+        self.messages.append(msg)
+
+    def unregister(self):
+        pass
+
+
+class FakeRospy(object):
+    """The part of rospy SensorManager uses; publishers are recorded by topic."""
+    Time = rospy.Time
+
+    def __init__(self, params=None):
+        self.params = dict(params or {})
+        self.publishers = {}
+        self.logs = []
+
+    def get_param(self, name, default=None):
+        return self.params.get(name, default)
+
+    def set_param(self, name, value):
+        self.params[name] = value
+
+    def Publisher(self, topic, msg_class, queue_size=None):
+        assert queue_size, 'every publisher needs a queue_size'
+        self.publishers[topic] = FakePublisher(topic)
+        return self.publishers[topic]
+
+    def loginfo(self, msg):
+        self.logs.append(('info', msg))
+
+    def logwarn(self, msg):
+        self.logs.append(('warn', msg))
+
+    def logerr(self, msg):
+        self.logs.append(('error', msg))
+
+    def is_shutdown(self):
+        return True
+
+
+class NullIO(object):
+    def __getattr__(self, name):
+        return lambda *args, **kwargs: None
+
+
+class Log(object):
+    def info(self, msg):
+        pass
+    warn = error = info
+
+
+def make_world(racebot_xml, params=None, pose=(0.0, 0.0, 0.0)):
+    spec = sdf_world.load_world(str(ROOM))
+    sim = Simulator(spec, NullIO(), Log(), lambda path: None)
+    fake = FakeRospy(dict({'~sensors/report_period': 0, '~sensors/render_budget': 1.0,
+                           '~sensors/noise': False}, **(params or {})))
+    manager = SensorManager(fake, sim)
+    robot = sim.spawn_urdf('racebot', racebot_xml, '', pose)
+    frame = robot.body.com_pose_for_frame(pose, (0, 0, 0, 1))  # as spawn_urdf_model places it
+    sim.world.set_pose(robot.body, frame.position, frame.orientation)
+    return sim, fake, manager, robot
+
+
+def listen(fake, *topics):
+    for t in topics:
+        fake.publishers[t].connections = 1
+
+
+def run(sim, seconds):
+    for _ in range(int(round(seconds / sim.step_size))):
+        sim.step()
+
+
+@pytest.fixture
+def world(racebot_xml):
+    sim, fake, manager, robot = make_world(racebot_xml)
+    yield sim, fake, manager, robot
+    sim.close()
+
+
+def sensor_of(manager, kind):
+    return next(s for s in manager._active if s.config.kind == kind)
+
+
+def test_every_sensor_block_becomes_its_topics(world):
+    sim, fake, manager, robot = world
+    assert sorted(fake.publishers) == sorted([
+        '/scan', '/imu', '/rrbot/camera1/image_raw', '/rrbot/camera1/camera_info',
+        '/real_sense/rgb/image_raw', '/real_sense/rgb/camera_info', '/real_sense/depth/image_raw',
+        '/real_sense/depth/camera_info', '/real_sense/depth/points'])
+
+
+def test_nobody_listening_costs_nothing(world, monkeypatch):
+    sim, fake, manager, robot = world
+    calls = []
+    monkeypatch.setattr(sensors, 'cast_rays', lambda *a: calls.append('ray'))
+    monkeypatch.setattr(sensors, 'render', lambda *a: calls.append('render'))
+    run(sim, 0.5)
+    assert calls == []
+    assert all(not p.messages for p in fake.publishers.values())
+
+
+def test_scan_matches_the_room_geometry(world):
+    sim, fake, manager, robot = world
+    listen(fake, '/scan')
+    run(sim, 1.0)
+    scans = fake.publishers['/scan'].messages
+    assert len(scans) == pytest.approx(40, abs=1)  # 40 Hz of sim time
+    scan = scans[-1]
+    assert len(scan.ranges) == 1081 and scan.header.frame_id == 'lidar'
+    assert scan.angle_increment == pytest.approx((scan.angle_max - scan.angle_min) / 1080)
+    assert (scan.time_increment, scan.scan_time) == (0.0, 0.0)
+    assert scan.header.stamp.to_sec() == pytest.approx(1.0, abs=1e-6)  # the sim time it was taken at
+    position, orientation = sensor_of(manager, 'laser').mount.pose()
+    yaw = math.atan2(2 * (orientation[3] * orientation[2] + orientation[0] * orientation[1]),
+                     1 - 2 * (orientation[1] ** 2 + orientation[2] ** 2))
+    expected = sensors_geometry.expected_scan(str(ROOM), position, yaw, scan.angle_min, scan.angle_increment, 1081)
+    checked, bad = sensors_geometry.compare(scan.ranges, expected, scan.range_min, scan.range_max, 0.03)
+    assert checked > 1000 and not bad, bad[:10]
+
+
+def test_scan_noise_as_declared_unless_switched_off(racebot_xml):
+    sim, fake, manager, robot = make_world(racebot_xml, {'~sensors/noise': True})
+    try:
+        listen(fake, '/scan')
+        run(sim, 0.3)
+        a, b = (np.array(m.ranges) for m in fake.publishers['/scan'].messages[-2:])
+        both = np.isfinite(a) & np.isfinite(b)
+        spread = np.std(a[both] - b[both]) / math.sqrt(2)
+        assert spread == pytest.approx(0.01, rel=0.2)  # the URDF's stddev 0.01 m
+    finally:
+        sim.close()
+
+
+def test_imu_at_rest(world):
+    sim, fake, manager, robot = world
+    run(sim, 2.5)  # let the car settle on its free wheels (no controllers hold them here)
+    listen(fake, '/imu')
+    run(sim, 1.0)
+    msgs = fake.publishers['/imu'].messages
+    assert len(msgs) == pytest.approx(100, abs=2)  # 100 Hz (the first one after listening primes)
+    assert msgs[-1].header.frame_id == 'imu'
+    acc = np.array([[m.linear_acceleration.x, m.linear_acceleration.y, m.linear_acceleration.z] for m in msgs])
+    gyro = np.array([[m.angular_velocity.x, m.angular_velocity.y, m.angular_velocity.z] for m in msgs])
+    assert acc.mean(axis=0) == pytest.approx([0.0, 0.0, 9.8], abs=0.02)  # the world's gravity, pointing up
+    assert np.abs(gyro).max() < 0.01
+    assert msgs[-1].orientation.w == pytest.approx(1.0, abs=1e-3)
+
+
+RED_BOX = """<sdf version="1.6"><world name="w"><model name="red_box"><static>true</static>
+<pose>{x} {y} {z} 0 0 0</pose><link name="link">
+<collision name="c"><geometry><box><size>{s} {s} {s}</size></box></geometry></collision>
+<visual name="v"><geometry><box><size>{s} {s} {s}</size></box></geometry>
+<material><ambient>1 0 0 1</ambient><diffuse>1 0 0 1</diffuse></material></visual>
+</link></model></world></sdf>"""
+
+
+def add_red_box(sim, x, y, z, size):
+    model = sdf_world.parse_world(RED_BOX.format(x=x, y=y, z=z, s=size)).models[0]
+    with sim.lock:
+        sim.world.add_sdf_model(model)
+
+
+def test_camera_shows_a_red_box_where_the_pinhole_says(world):
+    sim, fake, manager, robot = world
+    add_red_box(sim, 1.2, 0.25, 0.1, 0.1)
+    listen(fake, '/rrbot/camera1/image_raw', '/rrbot/camera1/camera_info')
+    run(sim, 0.1)
+    img = fake.publishers['/rrbot/camera1/image_raw'].messages[-1]
+    info = fake.publishers['/rrbot/camera1/camera_info'].messages[-1]
+    assert (img.width, img.height, img.encoding, img.step) == (800, 800, 'rgb8', 2400)
+    assert (info.width, info.height, info.header.frame_id) == (800, 800, 'camera')
+    assert info.header.stamp == img.header.stamp
+    rgb = np.frombuffer(img.data, dtype=np.uint8).reshape(800, 800, 3).astype(int)
+    red = (rgb[..., 0] > 120) & (rgb[..., 1] < 60) & (rgb[..., 2] < 60)
+    assert red.sum() > 200
+    vs, us = np.nonzero(red)
+    # the box centre in the camera's optical frame, projected with camera_info's K
+    position, orientation = sensor_of(manager, 'camera').mount.pose()
+    from racebot_sim_bridge.sensors_camera import OPTICAL_FROM_SENSOR
+    from racebot_sim_bridge.sensors_imu import quaternion_to_matrix
+    p_sensor = quaternion_to_matrix(orientation).T @ (np.array([1.2, 0.25, 0.1]) - position)
+    x, y, z = OPTICAL_FROM_SENSOR @ p_sensor
+    fx, cx, fy, cy = info.K[0], info.K[2], info.K[4], info.K[5]
+    u, v = fx * x / z + cx, fy * y / z + cy
+    # the visible faces (front and top) pull the centroid a little off the centre's projection
+    assert us.mean() == pytest.approx(u, abs=6) and vs.mean() == pytest.approx(v, abs=12)
+
+
+def test_depth_of_a_box_in_front(world):
+    sim, fake, manager, robot = world
+    run(sim, 0.3)
+    depth_sensor = sensor_of(manager, 'depth')
+    position, _ = depth_sensor.mount.pose()
+    face = position[0] + 1.0  # the box's near face 1 m ahead of the depth camera
+    add_red_box(sim, face + 0.25, position[1], 0.25, 0.5)
+    listen(fake, '/real_sense/depth/image_raw', '/real_sense/depth/points')
+    run(sim, 0.1)
+    d = fake.publishers['/real_sense/depth/image_raw'].messages[-1]
+    assert (d.width, d.height, d.encoding, d.header.frame_id) == (640, 480, '32FC1', 'realsense_depth')
+    depth = np.frombuffer(d.data, dtype='<f4').reshape(480, 640)
+    assert depth[240, 320] == pytest.approx(1.0, abs=0.02)
+    assert np.isnan(depth[479, 320])  # the floor right in front is nearer than the 0.4 m cutoff
+    cloud = fake.publishers['/real_sense/depth/points'].messages[-1]
+    pts = np.frombuffer(cloud.data, dtype=np.uint8).reshape(480, 640, 32)[:, :, :12].copy().view('<f4')
+    assert pts[240, 320] == pytest.approx([0.0, 0.0, 1.0], abs=0.02)
+    assert cloud.is_dense is False and cloud.point_step == 32
+
+
+def test_render_budget_skips_frames_but_keeps_the_stamps_honest(racebot_xml):
+    sim, fake, manager, robot = make_world(racebot_xml, {'~sensors/render_budget': 0.05})
+    try:
+        listen(fake, '/rrbot/camera1/image_raw')
+        run(sim, 1.0)
+        camera = sensor_of(manager, 'camera')
+        frames = fake.publishers['/rrbot/camera1/image_raw'].messages
+        assert camera.meter.skipped > 0 and len(frames) + camera.meter.skipped == 31
+        stamps = [m.header.stamp.to_sec() for m in frames]
+        assert all(abs(s * 30 - round(s * 30)) < 0.04 for s in stamps)  # each on the 30 Hz schedule
+    finally:
+        sim.close()
+
+
+def test_delete_closes_the_sensors(world):
+    sim, fake, manager, robot = world
+    sim.delete_model('racebot')
+    assert manager._active == [] and manager.sensors == {}
+    run(sim, 0.05)
+
+
+def test_a_sensor_on_a_missing_link_is_refused_with_a_warning(racebot_xml):
+    spec = sdf_world.load_world(str(ROOM))
+    sim = Simulator(spec, NullIO(), Log(), lambda path: None)
+    try:
+        fake = FakeRospy({'~sensors/report_period': 0})
+        manager = SensorManager(fake, sim)
+        model = urdf_model.parse_urdf(racebot_xml)
+        assert len(model.sensors) == 4
+        bad = racebot_xml.replace('<update_rate>40</update_rate>', '<update_rate>40</update_rate>').replace(
+            '<min>0.1</min>', '<min>20</min>')  # range min above range max: not simulable
+        sim.spawn_urdf('racebot', bad, '', (0, 0, 0))
+        assert '/scan' not in fake.publishers and '/imu' in fake.publishers
+        assert any(level == 'warn' and 'hokuyo_sensor' in msg for level, msg in fake.logs)
+        assert manager.sensors['racebot']
+    finally:
+        sim.close()

@@ -1,0 +1,278 @@
+#!/usr/bin/env python3
+"""make bench: racebot_sim_bridge against the physics ceiling (speed) and the kinematic model (fidelity).
+
+    tools/bench.py [--quick] [--out DIR]      (in a shell where devel/setup.bash is sourced)
+
+Prints the table (figure, ours, reference, target, met?) and writes under DIR (default out/bench):
+bench.json (every raw figure, the machine, its load), turning_circles.png, hinge_step.png, logs/.
+--quick runs every part briefly (under a minute) to show the bench works; its figures mean little.
+Exit status 0 when every part ran (whether or not each target is met), 1 when a part failed.
+
+The parts that need ROS run as child processes of this script (--scenario NAME), each with its own
+ROS master on a free port; see tools/bench/scenarios.py.
+"""
+import argparse
+import cProfile
+import json
+import os
+import platform
+import pstats
+import subprocess
+import sys
+import time
+import traceback
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+
+from bench import common  # noqa: E402  (tools/bench/, next to this script)
+
+FULL = {
+    'speed': dict(rounds=5, window_s=5.0, warmup_s=2.0, profile_s=5, memory_sim_s=600.0, memory_timeout_s=900),
+    'realtime': dict(settle_s=3.0, parts=6, part_s=10.0, commands=1000, command_rate_hz=100.0),
+    'startup_runs': 3,
+    'fidelity': dict(speeds=[0.5, 1.0, 2.0], speed_settle_s=3.0, speed_measure_s=3.0, angles=[0.1, 0.2, 0.3],
+                     circle_speed=0.5, circle_turns=1.1, circle_settle_s=4.0, lock_angles=[0.6, -0.6], lock_speed=2.0,
+                     lock_s=30.0, timeout_s=600),
+    'modes': ['parallel', 'ackermann'],
+    'determinism_s': 20.0,
+    'profile_steps': 5000,
+}
+QUICK = {
+    'speed': dict(rounds=2, window_s=1.0, warmup_s=0.5, profile_s=0, memory_sim_s=10.0, memory_timeout_s=120),
+    'realtime': dict(settle_s=0.5, parts=1, part_s=3.0, commands=100, command_rate_hz=100.0),
+    'startup_runs': 0,
+    'fidelity': dict(speeds=[1.0], speed_settle_s=1.0, speed_measure_s=1.0, angles=[0.3], circle_speed=0.5,
+                     circle_turns=1.1, circle_max_s=3.0, circle_settle_s=1.0, lock_angles=[0.6], lock_speed=2.0,
+                     lock_s=2.0, timeout_s=120),
+    'modes': ['parallel'],
+    'determinism_s': 2.0,
+    'profile_steps': 500,
+}
+SCENARIO_TIMEOUT_S = 1800
+
+
+def run_scenario(name, params, out, timeout=SCENARIO_TIMEOUT_S):
+    """Runs one ROS scenario in a child process with its own master; returns its result."""
+    port = common.free_port()
+    params = dict(params, port=port)
+    result_file = os.path.join(out, 'tmp', '%s-%d.json' % (name, port))
+    cmd = [common.python(), os.path.abspath(__file__), '--scenario', name, '--out', out, '--params',
+           json.dumps(params), '--result', result_file]
+    log = os.path.join(out, 'logs', 'scenario_%s_%d.log' % (name, port))
+    with open(log, 'w') as f:
+        code = subprocess.call(cmd, stdout=f, stderr=subprocess.STDOUT, env=common.ros_env(port), timeout=timeout)
+    try:
+        with open(result_file) as f:
+            reply = json.load(f)
+    except (OSError, ValueError):
+        with open(log) as f:
+            tail = f.read()[-3000:]
+        raise common.BenchError('scenario %s exited %s without a result; log %s:\n%s' % (name, code, log, tail))
+    if not reply.get('ok'):
+        raise common.BenchError('scenario %s failed:\n%s' % (name, reply.get('error')))
+    return reply['result']
+
+
+def child(args):
+    """--scenario NAME: one measurement, its result (or error) as JSON in --result."""
+    from bench import scenarios
+    params = json.loads(args.params)
+    try:
+        reply = {'ok': True, 'result': scenarios.SCENARIOS[args.scenario](params, args.out)}
+    except Exception:  # reported to the parent, which reports the part as failed
+        reply = {'ok': False, 'error': traceback.format_exc()}
+    with open(args.result, 'w') as f:
+        json.dump(reply, f)
+    os._exit(0)  # rospy's threads must not keep the process alive
+
+
+# -- the parts ------------------------------------------------------------------------------------
+def part_inprocess(cfg, out, results):
+    from bench import inprocess, plot
+    with common.quiet_stdout():
+        samples, figures = inprocess.hinge_step(common.EMPTY_WORLD)
+    figures['duration_s'] = inprocess.HINGE_STEP_DURATION
+    plot.hinge_step(os.path.join(out, 'hinge_step.png'), samples, figures, inprocess.HINGE_STEP)
+    # The simulator's own update without ROS: its speed and where its Python time goes.
+    with common.quiet_stdout():
+        car = inprocess.Car(common.ROOM_WORLD)
+    try:
+        car.step_until(0.5)
+        n = cfg['profile_steps']
+        start = time.perf_counter()
+        for _ in range(n):
+            car.sim.step()
+        rtf = n * car.sim.step_size / (time.perf_counter() - start)
+        prof = cProfile.Profile()
+        prof.enable()
+        for _ in range(n):
+            car.sim.step()
+        prof.disable()
+    finally:
+        car.close()
+    stats = pstats.Stats(prof)
+    total = sum(v[2] for v in stats.stats.values())
+    top = sorted(stats.stats.items(), key=lambda kv: -kv[1][2])[:12]
+    results['inprocess'] = {
+        'hinge': figures, 'hinge_samples': samples[::5], 'sim_rtf': rtf,
+        'profile_self_pct': [('%s:%d(%s)' % (os.path.basename(k[0]), k[1], k[2]), round(100.0 * v[2] / total, 1))
+                             for k, v in top]}
+
+
+def part_determinism(cfg, out, results):
+    files = []
+    for run in (1, 2):
+        path = os.path.join(out, 'tmp', 'trajectory_%d.json' % run)
+        run_scenario('determinism', {'sim_s': cfg['determinism_s'], 'trajectory_file': path}, out, timeout=600)
+        with open(path) as f:
+            files.append(json.load(f))
+    a, b = files
+    if len(a) != len(b) or not a:
+        raise common.BenchError('the two runs recorded %d and %d samples' % (len(a), len(b)))
+    diff = max(max(abs(p[1] - q[1]), abs(p[2] - q[2])) for p, q in zip(a, b))
+    results['determinism'] = {'sim_s': cfg['determinism_s'], 'samples': len(a), 'max_diff_m': diff,
+                              'end_pose': a[-1], 'how': 'two processes, in-process simulator, commands keyed to sim time'}
+
+
+def part_speed(cfg, out, results):
+    results['speed'] = run_scenario('speed', cfg['speed'], out)
+
+
+def part_realtime(cfg, out, results):
+    results['realtime'] = run_scenario('realtime', cfg['realtime'], out)
+
+
+def part_startup(cfg, out, results):
+    runs = [run_scenario('startup', {'run': i}, out, timeout=300)['startup_s'] for i in range(cfg['startup_runs'])]
+    results['startup'] = {'cold_runs': runs, 'cold_s': common.median(runs)}
+
+
+def part_fidelity(cfg, out, results):
+    fid = results.setdefault('fidelity', {'skipped': [m for m in ('parallel', 'ackermann') if m not in cfg['modes']]})
+    failures = []
+    for mode in cfg['modes']:
+        params = dict(cfg['fidelity'], mode=mode)
+        if mode != 'parallel':  # speeds and full lock are the same in both modes: once is enough
+            params.update(speeds=[], lock_angles=[])
+        try:
+            fid[mode] = run_scenario('fidelity', params, out)
+        except common.BenchError as err:
+            results['errors']['fidelity_' + mode] = str(err)
+            failures.append(mode)
+    from bench import plot
+    plot.turning_circles(os.path.join(out, 'turning_circles.png'),
+                         {m: fid[m]['circles'] for m in ('parallel', 'ackermann') if m in fid})
+    if failures:
+        raise common.BenchError('fidelity failed in %s steering (see errors)' % ', '.join(failures))
+
+
+PARTS = (('inprocess', part_inprocess), ('determinism', part_determinism), ('speed', part_speed),
+         ('realtime', part_realtime), ('startup', part_startup), ('fidelity', part_fidelity))
+
+
+def machine():
+    info = {'platform': platform.platform(), 'python': platform.python_version(), 'cpus': os.cpu_count()}
+    try:
+        with open('/proc/cpuinfo') as f:
+            models = [line.split(':', 1)[1].strip() for line in f if line.startswith('model name')]
+        info['cpu'] = models[0] if models else None
+    except OSError:
+        pass
+    try:
+        import pybullet  # noqa: F401  (its version is pinned in tools/requirements.txt)
+        import numpy
+        info['numpy'] = numpy.__version__
+    except ImportError:
+        pass
+    return info
+
+
+def print_profiles(results):
+    """Where the time goes, for the speed targets that were missed."""
+    sp = results.get('speed') or {}
+    lines = []
+    prof = sp.get('profile') or {}
+    if prof.get('available'):
+        lines.append('world server main thread, as fast as possible (py-spy, %d samples), self time:' % prof['samples'])
+        lines += ['  %5.1f %%  %s' % (pct, name) for name, pct in prof['self_pct'][:8]]
+        lines.append('  inclusive:')
+        lines += ['  %5.1f %%  %s' % (pct, name) for name, pct in prof['inclusive_pct'][:10]]
+    elif prof:
+        lines.append('world server profile: %s' % prof.get('why'))
+    ip = results.get('inprocess') or {}
+    if ip.get('profile_self_pct'):
+        lines.append('Simulator.step in-process, no ROS (cProfile), self time:')
+        lines += ['  %5.1f %%  %s' % (pct, name) for name, pct in ip['profile_self_pct'][:8]]
+    return lines
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument('--quick', action='store_true', help='every part, briefly (under a minute)')
+    parser.add_argument('--out', default=os.path.join(common.REPO, 'out', 'bench'), help='output folder')
+    parser.add_argument('--only', help='comma-separated parts: ' + ', '.join(n for n, _ in PARTS))
+    parser.add_argument('--scenario', help=argparse.SUPPRESS)
+    parser.add_argument('--params', help=argparse.SUPPRESS)
+    parser.add_argument('--result', help=argparse.SUPPRESS)
+    args = parser.parse_args()
+    if args.scenario:
+        return child(args)
+    if 'ROS_PACKAGE_PATH' not in os.environ:
+        sys.exit('racebot bench: source devel/setup.bash first (or use `make bench`)')
+    cfg = QUICK if args.quick else FULL
+    out = os.path.abspath(args.out)
+    common.clean_dir(out)
+    common.ensure_dir(os.path.join(out, 'logs'))
+    common.ensure_dir(os.path.join(out, 'tmp'))
+    os.environ.setdefault('ROS_LOG_DIR', os.path.join(common.REPO, 'out', 'ros_log'))
+    only = set(args.only.split(',')) if args.only else None
+    results = {'quick': args.quick, 'machine': machine(), 'started': time.strftime('%Y-%m-%d %H:%M:%S'),
+               'load': [], 'errors': {}, 'durations_s': {}}
+    print('racebot bench%s: %d cores, load average %s (1, 5, 15 min)' % (
+        ' --quick' if args.quick else '', os.cpu_count(), ', '.join('%.2f' % x for x in common.loadavg())), flush=True)
+    t_all = time.monotonic()
+    for name, part in PARTS:
+        if only and name not in only:
+            continue
+        t0 = time.monotonic()
+        print('  %s ...' % name, end='', flush=True)
+        try:
+            part(cfg, out, results)
+            status = 'done'
+        except Exception as err:  # one failed part must not hide the others' figures
+            results['errors'][name] = '%s: %s' % (type(err).__name__, err)
+            status = 'FAILED: %s' % str(err).splitlines()[0][:200]
+        results['durations_s'][name] = round(time.monotonic() - t0, 1)
+        results['load'].append({'after': name, 'loadavg': common.loadavg()})
+        print(' %s (%.0f s, load %s)' % (status, time.monotonic() - t0, common.loadavg()[0]), flush=True)
+    results['total_s'] = round(time.monotonic() - t_all, 1)
+    from bench import report
+    rows = report.rows(results)
+    results['table'] = rows
+    with open(os.path.join(out, 'bench.json'), 'w') as f:
+        json.dump(results, f, indent=1)
+    loads = [x['loadavg'][0] for x in results['load']]
+    print()
+    print(report.table(rows))
+    print()
+    print('machine: %s, %s cores; 1-min load average during the run %s..%s (%s cores are shared with '
+          'whatever else runs)' % (results['machine'].get('cpu'), os.cpu_count(), min(loads, default='-'),
+                                   max(loads, default='-'), os.cpu_count()))
+    missed = [r for r in rows if r[4] == 'NO']
+    for line in report.notes(results):
+        print('- ' + line)
+    if any('ceiling' in r[0] or 'CPU' in r[0] or 'real-time factor' in r[0] for r in missed) or args.quick:
+        lines = print_profiles(results)
+        if lines:
+            print('\n'.join(lines))
+    for name, err in results['errors'].items():
+        print('\n%s failed:\n%s' % (name, err))
+    print('\nraw figures: %s; plots: %s' % (os.path.relpath(os.path.join(out, 'bench.json')), ', '.join(
+        os.path.relpath(os.path.join(out, p)) for p in ('turning_circles.png', 'hinge_step.png')
+        if os.path.exists(os.path.join(out, p)))))
+    print('total %.0f s' % results['total_s'])
+    return 1 if results['errors'] else 0
+
+
+if __name__ == '__main__':
+    sys.exit(main())

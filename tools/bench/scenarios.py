@@ -1,0 +1,539 @@
+"""The measurements that need ROS. Each runs in its own child process (`tools/bench.py --scenario
+NAME`) with its own master on a free port: rospy binds a process to one master, and other work on
+the machine (tests on 11311) stays out of the way.
+
+The bench's node reads the simulator through services and /proc, and (except for fidelity) does
+not subscribe to /clock: with /use_sim_time set, rospy would subscribe it, and a /clock subscriber
+costs the simulator what we are measuring. Sim time comes from /gazebo/get_world_properties.
+"""
+import json
+import math
+import os
+import shutil
+import struct
+import subprocess
+import threading
+import time
+import xmlrpc.client
+
+from . import common
+from .common import BenchError
+
+WORLD_SERVER = '/gazebo'
+LIST_CONTROLLERS = common.NAMESPACE + '/controller_manager/list_controllers'
+SENSOR_TYPES = ('sensor_msgs/LaserScan', 'sensor_msgs/Image', 'sensor_msgs/CameraInfo',
+                'sensor_msgs/PointCloud2', 'sensor_msgs/Imu')
+COMMAND_TOPIC = '/ackermann_cmd_mux/output'
+
+
+# -- ROS helpers ----------------------------------------------------------------------------------
+def init_node(name, sim_time=False):
+    """rospy.init_node; with sim_time False the node keeps wall time and never subscribes to /clock."""
+    import rospy
+    import rospy.impl.simtime as simtime
+    real = simtime._is_use_simtime
+    if not sim_time:
+        simtime._is_use_simtime = lambda: False
+    try:
+        rospy.init_node(name, anonymous=True, disable_signals=True)
+    finally:
+        simtime._is_use_simtime = real
+
+
+def running_controllers():
+    import rospy
+    from controller_manager_msgs.srv import ListControllers
+    try:
+        reply = rospy.ServiceProxy(LIST_CONTROLLERS, ListControllers)()
+    except Exception:  # not served yet
+        return 0
+    return sum(1 for c in reply.controller if c.state == 'running')
+
+
+def wait_controllers(proc, timeout=120.0):
+    common.wait_for(lambda: running_controllers() >= len(common.CONTROLLERS), timeout,
+                    'the seven controllers', proc, period=0.02)
+
+
+def node_pid(name, port):
+    import rosgraph
+    master = rosgraph.Master('/racebot_bench', master_uri='http://localhost:%d' % port)
+    code, _, pid = xmlrpc.client.ServerProxy(master.lookupNode(name)).getPid('/racebot_bench')
+    if code != 1:
+        raise BenchError('could not get the pid of %s' % name)
+    return int(pid)
+
+
+class World(object):
+    """The /gazebo services the bench uses."""
+
+    def __init__(self):
+        import rospy
+        from gazebo_msgs.srv import GetWorldProperties
+        from std_srvs.srv import Empty
+        rospy.wait_for_service('/gazebo/get_world_properties', 60)
+        self._props = rospy.ServiceProxy('/gazebo/get_world_properties', GetWorldProperties, persistent=True)
+        self.pause = rospy.ServiceProxy('/gazebo/pause_physics', Empty)
+        self.unpause = rospy.ServiceProxy('/gazebo/unpause_physics', Empty)
+        self.reset = rospy.ServiceProxy('/gazebo/reset_simulation', Empty)
+
+    def time(self):
+        return self._props().sim_time
+
+
+def measure_window(world, pid, seconds):
+    """Real-time factor and CPU share (of one core) of the simulator over `seconds` of wall time."""
+    s0, c0, w0 = world.time(), common.cpu_seconds(pid), time.perf_counter()
+    time.sleep(seconds)
+    s1, c1, w1 = world.time(), common.cpu_seconds(pid), time.perf_counter()
+    return {'rtf': (s1 - s0) / (w1 - w0), 'cpu': (c1 - c0) / (w1 - w0), 'wall_s': w1 - w0, 'sim_s': s1 - s0}
+
+
+# -- speed: ceiling and bridge side by side ---------------------------------------------------------
+def speed(p, out):
+    from .ceiling import Ceiling
+    port = p['port']
+    world_file = common.fast_world(common.ROOM_WORLD, os.path.join(out, 'room_fast.world'))
+    launch = common.roslaunch([common.write_bridge_launch(out), 'world_name:=' + world_file], port,
+                              os.path.join(out, 'logs', 'speed_roslaunch.log'))
+    result = {'world': 'room_mini (real_time_update_rate 0)'}
+    try:
+        wait_controllers(launch)
+        init_node('racebot_bench_speed')
+        pid = node_pid(WORLD_SERVER, port)
+        result['rss_start_bytes'] = common.rss_bytes(pid)
+        world = World()
+        with common.quiet_stdout():
+            ceiling = Ceiling(world_file)
+        step = ceiling.step_size
+        result['step_s'] = step
+        time.sleep(p['warmup_s'])
+        result['plain'] = _rounds(world, ceiling, pid, p['rounds'], p['window_s'], step)
+        if p.get('profile_s'):
+            result['profile'] = profile_world_server(pid, p['profile_s'], out)
+        result['sensors'] = _with_sensors(world, ceiling, pid, p, step)
+        result['rss_after_sensors_bytes'] = common.rss_bytes(pid)
+        result['sim_after_sensors_s'] = world.time()
+        ceiling.close()
+        # Memory: on to the sim-time mark (sensors unsubscribed again, like at the start).
+        target = p['memory_sim_s']
+        common.wait_for(lambda: world.time() >= target, p['memory_timeout_s'],
+                        'sim time %g s for the memory figure' % target, launch, period=0.5)
+        result['memory_sim_s'] = world.time()
+        result['rss_end_bytes'] = common.rss_bytes(pid)
+    finally:
+        launch.stop()
+    return result
+
+
+def _rounds(world, ceiling, pid, rounds, window, step):
+    """Ceiling and bridge measured in turn (the other paused), `rounds` times: load that comes and
+    goes on a shared machine hits both alike."""
+    out = []
+    for k in range(rounds):
+        entry = {}
+        for part in (('ceiling', 'bridge') if k % 2 == 0 else ('bridge', 'ceiling')):
+            if part == 'ceiling':
+                world.pause()
+                time.sleep(0.1)
+                entry['ceiling_steps_per_s'] = ceiling.measure(window)
+                world.unpause()
+            else:
+                time.sleep(0.2)
+                entry.update(measure_window(world, pid, window))
+        entry['ceiling_rtf'] = entry['ceiling_steps_per_s'] * step
+        entry['ratio'] = entry['rtf'] / entry['ceiling_rtf']
+        out.append(entry)
+    return {'rounds': out,
+            'ceiling_steps_per_s': common.median([r['ceiling_steps_per_s'] for r in out]),
+            'ceiling_rtf': common.median([r['ceiling_rtf'] for r in out]),
+            'bridge_rtf': common.median([r['rtf'] for r in out]),
+            'bridge_cpu': common.median([r['cpu'] for r in out]),
+            'ratio': common.median([r['ratio'] for r in out])}
+
+
+def sensor_topics():
+    """The world server's sensor topics (name -> type)."""
+    import rosgraph
+    master = rosgraph.Master('/racebot_bench')
+    types = dict(master.getTopicTypes())
+    pubs = master.getSystemState()[0]
+    return {t: types.get(t) for t, nodes in pubs if WORLD_SERVER in nodes and types.get(t) in SENSOR_TYPES}
+
+
+def _with_sensors(world, ceiling, pid, p, step):
+    import rospy
+    topics = sensor_topics()
+    if not topics:
+        return {'available': False}
+    counts = dict.fromkeys(topics, 0)
+
+    def counter(topic):
+        def cb(_msg):
+            counts[topic] += 1
+        return cb
+    subs = [rospy.Subscriber(t, rospy.AnyMsg, counter(t), queue_size=2) for t in sorted(topics)]
+    try:
+        common.wait_for(lambda: all(s.get_num_connections() > 0 for s in subs), 20, 'sensor subscriptions')
+        time.sleep(1.0)
+        before, w0, s0 = dict(counts), time.perf_counter(), world.time()
+        result = _rounds(world, ceiling, pid, p['rounds'], p['window_s'], step)
+        wall, sim = time.perf_counter() - w0, world.time() - s0
+        result['available'] = True
+        result['topics'] = {t: {'type': topics[t], 'wall_hz': (counts[t] - before[t]) / wall,
+                                'sim_hz': (counts[t] - before[t]) / sim if sim > 0 else None}
+                            for t in sorted(topics)}
+        result['note'] = 'sim_hz counts the ceiling phases too, when the simulator is paused; wall_hz likewise'
+    finally:
+        for s in subs:
+            s.unregister()
+    return result
+
+
+def pyspy():
+    here = os.path.join(os.path.dirname(common.python()), 'py-spy')
+    return here if os.path.exists(here) else shutil.which('py-spy')
+
+
+def profile_world_server(pid, seconds, out):
+    """Where the world server's update loop spends its time: py-spy (if installed) on the running
+    process, its main thread, by function (self time) and by our functions (inclusive)."""
+    exe = pyspy()
+    if exe is None:
+        return {'available': False, 'why': 'py-spy is not installed (.venv/bin/pip install py-spy)'}
+    raw = os.path.join(out, 'world_server.pyspy.txt')
+    cmd = [exe, 'record', '--nonblocking', '--threads', '-r', '200', '-d', str(int(math.ceil(seconds))), '-p', str(pid),
+           '-f', 'raw', '-o', raw]
+    run = subprocess.run(cmd, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, timeout=seconds + 60)
+    if run.returncode != 0 or not os.path.exists(raw):
+        return {'available': False, 'why': 'py-spy failed: %s' % run.stdout.decode(errors='replace')[-300:]}
+    return dict(summarize_stacks(raw, 'MainThread'), available=True, tool='py-spy', raw=os.path.basename(raw))
+
+
+def summarize_stacks(path, thread):
+    """py-spy raw (collapsed) stacks -> shares of the thread's samples by leaf and by frame."""
+    leaf, inclusive, total = {}, {}, 0
+    with open(path) as f:
+        for line in f:
+            stack, _, n = line.rstrip('\n').rpartition(' ')
+            frames = stack.split(';')
+            if thread not in frames[0]:
+                continue
+            n = int(n)
+            total += n
+            name = _frame_name(frames[-1])
+            leaf[name] = leaf.get(name, 0) + n
+            for fr in set(_frame_name(x) for x in frames[1:]):
+                inclusive[fr] = inclusive.get(fr, 0) + n
+    top = lambda d, k: [(name, round(100.0 * v / total, 1)) for name, v in sorted(d.items(), key=lambda x: -x[1])[:k]]
+    return {'samples': total, 'self_pct': top(leaf, 12) if total else [],
+            'inclusive_pct': [x for x in top(inclusive, 40) if 'racebot_sim_bridge' in x[0] or 'rospy' in x[0]][:15]
+            if total else []}
+
+
+def _frame_name(frame):
+    """'Simulator.step (racebot_sim_bridge/simulator.py:184)' -> 'Simulator.step (racebot_sim_bridge/simulator.py)'."""
+    name, _, where = frame.partition(' (')
+    return '%s (%s)' % (name, where.rsplit(':', 1)[0]) if where else name
+
+
+# -- real time: the product launch ------------------------------------------------------------------
+def realtime(p, out):
+    import rosgraph
+    port = p['port']
+    core = common.roscore(port, os.path.join(out, 'logs', 'realtime_roscore.log'))
+    trace_path = os.path.join(out, 'command_trace.log')
+    if os.path.exists(trace_path):
+        os.remove(trace_path)
+    launch = None
+    result = {}
+    try:
+        rosgraph.Master('/racebot_bench', master_uri='http://localhost:%d' % port).setParam(
+            WORLD_SERVER + '/command_trace', trace_path)
+        started = time.monotonic()
+        launch = common.roslaunch(['racebot_gazebo', 'racebot.launch', 'gui:=false', 'teleop:=false'], port,
+                                  os.path.join(out, 'logs', 'realtime_roslaunch.log'))
+        wait_controllers(launch)
+        result['startup_warm_s'] = time.monotonic() - started
+        init_node('racebot_bench_realtime')
+        pid = node_pid(WORLD_SERVER, port)
+        result['rss_start_bytes'] = common.rss_bytes(pid)
+        world = World()
+        time.sleep(p['settle_s'])
+        parts = [measure_window(world, pid, p['part_s']) for _ in range(p['parts'])]
+        wall = sum(x['wall_s'] for x in parts)
+        result['window'] = {'wall_s': wall, 'rtf': sum(x['sim_s'] for x in parts) / wall,
+                            'cpu': sum(x['cpu'] * x['wall_s'] for x in parts) / wall,
+                            'parts_rtf': [round(x['rtf'], 4) for x in parts]}
+        result['latency'] = command_path(p['commands'], p['command_rate_hz'], trace_path)
+        result['rss_end_bytes'] = common.rss_bytes(pid)
+    finally:
+        if launch is not None:
+            launch.stop()
+        core.stop()
+    return result
+
+
+def command_path(n, rate_hz, trace_path):
+    """n distinct AckermannDriveStamped at rate_hz through servo_commands; latency from publishing to
+    the controllers' callbacks and to the update that applies the new wheel commands, from the world
+    server's command trace (~command_trace)."""
+    import rospy
+    from ackermann_msgs.msg import AckermannDriveStamped
+    from racebot_control.wheel_commands import CarGeometry, wheel_commands
+    pub = rospy.Publisher(COMMAND_TOPIC, AckermannDriveStamped, queue_size=1000, tcp_nodelay=True)
+    common.wait_for(lambda: pub.get_num_connections() > 0, 30, 'servo_commands subscribing to %s' % COMMAND_TOPIC)
+    time.sleep(1.0)
+    geometry = CarGeometry()
+    # distinct, slow (about a metre in all); as float32, what AckermannDrive.speed carries
+    speeds = [struct.unpack('f', struct.pack('f', 0.05 + 1e-4 * k))[0] for k in range(n)]
+    expected = [wheel_commands(v, 0.0, 'parallel', geometry) for v in speeds]
+    sent = []
+    msg = AckermannDriveStamped()
+    period = 1.0 / rate_hz
+    next_t = time.monotonic()
+    for v in speeds:
+        msg.drive.speed = v
+        sent.append(time.monotonic())
+        pub.publish(msg)
+        next_t += period
+        delay = next_t - time.monotonic()
+        if delay > 0:
+            time.sleep(delay)
+    time.sleep(1.0)
+    msg.drive.speed = 0.0
+    pub.publish(msg)
+    time.sleep(0.3)
+    pub.unregister()
+    return analyse_trace(trace_path, sent, expected)
+
+
+def analyse_trace(trace_path, sent, expected):
+    wheels = common.CONTROLLERS[:4]
+    events = {}  # (event, controller) -> {k: wall time}
+    index = {}
+    for w_i, name in enumerate(wheels):
+        for k, cmds in enumerate(expected):
+            index[(name, round(cmds[w_i], 9))] = k
+    with open(trace_path) as f:
+        for line in f:
+            parts = line.split()
+            if len(parts) != 4:
+                continue
+            event, when, controller, value = parts[0], float(parts[1]), parts[2].rsplit('/', 1)[-1], float(parts[3])
+            k = index.get((controller, round(value, 9)))
+            if k is not None:
+                events.setdefault((event, controller), {}).setdefault(k, when)
+    arrived = [events.get(('arrived', w), {}) for w in wheels]
+    applied = [events.get(('applied', w), {}) for w in wheels]
+    delivered = min(len(a) for a in arrived)
+    to_callback = [(arrived[0][k] - sent[k]) * 1e3 for k in range(len(sent)) if k in arrived[0]]
+    to_applied = [(max(a[k] for a in applied) - sent[k]) * 1e3 for k in range(len(sent))
+                  if all(k in a for a in applied)]
+    # Where the time goes: to the first controller's callback (bench -> servo_commands -> world
+    # server), then until the fourth wheel controller has its command (servo_commands publishes the
+    # six one after the other), then until the update that applies it.
+    both = [k for k in range(len(sent)) if all(k in a for a in arrived) and all(k in a for a in applied)]
+    first = [(min(a[k] for a in arrived) - sent[k]) * 1e3 for k in both]
+    spread = [(max(a[k] for a in arrived) - min(a[k] for a in arrived)) * 1e3 for k in both]
+    to_update = [(max(a[k] for a in applied) - max(a[k] for a in arrived)) * 1e3 for k in both]
+    stats = lambda xs: {'p50': common.percentile(xs, 50), 'p99': common.percentile(xs, 99)}
+    return {'sent': len(sent), 'delivered': delivered, 'applied': len(to_applied),
+            'callback_ms': {'p50': common.percentile(to_callback, 50), 'p99': common.percentile(to_callback, 99),
+                            'max': max(to_callback) if to_callback else None},
+            'applied_ms': {'p50': common.percentile(to_applied, 50), 'p99': common.percentile(to_applied, 99),
+                           'max': max(to_applied) if to_applied else None},
+            'segments_ms': {'publish_to_first_callback': stats(first), 'first_to_fourth_wheel_callback': stats(spread),
+                            'last_callback_to_applied': stats(to_update)}}
+
+
+# -- start-up: cold, roslaunch starts the master ------------------------------------------------------
+def startup(p, out):
+    port = p['port']
+    started = time.monotonic()
+    launch = common.roslaunch(['racebot_gazebo', 'racebot.launch', 'gui:=false', 'teleop:=false'], port,
+                              os.path.join(out, 'logs', 'startup_%d.log' % p['run']))
+    try:
+        os.environ['ROS_MASTER_URI'] = 'http://localhost:%d' % port
+        common.wait_for(lambda: common.master_online(port), 60, 'the master', launch, period=0.02)
+        wait_controllers(launch)
+        return {'startup_s': time.monotonic() - started}
+    finally:
+        launch.stop()
+
+
+# -- fidelity: through servo_commands, read from /gazebo/model_states ---------------------------------
+class Recorder(object):
+    """The racebot's pose and twist from /gazebo/model_states, stamped with sim time on arrival."""
+
+    def __init__(self):
+        import rospy
+        from gazebo_msgs.msg import ModelStates
+        self.lock = threading.Lock()
+        self.samples = []
+        self.sub = rospy.Subscriber('/gazebo/model_states', ModelStates, self._cb, queue_size=100)
+
+    def _cb(self, msg):
+        import rospy
+        try:
+            i = msg.name.index('racebot')
+        except ValueError:
+            return
+        p, t = msg.pose[i], msg.twist[i]
+        s = (rospy.get_time(), p.position.x, p.position.y, p.position.z, p.orientation.x, p.orientation.y,
+             p.orientation.z, p.orientation.w, t.linear.x, t.linear.y, t.linear.z)
+        with self.lock:
+            self.samples.append(s)
+
+    def take(self):
+        with self.lock:
+            s, self.samples = self.samples, []
+        return s
+
+
+def fidelity(p, out):
+    import rospy
+    from ackermann_msgs.msg import AckermannDriveStamped
+    port, mode = p['port'], p['mode']
+    world_file = common.fast_world(common.EMPTY_WORLD, os.path.join(out, 'empty_fast.world'))
+    launch = common.roslaunch([common.write_bridge_launch(out), 'world_name:=' + world_file, 'servo:=true',
+                               'steering_mode:=' + mode], port, os.path.join(out, 'logs', 'fidelity_%s.log' % mode))
+    result = {'mode': mode, 'world': 'empty (real_time_update_rate 0)'}
+    try:
+        wait_controllers(launch)  # first: /use_sim_time is set by then
+        init_node('racebot_bench_fidelity', sim_time=True)
+        world = World()
+        rec = Recorder()
+        pub = rospy.Publisher(COMMAND_TOPIC, AckermannDriveStamped, queue_size=10, tcp_nodelay=True)
+        common.wait_for(lambda: pub.get_num_connections() > 0 and rec.sub.get_num_connections() > 0, 30,
+                        'servo_commands and model_states connections')
+
+        def drive(speed, angle, settle, duration):
+            """From a reset world, the command held for settle + duration s of sim time; the samples
+            after settle."""
+            world.pause()
+            world.reset()
+            time.sleep(0.3)  # messages from before the reset arrive and are dropped
+            rec.take()
+            msg = AckermannDriveStamped()
+            msg.drive.speed, msg.drive.steering_angle = speed, angle
+            stop = threading.Event()
+
+            def keep_sending():  # a reset restarts the controllers (command 0): keep the command coming
+                while not stop.is_set():
+                    pub.publish(msg)
+                    stop.wait(0.01)
+            sender = threading.Thread(target=keep_sending, daemon=True)
+            sender.start()
+            time.sleep(0.05)
+            world.unpause()
+            end = settle + duration
+            try:
+                common.wait_for(lambda: world.time() >= end, p['timeout_s'], 'sim time %g s' % end, launch, 0.02)
+            finally:
+                stop.set()
+                sender.join()
+            world.pause()
+            time.sleep(0.2)
+            samples = [s for s in rec.take() if settle <= s[0] <= end]
+            msg.drive.speed = 0.0
+            pub.publish(msg)
+            if len(samples) < 10:
+                raise BenchError('only %d model_states samples for speed %g, steering %g' % (len(samples), speed, angle))
+            return samples
+
+        result['speeds'] = []
+        for v in p['speeds']:
+            s = drive(v, 0.0, p['speed_settle_s'], p['speed_measure_s'])
+            result['speeds'].append(steady_speed(s, v))
+        result['circles'] = []
+        for angle in p['angles']:
+            radius = common.WHEELBASE / math.tan(angle)
+            duration = p['circle_turns'] * 2 * math.pi * radius / p['circle_speed']
+            if p.get('circle_max_s'):
+                duration = min(duration, p['circle_max_s'])
+            s = drive(p['circle_speed'], angle, p['circle_settle_s'], duration)
+            result['circles'].append(circle(s, angle, radius))
+        result['full_lock'] = []
+        for angle in p['lock_angles']:
+            s = drive(p['lock_speed'], angle, 0.0, p['lock_s'])
+            result['full_lock'].append(full_lock(s, angle, p['lock_speed'], p['lock_s']))
+        world.unpause()
+    finally:
+        launch.stop()
+    return result
+
+
+def _yaw(qx, qy, qz, qw):
+    return math.atan2(2.0 * (qw * qz + qx * qy), 1.0 - 2.0 * (qy * qy + qz * qz))
+
+
+def rear_axle(s):
+    yaw = _yaw(*s[4:8])
+    return s[1] + common.REAR_AXLE_X * math.cos(yaw), s[2] + common.REAR_AXLE_X * math.sin(yaw)
+
+
+def steady_speed(samples, commanded):
+    forward = []
+    for s in samples:
+        yaw = _yaw(*s[4:8])
+        forward.append(s[8] * math.cos(yaw) + s[9] * math.sin(yaw))
+    mean = sum(forward) / len(forward)
+    return {'commanded': commanded, 'measured': mean, 'error_pct': abs(mean - commanded) / abs(commanded) * 100.0,
+            'samples': len(forward)}
+
+
+def fit_circle(points):
+    """Least-squares circle (Kasa): centre and radius."""
+    import numpy as np
+    pts = np.asarray(points, dtype=float)
+    x, y = pts[:, 0], pts[:, 1]
+    a = np.column_stack([x, y, np.ones_like(x)])
+    b = -(x * x + y * y)
+    (d, e, f), *_ = np.linalg.lstsq(a, b, rcond=None)
+    cx, cy = -d / 2.0, -e / 2.0
+    return (float(cx), float(cy)), float(math.sqrt(max(cx * cx + cy * cy - f, 0.0)))
+
+
+def circle(samples, angle, reference):
+    points = [rear_axle(s) for s in samples]
+    centre, radius = fit_circle(points)
+    step = max(1, len(points) // 600)
+    return {'steering_rad': angle, 'reference_m': reference, 'measured_m': radius,
+            'error_pct': abs(radius - reference) / reference * 100.0, 'centre': centre,
+            'arc_rad': _arc(points, centre), 'trajectory': [[round(x, 4), round(y, 4)] for x, y in points[::step]]}
+
+
+def _arc(points, centre):
+    total, prev = 0.0, None
+    for x, y in points:
+        a = math.atan2(y - centre[1], x - centre[0])
+        if prev is not None:
+            d = math.remainder(a - prev, 2 * math.pi)
+            total += d
+        prev = a
+    return abs(total)
+
+
+def full_lock(samples, angle, speed, duration):
+    finite = all(math.isfinite(v) for s in samples for v in s)
+    tilt = [math.degrees(math.acos(max(-1.0, min(1.0, 1.0 - 2.0 * (s[4] ** 2 + s[5] ** 2))))) for s in samples]
+    max_tilt = max(tilt) if finite else None
+    max_z = max(s[3] for s in samples) if finite else None
+    return {'steering_rad': angle, 'speed': speed, 'sim_s': duration, 'finite': finite,
+            'max_tilt_deg': max_tilt, 'max_z_m': max_z, 'samples': len(samples),
+            'ok': bool(finite and max_tilt < 45.0 and max_z < 0.5)}
+
+
+# -- determinism: the in-process simulator, one run per process ----------------------------------------
+def determinism(p, out):
+    from . import inprocess
+    with common.quiet_stdout():
+        trajectory = inprocess.scripted_run(common.ROOM_WORLD, p['sim_s'])
+    with open(p['trajectory_file'], 'w') as f:
+        json.dump(trajectory, f)
+    return {'samples': len(trajectory)}
+
+
+SCENARIOS = {'speed': speed, 'realtime': realtime, 'startup': startup, 'fidelity': fidelity,
+             'determinism': determinism}
