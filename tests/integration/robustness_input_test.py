@@ -249,7 +249,7 @@ class RobustnessInputTest(unittest.TestCase):
         rospy.set_param('/empty_description', '')
         code, text = self.spawn_cli('-urdf', '-model', 'ghost', '-param', '/empty_description', '-timeout', '30')
         self.assertEqual(code, 1, text)
-        self.assertIn('is empty', text)
+        self.assertIn('spawn_model: the model given by -param /empty_description is empty', text)
         self.assertNotIn('ghost', self.sim.world_properties().model_names)
         self.assert_survived()
 
