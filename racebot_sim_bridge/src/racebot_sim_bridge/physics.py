@@ -10,7 +10,10 @@ Gazebo behaviours reproduced here, because the car drives differently without th
 - friction: ODE takes the smaller mu of two touching surfaces, Bullet multiplies them. Static world
   surfaces get friction 1 and a robot link gets min(its mu, the ground's mu), so the product is
   Gazebo's minimum for the contacts that matter (robot on ground);
-- joint velocity motors (PyBullet's default) are switched off: joints move only by applied effort.
+- joint velocity motors (PyBullet's default) are switched off: joints move only by applied effort;
+- URDF cylinders (the wheels) stay true cylinders (URDF_USE_IMPLICIT_CYLINDER): PyBullet's default
+  convex-hull approximation makes the contact point jump between hull vertices, and the car veered
+  ~2 degrees per metre driving straight with the hinges locked.
 """
 import math
 import os
@@ -252,7 +255,8 @@ class PhysicsWorld(object):
         path = os.path.join(self._tmpdir, '%s.urdf' % name.replace('/', '_'))
         with open(path, 'w') as f:
             f.write(prepare_urdf_for_bullet(urdf_xml, urdf_model))
-        flags = pb.URDF_MERGE_FIXED_LINKS | pb.URDF_USE_INERTIA_FROM_FILE | pb.URDF_MAINTAIN_LINK_ORDER
+        flags = pb.URDF_MERGE_FIXED_LINKS | pb.URDF_USE_INERTIA_FROM_FILE | pb.URDF_MAINTAIN_LINK_ORDER \
+            | pb.URDF_USE_IMPLICIT_CYLINDER
         try:
             body_id = pb.loadURDF(path, basePosition=position, baseOrientation=orientation, flags=flags,
                                   physicsClientId=self.client)
