@@ -13,6 +13,8 @@ along the arc. The pose reported is that of the child frame (base_footprint), wh
 """
 import math
 
+from .sdf_world import rotate
+
 # The racebot's model (racebot_description/urdf/ackermann/racecar.xacro).
 WHEEL_RADIUS = 0.032   # m, collision cylinder of every wheel
 WHEELBASE = 0.26       # m, rear axle to steering hinges (2 x axle_x)
@@ -31,13 +33,7 @@ def quaternion_to_yaw(x, y, z, w):
 
 def rotate_into(q, v):
     """Vector v (world) expressed in the frame whose world orientation is the unit quaternion q."""
-    x, y, z, w = -q[0], -q[1], -q[2], q[3]  # the inverse rotation
-    tx = 2.0 * (y * v[2] - z * v[1])
-    ty = 2.0 * (z * v[0] - x * v[2])
-    tz = 2.0 * (x * v[1] - y * v[0])
-    return (v[0] + w * tx + (y * tz - z * ty),
-            v[1] + w * ty + (z * tx - x * tz),
-            v[2] + w * tz + (x * ty - y * tx))
+    return rotate((-q[0], -q[1], -q[2], q[3]), v)  # the inverse rotation
 
 
 class AckermannOdometry(object):
