@@ -66,5 +66,10 @@ bench: setup
 bench-quick: setup
 	@$(IN_WS) $(VENV)/bin/python3 tools/bench.py --quick
 
+# The soak: 30 min of sim time driving the room as fast as possible (memory, logs, /clock); report in
+# out/soak/. Shorter or other: make soak ARGS='--sim-minutes 5'.
+soak: setup
+	@$(IN_WS) $(VENV)/bin/python3 tools/soak.py $(ARGS)
+
 clean:
 	rm -rf build devel

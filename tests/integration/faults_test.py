@@ -201,8 +201,8 @@ class FaultsTest(unittest.TestCase):
         index, t_reset = self.after_reset()
         self.assertGreaterEqual(t_reset, before, 'reset_world must not send time back')
         self.assertEqual(self.running(), set(CONTROLLERS), 'controllers must keep running after reset_world')
-        self.assert_at_spawn_and_still()
         self.assert_no_windup_after(index, t_reset)
+        self.assert_at_spawn_and_still()
         self.hold_drive(0.3, 0.0, 1.0)  # the controllers still drive the car
         self.assertGreater(self.forward_speed(), 0.2)
         self.reset_world()
@@ -217,10 +217,10 @@ class FaultsTest(unittest.TestCase):
         back = wait_for(lambda: self.sim.clock < before and self.sim.clock, 'time to go back to 0')
         self.assertLess(back, 1.0)
         self.assertEqual(self.running(), set(CONTROLLERS), 'controllers must keep running after reset_simulation')
-        self.assert_at_spawn_and_still()
-        # joint_state_controller and the PID go on publishing in the new time line
-        wait_for(lambda: any(t < before for t in self.joint_stamps[-5:]), 'joint_states stamped after the reset')
         self.assert_no_windup_after(index, 0.0)  # stamps of the new time line, from 0
+        self.assert_at_spawn_and_still()
+        # joint_state_controller goes on publishing in the new time line
+        wait_for(lambda: any(t < before for t in self.joint_stamps[-5:]), 'joint_states stamped after the reset')
         self.hold_drive(0.3, 0.0, 1.0)
         self.assertGreater(self.forward_speed(), 0.2)
         self.reset_world()

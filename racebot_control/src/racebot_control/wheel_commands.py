@@ -42,6 +42,10 @@ WHEELBASE = 0.26            # m, rear axle to front hinges (hinges at x = +0.13,
 TRACK = 0.18                # m, between left and right wheel centres (rear y = +-0.09)
 WHEEL_HINGE_OFFSET = 0.025  # m, front wheel centre outboard of its hinge axis (hinge y = +-0.065)
 MAX_STEERING_ANGLE = 0.6    # rad, the steering hinges' joint limit
+# Wheel radius, wheelbase and track accepted [m]: far beyond any car both ways, and far from the
+# lengths (1e-59 m, 5e16 m, found by fuzzing) at which the turning geometry rounds to a division by 0.
+MIN_LENGTH = 1e-6
+MAX_LENGTH = 1e3
 
 # The order of the six commands, the same as the controllers they go to (see servo_commands_node).
 WheelCommands = collections.namedtuple('WheelCommands', [
@@ -67,8 +71,9 @@ class CarGeometry(collections.namedtuple('CarGeometry', [
             if not _finite(value):
                 raise ValueError('%s must be a finite number, got %r' % (name, value))
         for name in ('wheel_radius', 'wheelbase', 'track'):
-            if values[name] <= 0.0:
-                raise ValueError('%s must be > 0, got %r' % (name, values[name]))
+            if not MIN_LENGTH <= values[name] <= MAX_LENGTH:
+                raise ValueError('%s must be between %g and %g m, got %r'
+                                 % (name, MIN_LENGTH, MAX_LENGTH, values[name]))
         if not 0.0 < max_steering_angle < math.pi / 2:
             raise ValueError('max_steering_angle must be in (0, pi/2), got %r' % max_steering_angle)
         if not 0.0 <= wheel_hinge_offset < track / 2:

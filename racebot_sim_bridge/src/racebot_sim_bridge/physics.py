@@ -364,7 +364,7 @@ def link_friction(urdf_model, link):
         if urdf_model.lumped_link(name) != link or not spec.collisions:
             continue
         props = urdf_model.gazebo_refs.get(name, {})
-        values = [float(props[k]) for k in ('mu1', 'mu2') if k in props]
+        values = [props[k] for k in ('mu1', 'mu2') if isinstance(props.get(k), float)]  # the reader warned of others
         if values:
             mus.append(min(values))
     return min(mus) if mus else 1.0

@@ -648,6 +648,11 @@ class _UrdfReader:
                     properties[child.tag] = value if math.isfinite(value) else text
                 except ValueError:
                     properties[child.tag] = text
+                if child.tag in ('mu1', 'mu2') and not (isinstance(properties[child.tag], float)
+                                                        and properties[child.tag] >= 0):
+                    self.warn("%s <%s>%s</%s>: a friction coefficient is a number >= 0; ignored"
+                              % (what, child.tag, text, child.tag))
+                    del properties[child.tag]
 
     def sensor(self, elem, reference):
         name = elem.get('name')

@@ -1,0 +1,43 @@
+#!/usr/bin/env python3
+"""Runs the soak's short form (tools/soak.py --sim-minutes 2) and checks its JSON report: the
+simulator's memory did not grow after the warm-up, no ERROR in the logs, /clock never went back,
+every sensor topic delivered, the car and its controllers were fine at the end."""
+import json
+import os
+import subprocess
+import sys
+import unittest
+
+import rostest
+
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+REPORT = os.path.join(ROOT, 'out', 'soak', 'soak-short.json')
+SIM_MINUTES = 2
+
+
+class SoakShortTest(unittest.TestCase):
+    def test_two_minutes_of_driving_leave_memory_logs_and_clock_clean(self):
+        if os.path.exists(REPORT):
+            os.remove(REPORT)
+        proc = subprocess.run([sys.executable, os.path.join(ROOT, 'tools', 'soak.py'), '--sim-minutes',
+                               str(SIM_MINUTES), '--json', REPORT], stdout=subprocess.PIPE,
+                              stderr=subprocess.STDOUT, timeout=280)
+        output = proc.stdout.decode('utf-8', 'replace')
+        print(output)
+        self.assertTrue(os.path.exists(REPORT), 'soak.py wrote no report:\n' + output[-3000:])
+        with open(REPORT) as f:
+            report = json.load(f)
+        self.assertEqual(report['failures'], [], output[-3000:])
+        self.assertGreaterEqual(report['sim_seconds'], SIM_MINUTES * 60)
+        self.assertLess(report['rss_growth_percent'], 5.0)
+        self.assertEqual(report['errors'], [])
+        self.assertEqual(report['clock_regressions'], 0)
+        self.assertGreater(report['clock_messages'], 0)
+        self.assertEqual(report['controllers_running'], 7)
+        for topic, count in report['sensor_messages'].items():
+            self.assertGreater(count, 0, '%s delivered nothing' % topic)
+        self.assertEqual(proc.returncode, 0, output[-3000:])
+
+
+if __name__ == '__main__':
+    rostest.rosrun('racebot_tests', 'soak_short', SoakShortTest)
