@@ -489,3 +489,34 @@ def test_namespace_normalised():
     hw = RobotHW(model, urdf_model.hardware_joints(model))
     for ns, expected in (('racebot', '/racebot'), ('/racebot/', '/racebot'), ('/', ''), ('', '')):
         assert ControllerManager(ns, hw, lambda n: None, FakeIO(), log).ns == expected
+
+
+def test_a_controller_raising_in_update_is_stopped_and_the_others_keep_running():
+    """One broken controller must not stop the simulation loop (nor the other controllers)."""
+    log = Log()
+    model = urdf_model.parse_urdf(racebot_like_urdf())
+    hw = RobotHW(model, urdf_model.hardware_joints(model))
+    params = {'broken': {'type': 'test/Broken'}, 'fine': {'type': 'test/Counting'}}
+
+    class Broken(Controller):
+        type_name, interface = 'test/Broken', EFFORT
+
+        def update(self, time, period):
+            raise ZeroDivisionError('boom')
+
+    class Counting(Controller):
+        type_name, interface = 'test/Counting', EFFORT
+        updates = 0
+
+        def update(self, time, period):
+            Counting.updates += 1
+
+    cm = ControllerManager('/bot', hw, params.get, FakeIO(), log, types={'test/Broken': Broken, 'test/Counting': Counting})
+    assert cm.load('broken') and cm.load('fine')
+    assert cm.switch(['broken', 'fine'], [], STRICT, 0.0)
+    cm.update(0.001, 0.001)
+    cm.update(0.002, 0.001)
+    states = {name: state for name, _, state, _ in cm.list()}
+    assert states == {'broken': 'stopped', 'fine': 'running'}
+    assert Counting.updates == 2
+    assert any("Controller 'broken' raised ZeroDivisionError" in m for m in log.errors)

@@ -172,7 +172,21 @@ class ControllerManager(object):
                         e.controller.starting(time)
             for n, e in self.loaded.items():
                 if self.state[n] == 'running':
-                    e.controller.update(time, period)
+                    try:  # free when nothing is raised (Python 3.11)
+                        e.controller.update(time, period)
+                    except Exception as err:  # one broken controller must not stop the simulation
+                        self._stop_failed(n, time, err)
+
+    def _stop_failed(self, name, time, err):
+        self.log.error("Controller '%s' raised %s in its update (%s); it is stopped and its joints get no "
+                       "command. Fix its configuration, then unload, load and start it again."
+                       % (name, type(err).__name__, err))
+        try:
+            self.loaded[name].controller.stopping(time)
+        except Exception:  # noqa: BLE001 (already failing; stopping is best effort)
+            pass
+        self._zero_claimed(name)
+        self.state[name] = 'stopped'
 
     def shutdown(self):
         with self.lock:
