@@ -9,12 +9,16 @@ covered 2 m, then 0.
 - wheel odometry: /wheel_odom's distance and heading agree with the truth within 5 %.
 Waits are in wall time, judgements in sim time.
 """
+import functools
 import math
 import time
 import unittest
 
 import rospy
 import rostest
+
+import integration_common  # next to this file
+from integration_common import yaw_of
 from controller_manager_msgs.srv import ListControllers
 from gazebo_msgs.msg import ModelStates
 from nav_msgs.msg import Odometry
@@ -29,18 +33,7 @@ DISTANCE = 2.0      # m
 WALL_TIMEOUT = 120.0
 
 
-def wait_for(condition, what, timeout=WALL_TIMEOUT):
-    deadline = time.time() + timeout
-    while time.time() < deadline and not rospy.is_shutdown():
-        value = condition()
-        if value:
-            return value
-        time.sleep(0.01)
-    raise AssertionError('timed out after %.0f s waiting for %s' % (timeout, what))
-
-
-def yaw_of(q):
-    return math.atan2(2 * (q.w * q.z + q.x * q.y), 1 - 2 * (q.y * q.y + q.z * q.z))
+wait_for = functools.partial(integration_common.wait_for, timeout=WALL_TIMEOUT, period=0.01)
 
 
 class OdometryTest(unittest.TestCase):

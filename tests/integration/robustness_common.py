@@ -15,19 +15,10 @@ import rospy
 from gazebo_msgs.srv import GetModelState, GetWorldProperties
 from rosgraph_msgs.msg import Clock, Log
 
+from integration_common import wait_for  # noqa: F401 (re-exported to the robustness tests)
+
 WALL_TIMEOUT = 90.0
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-
-
-def wait_for(condition, what, timeout=WALL_TIMEOUT, period=0.02):
-    """condition()'s first truthy value; AssertionError naming `what` after `timeout` wall seconds."""
-    deadline = time.time() + timeout
-    while time.time() < deadline and not rospy.is_shutdown():
-        value = condition()
-        if value:
-            return value
-        time.sleep(period)
-    raise AssertionError('timed out after %.0f s waiting for %s' % (timeout, what))
 
 
 class Rosout(object):

@@ -6,6 +6,7 @@ off (/gazebo/sensors/noise false in sensors.test). Expected values come from els
 simulator: the world file's geometry (sensors_geometry), the URDF in /robot_description (sizes,
 offsets, fields of view) and the pinhole model. Waits are in wall time, judgements in sim time.
 """
+import functools
 import math
 import time
 import unittest
@@ -13,6 +14,8 @@ import unittest
 import numpy as np
 import rospy
 import rostest
+
+import integration_common  # next to this file
 from gazebo_msgs.msg import ModelStates
 from gazebo_msgs.srv import DeleteModel, GetPhysicsProperties, SpawnModel
 from geometry_msgs.msg import Pose
@@ -33,14 +36,7 @@ BOX_SDF = """<sdf version="1.6"><model name="box"><static>true</static><link nam
 </link></model></sdf>"""
 
 
-def wait_for(condition, what, timeout=WALL_TIMEOUT):
-    deadline = time.time() + timeout
-    while time.time() < deadline and not rospy.is_shutdown():
-        value = condition()
-        if value:
-            return value
-        time.sleep(0.01)
-    raise AssertionError('timed out after %.0f s waiting for %s' % (timeout, what))
+wait_for = functools.partial(integration_common.wait_for, timeout=WALL_TIMEOUT, period=0.01)
 
 
 def rotation(q):

@@ -4,12 +4,16 @@
 Inputs are published or called as a user would; outputs are awaited with wall-time limits and
 judged in simulated time, so a slow shared machine changes only how long the test takes.
 """
+import functools
 import math
 import time
 import unittest
 
 import rospy
 import rostest
+
+import integration_common  # next to this file
+from integration_common import yaw_of
 from controller_manager_msgs.srv import ListControllers, LoadController
 from gazebo_msgs.srv import GetModelState
 from rosgraph_msgs.msg import Clock, Log
@@ -28,18 +32,7 @@ WHEEL_RADIUS = 0.032
 WALL_TIMEOUT = 60.0
 
 
-def wait_for(condition, what, timeout=WALL_TIMEOUT):
-    deadline = time.time() + timeout
-    while time.time() < deadline and not rospy.is_shutdown():
-        value = condition()
-        if value:
-            return value
-        time.sleep(0.01)
-    raise AssertionError('timed out after %.0f s waiting for %s' % (timeout, what))
-
-
-def yaw_of(q):
-    return math.atan2(2 * (q.w * q.z + q.x * q.y), 1 - 2 * (q.y * q.y + q.z * q.z))
+wait_for = functools.partial(integration_common.wait_for, timeout=WALL_TIMEOUT, period=0.01)
 
 
 class SimBridgeTest(unittest.TestCase):

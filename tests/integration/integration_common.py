@@ -1,0 +1,22 @@
+"""Helpers shared by the rostest nodes in this folder (not a test node itself)."""
+import math
+import time
+
+import rospy
+
+
+def wait_for(condition, what, timeout=90.0, period=0.02):
+    """condition()'s first truthy value; AssertionError naming `what` after `timeout` wall seconds.
+    Waits are bounded in wall time (the machine may be slow); what the tests judge is in sim time."""
+    deadline = time.time() + timeout
+    while time.time() < deadline and not rospy.is_shutdown():
+        value = condition()
+        if value:
+            return value
+        time.sleep(period)
+    raise AssertionError('timed out after %.0f s waiting for %s' % (timeout, what))
+
+
+def yaw_of(q):
+    """Yaw of a geometry_msgs/Quaternion."""
+    return math.atan2(2 * (q.w * q.z + q.x * q.y), 1 - 2 * (q.y * q.y + q.z * q.z))
