@@ -17,7 +17,6 @@ def rows(r):
     """[(figure, ours, reference, target, met)] from the results dictionary of tools/bench.py."""
     out = []
     add = lambda *row: out.append(tuple(str(x) for x in row))
-    quick = r.get('quick')
     errors = r.get('errors', {})
 
     sp = r.get('speed')

@@ -8,7 +8,7 @@ into their parent as Gazebo merges them.
 import math
 
 from gazebo_msgs import srv
-from gazebo_msgs.msg import LinkState, LinkStates, ModelState, ModelStates, ODEPhysics
+from gazebo_msgs.msg import LinkState, LinkStates, ModelStates, ODEPhysics
 from geometry_msgs.msg import Point, Pose, Quaternion, Twist, Vector3
 from std_srvs.srv import Empty, EmptyResponse
 
@@ -41,7 +41,6 @@ class GazeboServices(object):
         self.sim = sim
         self.ns = ns.rstrip('/')
         self.cm_services = {}
-        self.timed_efforts = []
         self.model_states_pub = rospy.Publisher(self.ns + '/model_states', ModelStates, queue_size=1)
         self.link_states_pub = rospy.Publisher(self.ns + '/link_states', LinkStates, queue_size=1)
         s = lambda name, cls, cb: rospy.Service('%s/%s' % (self.ns, name), cls, cb)
@@ -88,11 +87,6 @@ class GazeboServices(object):
             robot = self.sim.spawn_urdf(req.model_name, req.model_xml, req.robot_namespace, pos, orientation)
         except SpawnError as err:
             return srv.SpawnModelResponse(False, self._err(str(err)))
-        body = robot.body
-        frame = body.com_pose_for_frame(pos, orientation)
-        with self.sim.lock:
-            self.sim.world.set_pose(body, frame.position, frame.orientation)
-            body.spawn_pose = body.pose()
         if robot.cm is not None:
             self.cm_services[req.model_name] = ControllerManagerServices(self.rospy, robot.cm, lambda: self.sim.time)
             self.rospy.loginfo('%s: controller manager ready under %s/controller_manager (control period %g s, '

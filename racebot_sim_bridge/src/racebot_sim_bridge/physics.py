@@ -169,7 +169,7 @@ class PhysicsWorld(object):
         world_pos, world_orn = model.world_pose_of(link)
         static = model.static or link.mass is None or link.mass <= 0
         mass = 0.0 if static else link.mass
-        col_id = shapes[0][0] if len(shapes) == 1 else self._compound(link, model) if shapes else -1
+        col_id = shapes[0][0] if len(shapes) == 1 else self._compound(link) if shapes else -1
         vis_id = visuals[0] if len(visuals) == 1 else -1
         body = pb.createMultiBody(baseMass=mass, baseCollisionShapeIndex=col_id, baseVisualShapeIndex=vis_id,
                                   basePosition=world_pos, baseOrientation=world_orn,
@@ -186,8 +186,8 @@ class PhysicsWorld(object):
         pb.changeDynamics(body, -1, lateralFriction=friction, physicsClientId=self.client)
         return body
 
-    def _compound(self, link, model):
-        kinds, kwargs = [], dict(shapeTypes=[], radii=[], halfExtents=[], lengths=[], planeNormals=[],
+    def _compound(self, link):
+        kwargs = dict(shapeTypes=[], radii=[], halfExtents=[], lengths=[], planeNormals=[],
                                  collisionFramePositions=[], collisionFrameOrientations=[])
         for col in link.collisions:
             s = col.shape
@@ -202,8 +202,7 @@ class PhysicsWorld(object):
             kwargs['planeNormals'].append([0, 0, 1])
             kwargs['collisionFramePositions'].append(pos)
             kwargs['collisionFrameOrientations'].append(orn)
-            kinds.append(s.kind)
-        if not kinds:
+        if not kwargs['shapeTypes']:
             return -1
         return pb.createCollisionShapeArray(physicsClientId=self.client, **kwargs)
 
@@ -336,8 +335,6 @@ class PhysicsWorld(object):
         for joint in body.joints.values():
             pb.resetJointState(body.id, joint.index, body.initial_joint_positions.get(joint.name, 0.0), 0.0,
                                physicsClientId=self.client)
-        for link, extra in getattr(body, 'extra_bodies', []):
-            pass  # extra bodies of multi-link SDF models are static walls in practice
 
     def follow_with_camera(self, body, distance=1.5, yaw_offset=0.0, pitch=-30.0):
         if not self.gui:

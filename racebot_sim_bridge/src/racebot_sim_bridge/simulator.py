@@ -21,17 +21,16 @@ class SpawnError(ValueError):
 class Robot(object):
     """A spawned URDF model with its RobotHW and (if it declares the control plugin) controllers."""
 
-    def __init__(self, sim, name, body, model, robot_ns, control_period):
+    def __init__(self, name, body, model, robot_ns, hardware_joints, control_period):
+        """hardware_joints: urdf_model.hardware_joints(model), or None without gazebo_ros_control."""
         self.name = name
         self.body = body
         self.model = model
         self.ns = robot_ns
         self.control_period = control_period
-        self.hw = None
         self.cm = None
         self.last_update = None
-        joints = urdf_model.hardware_joints(model) if robot_ns is not None else []
-        self.hw = RobotHW(model, joints) if robot_ns is not None else None
+        self.hw = RobotHW(model, hardware_joints) if hardware_joints is not None else None
         self.handles = []
         if self.hw is not None:
             missing = [n for n in self.hw.handles if n not in body.joints]
@@ -114,7 +113,7 @@ class Simulator(object):
             except urdf_model.UrdfError as err:
                 raise SpawnError('SpawnModel: Failure - the URDF of %s is not valid: %s' % (name, err))
             plugin = model.control_plugin()
-            robot_ns = None
+            robot_ns = hw_joints = None
             period = self.step_size
             if plugin is not None:
                 robot_ns = robot_namespace or plugin.robot_namespace or name
@@ -126,7 +125,7 @@ class Simulator(object):
                                       % (name, period, self.step_size))
                         period = self.step_size
                 try:
-                    urdf_model.hardware_joints(model)
+                    hw_joints = urdf_model.hardware_joints(model)
                 except urdf_model.UrdfError as err:
                     # gazebo_ros_control: "Could not initialize robot simulation interface"; the model
                     # stays in the world, without a controller manager.
@@ -156,7 +155,7 @@ class Simulator(object):
             except physics.PhysicsError as err:
                 raise SpawnError('SpawnModel: Failure - %s' % err)
             try:
-                robot = Robot(self, name, body, model, robot_ns, period)
+                robot = Robot(name, body, model, robot_ns, hw_joints, period)
             except SpawnError:
                 self.world.remove(name)
                 raise
@@ -220,10 +219,6 @@ class Simulator(object):
                 h = robot.hw.handles.get(joint) if robot is not None and robot.hw is not None else None
                 base = h.effort if h is not None else 0.0
                 self.world.apply_joint_effort(body, joint, base + effort)
-
-    def clear_joint_efforts(self, joint=None):
-        with self.lock:
-            self.timed_efforts = [e for e in self.timed_efforts if joint is not None and e[1] != joint]
 
     def reset_simulation(self):
         """Poses, velocities, joints, controllers' state and time back to the start."""

@@ -22,7 +22,6 @@ real_time_update_rate updates per wall second, or as fast as possible when it is
 import math
 import os
 import sys
-import threading
 import time
 
 import rospy
