@@ -1,7 +1,7 @@
 """Camera rendering off the physics thread: a worker process with its own copy of the world.
 
 No rospy here. PyBullet calls hold the GIL, so a render thread would still share the physics
-thread's core; a process renders on another core. The worker is `python -m` this module (not a
+thread's core; a process renders on another core. The worker is `python -m ...render_process` (not a
 multiprocessing fork of a process with rospy's threads, nor a spawn that would re-run the node's
 script). It holds a DIRECT client with the EGL renderer when that loads (else the TinyRenderer) and
 a world_copy.WorldCopy of the simulated world.
@@ -17,9 +17,7 @@ the caller (FrameBuffers busy), never faked.
 If the worker dies, RenderWorker logs an error, fails the requests in flight and starts a new
 worker (up to MAX_RESTARTS times); after that `alive` is False and the caller renders itself.
 """
-import ctypes
 import os
-import signal
 import socket
 import subprocess
 import sys
@@ -29,6 +27,8 @@ import time
 from multiprocessing.connection import Connection
 
 import numpy as np
+
+from .world_copy import sources
 
 MAX_RESTARTS = 3
 START_TIMEOUT = 60.0  # s: EGL with llvmpipe takes about a second to start; the machine may be loaded
@@ -110,7 +110,6 @@ class RenderWorker(object):
         physics.PhysicsWorld (its bodies are sent to the worker when new); `shot`: world_copy.snapshot;
         `camera`: (width, height, hfov, near, far, noise mean, noise stddev or None);
         `done(rgb, depth or None)` / `failed(reason)` are called once, on the reader thread."""
-        from .world_copy import sources  # noqa: late, the worker process does not need it here
         if not self.ready or self._closing:
             return False
         bodies = {name: entry for name, entry in sources(world).items() if self._known.get(name) != entry[0]}
@@ -180,7 +179,7 @@ class RenderWorker(object):
         # The worker imports this very package, wherever it was imported from here (tests, devel).
         env['PYTHONPATH'] = os.pathsep.join([PACKAGE_ROOT] + [p for p in env.get('PYTHONPATH', '').split(os.pathsep) if p])
         self.process = subprocess.Popen(
-            [sys.executable, '-m', 'racebot_sim_bridge.sensors.render_worker', str(child.fileno())],
+            [sys.executable, '-m', 'racebot_sim_bridge.sensors.render_process', str(child.fileno())],
             pass_fds=[child.fileno()], env=env, stdin=subprocess.DEVNULL, stdout=subprocess.DEVNULL,
             close_fds=True)
         child.close()
@@ -258,73 +257,3 @@ class RenderWorker(object):
         self._stop_process()
         self._thread.join(2.0)
         self._fail_pending('the render worker was closed')
-
-
-# -- the worker process ---------------------------------------------------------------------------
-def _die_with_parent():
-    """Linux: SIGTERM this process when the simulator dies, however it dies (no orphans)."""
-    try:
-        libc = ctypes.CDLL('libc.so.6', use_errno=True)
-        libc.prctl(1, signal.SIGTERM)  # PR_SET_PDEATHSIG
-    except (OSError, AttributeError):
-        pass
-
-
-def worker_main(fd):
-    _die_with_parent()
-    signal.signal(signal.SIGINT, signal.SIG_IGN)  # Ctrl-C reaches the simulator, which stops us
-    signal.signal(signal.SIGTERM, lambda *_: os._exit(0))
-    conn = Connection(fd)
-    from ..physics import PhysicsWorld
-    from .camera import PinholeCamera
-    from .noise import GaussianNoise
-    from .render import CameraFrames, RendererError, load_renderer
-    from .scene import SceneColours
-    from .world_copy import WorldCopy
-
-    _, choice = conn.recv()
-    world = PhysicsWorld()
-    try:
-        renderer, description = load_renderer(world, choice)
-    except RendererError as err:
-        conn.send(('error', None, str(err)))
-        return
-    conn.send(('ready', renderer, description))
-    copy = WorldCopy(world)
-    colours = SceneColours(world, renderer)
-    cameras = {}  # camera tuple -> CameraFrames
-    maps = {}     # (path, offset, width, height) -> (rgb, depth) views
-    while True:
-        try:
-            message = conn.recv()
-        except (EOFError, OSError):
-            return
-        if message[0] == 'stop':
-            return
-        (_, request_id, bodies, names, shot, camera, position, rotation, want_depth, path, offset) = message
-        try:
-            copy.sync(bodies)
-            copy.prune(set(names))
-            colours.refresh()
-            copy.pose(shot)
-            frames = cameras.get(camera)
-            if frames is None:
-                width, height, hfov, near, far, mean, stddev = camera
-                noise = GaussianNoise(mean, stddev) if stddev is not None else None
-                frames = cameras[camera] = CameraFrames(PinholeCamera(width, height, hfov, near, far), noise)
-            rgb, depth = frames.make(world, renderer, colours.planes, np.asarray(position),
-                                     np.asarray(rotation), want_depth)
-            key = (path, offset, frames.camera.width, frames.camera.height)
-            views = maps.get(key)
-            if views is None:
-                views = maps[key] = view_slot(path, offset, frames.camera.width, frames.camera.height)
-            views[0][...] = rgb
-            if depth is not None:
-                views[1][...] = depth
-            conn.send(('frame', request_id, None, depth is not None))
-        except Exception as err:  # one bad frame is reported, the worker goes on
-            conn.send(('frame', request_id, '%s: %s' % (type(err).__name__, err), False))
-
-
-if __name__ == '__main__':
-    worker_main(int(sys.argv[1]))
