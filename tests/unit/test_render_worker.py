@@ -6,6 +6,7 @@ The worker renders asynchronously: these tests step the simulation and wait (wit
 wall-time limit, not a speed assertion) for the frames they need."""
 import os
 import signal
+import socket
 import time
 
 import numpy as np
@@ -56,6 +57,16 @@ def projected(manager, info, point):
     position, orientation = sensor_of(manager, 'camera').mount.pose()
     x, y, z = OPTICAL_FROM_SENSOR @ (quaternion_to_matrix(orientation).T @ (np.asarray(point) - position))
     return info.K[0] * x / z + info.K[2], info.K[4] * y / z + info.K[5]
+
+
+@pytest.fixture(autouse=True)
+def default_socket_timeout():
+    """As in the world server: rospy sets a default socket timeout, which makes new sockets
+    non-blocking underneath; the worker's socket pair must work all the same."""
+    before = socket.getdefaulttimeout()
+    socket.setdefaulttimeout(60.0)
+    yield
+    socket.setdefaulttimeout(before)
 
 
 @pytest.fixture

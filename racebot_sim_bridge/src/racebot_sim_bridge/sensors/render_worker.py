@@ -101,6 +101,7 @@ class RenderWorker(object):
         self._known = {}       # name -> key of the bodies the worker has been sent
         self._send_lock = threading.Lock()
         self._closing = False
+        self._lost = None      # why the connection to the last worker ended
         self._thread = threading.Thread(target=self._run, name='render_worker', daemon=True)
         self._thread.start()
 
@@ -151,8 +152,8 @@ class RenderWorker(object):
                 return
             code = self.process.poll() if self.process else None
             if self.log:
-                self.log.error('render worker (pid %s) died (exit code %s)' % (
-                    self.process.pid if self.process else '?', code))
+                self.log.error('render worker (pid %s) died (exit code %s; %s)' % (
+                    self.process.pid if self.process else '?', code, self._lost))
             self._stop_process()
             if not self._died():
                 return
@@ -173,6 +174,9 @@ class RenderWorker(object):
 
     def _start(self):
         parent, child = socket.socketpair()
+        # Blocking, whatever socket.setdefaulttimeout says (rospy sets one): Connection reads raw fds.
+        parent.setblocking(True)
+        child.setblocking(True)
         env = dict(os.environ)
         # llvmpipe's render threads: leave one core to the physics thread.
         env.setdefault('LP_NUM_THREADS', str(max(1, (os.cpu_count() or 2) - 1)))
@@ -200,7 +204,8 @@ class RenderWorker(object):
         while True:
             try:
                 reply = self._conn.recv()
-            except (EOFError, OSError):
+            except (EOFError, OSError) as err:
+                self._lost = '%s: %s' % (type(err).__name__, err) if str(err) else 'its socket closed'
                 return
             _, request_id, error, has_depth = reply
             entry = self._pending.pop(request_id, None)
