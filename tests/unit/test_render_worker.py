@@ -89,6 +89,8 @@ def test_worker_frames_agree_with_the_pinhole_model(racebot_xml, closing, render
     images = fake.publishers[CAMERA].messages
     step_until(sim, lambda: len(images) >= 2, 'two camera frames')
     assert manager.worker.renderer == renderer
+    assert manager.worker.restarts == 0 and 'worker process' in manager.renderer  # frames from the worker
+    assert not [msg for level, msg in fake.logs if level == 'error']
     img = images[-1]
     info = fake.publishers['/rrbot/camera1/camera_info'].messages[-1]
     assert (img.width, img.height, img.encoding) == (800, 800, 'rgb8')
@@ -126,6 +128,7 @@ def test_a_frame_shows_the_world_at_its_stamp(racebot_xml, closing):
     step_until(sim, lambda: len(images) > count + 1, 'the next frame')
     vs, us = np.nonzero(red_pixels(images[-1]))
     assert us.mean() == pytest.approx(after[0], abs=6)  # and the next frame sees it moved
+    assert manager.worker.restarts == 0
 
 
 def test_depth_only_while_a_depth_topic_is_subscribed(racebot_xml, closing, monkeypatch):
