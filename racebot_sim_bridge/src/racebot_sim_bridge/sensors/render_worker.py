@@ -65,7 +65,8 @@ class FrameBuffers(object):
         return slot * self.slot_bytes
 
     def close(self):
-        self.maps = []
+        """Removes the file; the mappings stay valid for frames still on their way (no error for
+        a frame that arrives after its robot was deleted)."""
         try:
             os.unlink(self.path)
         except OSError:

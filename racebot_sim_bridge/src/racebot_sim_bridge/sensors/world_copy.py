@@ -7,12 +7,20 @@ does, so whatever the loaders draw (shapes, meshes, colours) appears in the copy
   the sim time a frame is stamped with (a few microseconds a body);
 - WorldCopy.sync(bodies) / .pose(snapshot): keeps the copy's bodies and poses equal to them.
 """
+import itertools
+
 import pybullet as pb
+
+_SERIALS = itertools.count()
 
 
 def body_key(body):
-    """Identifies a body across a delete and respawn under the same name."""
-    return (body.name, body.id)
+    """Identifies a body across a delete and respawn under the same name (PyBullet may even give
+    the new body the old id): a serial number kept on the Body the first time it is asked for."""
+    key = getattr(body, 'copy_key', None)
+    if key is None:
+        key = body.copy_key = (body.name, next(_SERIALS))
+    return key
 
 
 def snapshot(world):
