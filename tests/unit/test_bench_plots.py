@@ -54,7 +54,7 @@ def test_sensor_rates(tmp_path):
     bars = [p.get_height() for p in ax.patches]
     assert 12.5 in bars and 4.7 in bars  # each path's camera rate is drawn
     path = plot.sensor_rates(str(tmp_path / 'rates.png'), rows, load)
-    assert png_size(path) == (750, 450)
+    assert png_size(path) == (750, 500)
 
 
 def test_hinge_step(tmp_path):

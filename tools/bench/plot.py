@@ -96,7 +96,7 @@ def sensor_rates_figure(rows, load=None):
     names = []
     for row in rows:
         names += [n for n in row['paths'] if n not in names]
-    fig = new_figure(7.5, 4.5)
+    fig = new_figure(7.5, 5.0)
     ax = fig.add_subplot(1, 1, 1)
     width = 0.8 / max(1, len(names))
     for j, name in enumerate(names):
@@ -114,11 +114,13 @@ def sensor_rates_figure(rows, load=None):
     ax.set_xticks(range(len(rows)))
     ax.set_xticklabels([row['label'] for row in rows])
     ax.set_yscale('log')
+    top = max([row['declared_hz'] for row in rows] + [h or 0.0 for row in rows for h in row['paths'].values()])
+    ax.set_ylim(1.0, top * 2.0)  # room above the bars for their labels
     ax.set_ylabel('messages per wall second (Hz, log scale)')
     ax.set_xlabel('topic')
     ax.set_title('sensor rates in real time, every sensor subscribed')
     ax.grid(True, axis='y', which='both', alpha=0.3)
-    ax.legend(loc='upper right', fontsize='small')
+    ax.legend(loc='upper center', bbox_to_anchor=(0.5, -0.15), ncol=2, fontsize='small', frameon=False)
     fig.tight_layout()
     return fig
 

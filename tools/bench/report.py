@@ -68,7 +68,7 @@ def rows(r):
     sens = r.get('sensors')
     if sens and sens.get('new'):
         new, old = sens['new'], sens.get('old')
-        add('sensors in real time, all subscribed (%s): real-time factor' % (new.get('renderer') or 'worker'),
+        add('sensors in real time, all subscribed, render worker: real-time factor',
             '%.3f' % new['rtf'], 'old path: %s' % (_fmt(old['rtf'], '%.3f') if old else '-'),
             '>= %.2f' % SENSOR_RTF_TARGET, _met(new['rtf'] >= SENSOR_RTF_TARGET))
         for label, topic, declared, target in SENSOR_ROWS:
