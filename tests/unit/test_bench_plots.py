@@ -1,11 +1,9 @@
 """The bench's and the demo's figures (tools/bench/plot.py): matplotlib with the Agg backend, no
 display; each figure has the axes labels, units and legend a reader expects, and is written as a
 PNG of the expected size."""
-import os
 import sys
 from pathlib import Path
 
-import pytest
 
 REPO = Path(__file__).resolve().parents[2]
 sys.path.insert(0, str(REPO / 'tools'))

@@ -1,4 +1,4 @@
-"""Where a sensor is: its pose on a spawned body, and the poses of the whole world at an instant.
+"""Where a sensor is: its pose (and motion) on a spawned body.
 
 No rospy here. Calls run on the physics client; callers hold the simulator's lock.
 - SensorMount: a sensor's pose on a spawned body. PyBullet merges fixed-joint links into their

@@ -104,12 +104,14 @@ class RenderWorker(object):
         self.restarts = 0
         self.process = None
         self._conn = None
-        self._pending = {}     # request id -> (done, failed)
+        self._pending = {}     # request id -> (done, failed, buffers, slot)
         self._next_id = 0
         self._known = {}       # name -> key of the bodies the worker has been sent
         self._send_lock = threading.Lock()
         self._closing = False
         self._lost = None      # why the connection to the last worker ended
+        # This thread starts every worker and lives as long as it: the worker's PR_SET_PDEATHSIG
+        # fires when the thread that started it ends (and so when the simulator dies).
         self._thread = threading.Thread(target=self._run, name='render_worker', daemon=True)
         self._thread.start()
 
@@ -191,7 +193,7 @@ class RenderWorker(object):
         env['PYTHONPATH'] = os.pathsep.join([PACKAGE_ROOT] + [p for p in env.get('PYTHONPATH', '').split(os.pathsep) if p])
         self.process = subprocess.Popen(
             [sys.executable, '-m', 'racebot_sim_bridge.sensors.render_process', str(child.fileno())],
-            pass_fds=[child.fileno()], env=env, stdin=subprocess.DEVNULL, stdout=subprocess.DEVNULL,
+            pass_fds=[child.fileno()], env=env, stdin=subprocess.DEVNULL, stdout=subprocess.DEVNULL,  # the EGL plugin chatters on stdout
             close_fds=True)
         child.close()
         self._conn = Connection(parent.detach())
