@@ -2,8 +2,9 @@
 
 No rospy here. Two renderers:
 - 'egl': PyBullet's EGL plugin, hardware OpenGL without a window (a GPU, or Mesa's llvmpipe on
-  the CPU: about half the time of the TinyRenderer for an 800 x 800 frame here, a few ms on a
-  GPU). The plugin must be loaded into a DIRECT client before its bodies are created.
+  the CPU: ~45-60 ms for an 800 x 800 frame here, about half the TinyRenderer's time; a GPU is
+  expected to take a few ms, not measured here). The plugin must be loaded into a DIRECT client
+  before its bodies are created.
 - 'tiny': PyBullet's TinyRenderer, on the CPU, always there.
 `load_renderer(client, 'auto')` loads EGL when it loads and draws a correct test image
 (`renderer_draws_correctly`), the TinyRenderer otherwise.
