@@ -6,6 +6,8 @@
 # runs `make test` there as root, with nothing else installed by hand. Whatever the suite calls must
 # therefore come from `make setup`. The root is unmounted and removed afterwards, whatever happened.
 # Exit status: that of `make test` in the root (non-zero also when the root cannot be built).
+# `tools/fresh_check.sh 'COMMAND'` runs another shell command there instead, in the clone (e.g. a
+# `make run` smoke check).
 #
 # Needs root (chroot, mount) and mmdebstrap (`make setup` installs it). Environment:
 #   RACEBOT_FRESH_KEEP=1   keep the root in /var/tmp for a look afterwards (it is still unmounted)
@@ -14,6 +16,7 @@ set -euo pipefail
 repo=$(cd "$(dirname "$0")/.." && pwd)
 [ "$(id -u)" = 0 ] || { echo "racebot fresh-check: needs root (chroot and mount); run it as root or with sudo" >&2; exit 2; }
 command -v mmdebstrap >/dev/null || { echo "racebot fresh-check: mmdebstrap is missing; run 'make setup' first" >&2; exit 2; }
+command=${1:-make test}
 commit=$(git -C "$repo" rev-parse HEAD)
 if [ -n "$(git -C "$repo" status --porcelain --untracked-files=no)" ]; then
   echo "racebot fresh-check: note: uncommitted changes are not tested; the root gets commit $commit" >&2
@@ -65,7 +68,7 @@ printf '127.0.0.1\tlocalhost\n127.0.1.1\t%s\n::1\tlocalhost ip6-localhost ip6-lo
   > "$root/etc/hosts"
 git clone -q "$repo" "$root/root/racebot"
 git -C "$root/root/racebot" checkout -q "$commit"
-echo "racebot fresh-check: root ready in $(( $(date +%s) - start )) s; running 'make test' on commit ${commit:0:12}"
+echo "racebot fresh-check: root ready in $(( $(date +%s) - start )) s; running '$command' on commit ${commit:0:12}"
 
 # A clean environment, as a login on the new machine would have; only the CA variables of this
 # network pass through (they name the bundle copied in above).
@@ -74,8 +77,8 @@ for var in PIP_CERT REQUESTS_CA_BUNDLE SSL_CERT_FILE CURL_CA_BUNDLE GIT_SSL_CAIN
   [ -n "${!var:-}" ] && env_vars+=("$var=${!var}")
 done
 set +e
-chroot "$root" /usr/bin/env -i "${env_vars[@]}" /bin/bash -c 'cd /root/racebot && make test'
+chroot "$root" /usr/bin/env -i "${env_vars[@]}" /bin/bash -c "cd /root/racebot && $command"
 status=$?
 set -e
-echo "racebot fresh-check: make test in the fresh root exited $status after $(( $(date +%s) - start )) s in all"
+echo "racebot fresh-check: '$command' in the fresh root exited $status after $(( $(date +%s) - start )) s in all"
 exit $status
