@@ -25,8 +25,10 @@ fi
 work=$(mktemp -d /var/tmp/racebot-fresh.XXXXXX)
 root=$work/root
 mounts=()
+child=
 cleanup() {
   local status=$?
+  [ -n "$child" ] && kill "$child" 2>/dev/null && wait "$child" 2>/dev/null
   # Processes the suite left behind would keep the mounts busy.
   if [ -d "$root/proc" ]; then
     for pid in $(ls /proc | grep -E '^[0-9]+$'); do
@@ -36,7 +38,11 @@ cleanup() {
   for ((i = ${#mounts[@]} - 1; i >= 0; i--)); do
     umount "${mounts[i]}" 2>/dev/null || umount -l "${mounts[i]}" 2>/dev/null || true
   done
-  if [ "${RACEBOT_FRESH_KEEP:-0}" = 1 ]; then
+  if grep -q " $work/" /proc/mounts; then
+    # Never rm -rf through a mount (the root has a bind of the host's /dev).
+    echo "racebot fresh-check: something is still mounted below $work; not removing it:" >&2
+    grep " $work/" /proc/mounts >&2
+  elif [ "${RACEBOT_FRESH_KEEP:-0}" = 1 ]; then
     echo "racebot fresh-check: root kept in $root"
   else
     rm -rf "$work"
@@ -45,10 +51,18 @@ cleanup() {
 }
 trap cleanup EXIT
 trap 'exit 130' INT TERM
+in_background() {  # runs a long step as a child that the traps can stop (bash defers traps while it waits on a foreground one)
+  "$@" &
+  child=$!
+  wait "$child"
+  local status=$?
+  child=
+  return $status
+}
 
 start=$(date +%s)
 echo "racebot fresh-check: building a minimal Debian 12 root in $root"
-mmdebstrap --quiet --variant=minbase --include=ca-certificates,git,make,sudo bookworm "$root" \
+in_background mmdebstrap --quiet --variant=minbase --include=ca-certificates,git,make,sudo bookworm "$root" \
   ${RACEBOT_FRESH_MIRROR:+"$RACEBOT_FRESH_MIRROR"}
 mount_in() {  # mount_in TARGET MOUNT-ARGS...: mount, and remember it for the clean-up
   local target=$root$1; shift
@@ -77,7 +91,7 @@ for var in PIP_CERT REQUESTS_CA_BUNDLE SSL_CERT_FILE CURL_CA_BUNDLE GIT_SSL_CAIN
   [ -n "${!var:-}" ] && env_vars+=("$var=${!var}")
 done
 set +e
-chroot "$root" /usr/bin/env -i "${env_vars[@]}" /bin/bash -c "cd /root/racebot && $command"
+in_background chroot "$root" /usr/bin/env -i "${env_vars[@]}" /bin/bash -c "cd /root/racebot && $command"
 status=$?
 set -e
 echo "racebot fresh-check: '$command' in the fresh root exited $status after $(( $(date +%s) - start )) s in all"
