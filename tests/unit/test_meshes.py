@@ -311,3 +311,47 @@ def test_visuals_false_builds_no_visual_shapes(isolated, physics):
         body = world.add_sdf_model(model)
         data = pb.getVisualShapeData(body.id, physicsClientId=world.client)
         assert (tuple(data[0][7]) == (1.0, 0.0, 0.0, 1.0)) is red
+
+
+COPY_SCRIPT = '''
+import pickle, sys
+import pybullet as pb
+from racebot_sim_bridge.physics import PhysicsWorld
+sources = pickle.load(open(sys.argv[1], 'rb'))
+world = PhysicsWorld()
+for name, source in sources.items():
+    body = world.add_sdf_model(source[1]) if source[0] == 'sdf' else world.spawn_urdf(name, source[1], source[2])
+    data = pb.getVisualShapeData(body.id, physicsClientId=world.client)
+    shapes = pb.getCollisionShapeData(body.id, -1, physicsClientId=world.client)
+    print(name, shapes[0][2] == pb.GEOM_MESH, tuple(round(c, 3) for c in data[0][7]))
+'''
+
+
+def test_a_copy_built_from_body_source_in_another_process_needs_no_search_path(isolated, physics, monkeypatch):
+    """What the viewer (and a render process) do: rebuild bodies from Body.source alone."""
+    import pickle
+    import subprocess
+    folder = write_wall_model(isolated / 'models')
+    pkg = mesh_fixtures.write_package(str(isolated / 'pkgs'), 'fixture_pkg')
+    mesh_fixtures.write_mesh(mesh_fixtures.box((0.3, 0.3, 0.3)), os.path.join(pkg, 'm', 'b.stl'))
+    monkeypatch.setenv('GAZEBO_MODEL_PATH', str(isolated / 'models'))
+    world = physics()
+    wall = sdf_world.parse_world(world_with('<include><uri>model://wall</uri></include>')).models[0]
+    urdf = ('<robot name="r"><link name="l"><inertial><mass value="1"/><inertia ixx="1" iyy="1" izz="1" ixy="0" '
+            'ixz="0" iyz="0"/></inertial><visual><geometry><mesh filename="package://fixture_pkg/m/b.stl"/></geometry>'
+            '</visual><collision><geometry><mesh filename="package://fixture_pkg/m/b.stl"/></geometry></collision>'
+            '</link><gazebo reference="l"><material>Gazebo/Red</material></gazebo></robot>')
+    sources = {'wall': world.add_sdf_model(wall).source,
+               'robot': world.spawn_urdf('robot', urdf_model.parse_urdf(urdf), urdf).source}
+    path = isolated / 'sources.pickle'
+    path.write_bytes(pickle.dumps(sources))
+    import shutil
+    shutil.rmtree(folder)  # the copy reads only the mesh cache
+    shutil.rmtree(pkg)
+    clean_env = {k: v for k, v in os.environ.items() if k not in ('GAZEBO_MODEL_PATH', 'ROS_PACKAGE_PATH')}
+    out = subprocess.run([sys.executable, '-c', COPY_SCRIPT, str(path)], env=clean_env, capture_output=True,
+                         text=True, timeout=60)
+    assert out.returncode == 0, out.stderr
+    lines = {line.split()[0]: line for line in out.stdout.splitlines() if line.split()[0] in sources}
+    assert lines['wall'] == 'wall True (0.0, 0.0, 1.0, 1.0)'  # the DAE's blue
+    assert lines['robot'] == 'robot True (1.0, 0.0, 0.0, 1.0)'  # Gazebo/Red
