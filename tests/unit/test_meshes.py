@@ -58,6 +58,14 @@ def test_each_format_converts_to_an_obj_of_the_same_shape(tmp_path, ext):
     assert meshes.convert(path) == converted  # converted once
 
 
+def test_a_dae_unit_scales_it_to_metres_as_gazebo_does(tmp_path):
+    path = mesh_fixtures.write_mesh(mesh_fixtures.box((10, 20, 30)), str(tmp_path / 'cm.dae'))
+    text = Path(path).read_text().replace('<up_axis>', '<unit meter="0.01" name="centimeter"/><up_axis>')
+    Path(path).write_text(text)
+    vertices, _, _ = read_obj(meshes.convert(path).obj_path)
+    np.testing.assert_allclose(vertices.max(axis=0), [0.05, 0.1, 0.15], atol=1e-9)
+
+
 def test_a_dae_colour_is_the_mesh_colour(tmp_path):
     path = mesh_fixtures.write_mesh(mesh_fixtures.box((1, 1, 1)), str(tmp_path / 'red.dae'), rgba=(1, 0, 0, 1))
     assert meshes.convert(path).rgba == (1.0, 0.0, 0.0, 1.0)
@@ -169,7 +177,8 @@ COLOUR_URDF = '''<robot name="r">
   <link name="b"><visual><geometry><box size="1 1 1"/></geometry>
     <material name="red"><color rgba="1 0 0 1"/></material></visual></link>
   <link name="c"><visual><geometry><mesh filename="{dae}"/></geometry></visual>
-    <collision><geometry><mesh filename="package://nowhere_pkg/m.stl"/></geometry></collision></link>
+    <collision><geometry><mesh filename="package://nowhere_pkg/m.stl"/></geometry></collision>
+    <collision><geometry><mesh filename="{dae}" scale="1 0 1"/></geometry></collision></link>
   <joint name="ab" type="fixed"><parent link="a"/><child link="b"/></joint>
   <joint name="ac" type="fixed"><parent link="a"/><child link="c"/></joint>
   <gazebo reference="b"><material>Gazebo/Green</material></gazebo>
@@ -187,7 +196,8 @@ def test_urdf_colours_gazebo_material_wins_then_urdf_then_mesh_and_a_missing_mes
     assert model.links['c'].visuals[0].rgba == (1.0, 1.0, 0.0, 1.0)  # the DAE's own colour
     assert model.links['c'].visuals[0].filename.startswith(str(tmp_path / 'cache'))
     assert model.links['c'].collisions == []
-    assert len(warnings) == 1 and 'package://nowhere_pkg/m.stl' in warnings[0] and 'left out' in warnings[0]
+    assert len(warnings) == 2 and 'package://nowhere_pkg/m.stl' in warnings[0] and 'left out' in warnings[0]
+    assert 'scale 1 0 1 has a zero factor' in warnings[1]
     assert 'package://' not in resolved and '<color rgba="0 1 0 1"' in resolved
     assert urdf_assets.resolve_assets(resolved, urdf_model.parse_urdf(resolved)) == resolved  # idempotent
 

@@ -27,7 +27,7 @@ __all__ = ['MeshError', 'MAX_FILE_BYTES', 'MAX_TRIANGLES', 'FORMATS', 'Converted
 MAX_FILE_BYTES = 64 * 1024 * 1024
 MAX_TRIANGLES = 1000000
 FORMATS = {'.stl': 'stl', '.obj': 'obj', '.dae': 'dae'}
-_CONVERTER_VERSION = '1'  # part of the cache key: bump when the written OBJ changes
+_CONVERTER_VERSION = '2'  # part of the cache key: bump when the written OBJ changes
 
 
 class MeshError(ValueError):
@@ -81,6 +81,7 @@ def read_parts(path):
         import trimesh
         scene = trimesh.load(path, file_type=FORMATS[ext], force='scene', process=False)
         meshes = scene.dump(concatenate=False)
+        unit = _metres_per_unit(scene) if ext == '.dae' else 1.0
     except MeshError:
         raise
     except Exception as err:  # trimesh and pycollada raise many kinds on malformed files
@@ -89,7 +90,7 @@ def read_parts(path):
                                                               str(err)[:200]))
     parts, triangles = [], 0
     for mesh in meshes:
-        vertices = np.asarray(getattr(mesh, 'vertices', ()), dtype=np.float64).reshape(-1, 3)
+        vertices = np.asarray(getattr(mesh, 'vertices', ()), dtype=np.float64).reshape(-1, 3) * unit
         faces = np.asarray(getattr(mesh, 'faces', ()), dtype=np.int64).reshape(-1, 3)
         if not len(faces):
             continue  # points or lines: nothing to collide with or draw
@@ -107,6 +108,18 @@ def read_parts(path):
     if max(float(np.ptp(v, axis=0).max()) for v, _ in parts) <= 0.0:
         raise MeshError('mesh %s is degenerate (all vertices at one point)' % path)
     return parts, _single_colour(meshes)
+
+
+def _metres_per_unit(scene):
+    """A .dae's <unit meter="0.0254"/> (trimesh reports it as '0.0254 * meters'), which Gazebo applies."""
+    units = getattr(scene, 'units', None)
+    if isinstance(units, str) and units.endswith('* meters'):
+        try:
+            value = float(units.split('*')[0])
+        except ValueError:
+            return 1.0
+        return value if value > 0 and np.isfinite(value) else 1.0
+    return 1.0
 
 
 def _single_colour(meshes):

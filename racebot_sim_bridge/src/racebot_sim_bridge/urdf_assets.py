@@ -37,6 +37,10 @@ def resolve_assets(urdf_xml, urdf_model, warn=None):
                 mesh = elem.find('geometry/mesh')
                 if mesh is not None:
                     try:
+                        if geometry.scale is not None and not all(geometry.scale):
+                            raise meshes.MeshError('mesh %s: scale %s has a zero factor, which flattens it; give '
+                                                   'factors other than 0' % (mesh.get('filename'), ' '.join(
+                                                       '%g' % c for c in geometry.scale)))
                         path = model_path.resolve_uri(mesh.get('filename'))
                         converted = meshes.convert(path)
                     except (model_path.ResolveError, meshes.MeshError) as err:
