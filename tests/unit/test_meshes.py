@@ -365,3 +365,23 @@ def test_a_copy_built_from_body_source_in_another_process_needs_no_search_path(i
     lines = {line.split()[0]: line for line in out.stdout.splitlines() if line.split()[0] in sources}
     assert lines['wall'] == 'wall True (0.0, 0.0, 1.0, 1.0)'  # the DAE's blue
     assert lines['robot'] == 'robot True (1.0, 0.0, 0.0, 1.0)'  # Gazebo/Red
+
+
+def test_each_visual_of_a_link_keeps_its_colour_in_a_camera_image(isolated, physics):
+    """A red box and a blue mesh in one link, seen through the cameras' renderer (after SceneColours)."""
+    from racebot_sim_bridge.sensors_bullet import SceneColours, render
+    path = mesh_fixtures.write_mesh(mesh_fixtures.box((0.5, 0.5, 0.5)), str(isolated / 'b.stl'))
+    mesh = sdf_world.Shape('mesh', filename=meshes.convert(path).obj_path, scale=(1, 1, 1))
+    link = sdf_world.Link('link', visuals=[
+        sdf_world.Visual('red', (0, 0.4, 0, 0, 0, 0), sdf_world.Shape('box', size=(0.5, 0.5, 0.5)), (1, 0, 0, 1)),
+        sdf_world.Visual('blue', (0, -0.4, 0, 0, 0, 0), mesh, (0, 0, 1, 1))],
+        collisions=[sdf_world.Collision('c', sdf_world.ZERO_POSE, sdf_world.Shape('box', size=(0.5, 1.3, 0.5)))])
+    world = physics()
+    world.add_sdf_model(sdf_world.Model('two', pose=(2, 0, 0, 0, 0, 0), static=True, links=[link]))
+    SceneColours(world).refresh()
+    view = pb.computeViewMatrix([0, 0, 0], [1, 0, 0], [0, 0, 1], physicsClientId=world.client)
+    proj = pb.computeProjectionMatrixFOV(60, 1, 0.05, 10, physicsClientId=world.client)
+    rgb, _ = render(world, 64, 64, view, proj)
+    left, right = rgb[32, 20].astype(int), rgb[32, 44].astype(int)  # +y (the red box) is on the image's left
+    assert left[0] > 100 and left[2] < 60, left
+    assert right[2] > 100 and right[0] < 60, right
