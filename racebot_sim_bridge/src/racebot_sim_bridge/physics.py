@@ -150,8 +150,8 @@ class PhysicsWorld(object):
             if body_id is not None:
                 ids.append((link.name, body_id))
         if not ids:
-            raise PhysicsError("model '%s' has no link with supported geometry (give it a box, cylinder, sphere "
-                               "or plane of positive size)" % model.name)
+            raise PhysicsError("model '%s' has no link with supported geometry (give it a box, cylinder, sphere, "
+                               "plane or mesh of positive size)" % model.name)
         # A multi-link SDF model is kept as its first link's body plus extra bodies named model::link.
         first_link, first_id = ids[0]
         body = Body(self.client, model.name, first_id, model.static, 'sdf')
