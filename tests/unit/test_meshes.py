@@ -248,6 +248,29 @@ def test_a_missing_model_warns_once_naming_the_places_searched_and_the_world_loa
         assert needle in world.warnings[0]
 
 
+def test_six_includes_of_a_missing_model_are_one_warning_listing_them(isolated, monkeypatch):
+    monkeypatch.setenv('GAZEBO_MODEL_PATH', str(isolated / 'models'))
+    includes = ''.join('<include><uri>model://construction_cone</uri><name>cone_%d</name></include>' % i
+                       for i in range(6))
+    world = sdf_world.parse_world(world_with(includes + '<include><uri>model://ground_plane</uri></include>'))
+    assert [m.name for m in world.models] == ['ground_plane']
+    assert len(world.warnings) == 1, world.warnings
+    assert 'searched' in world.warnings[0] and 'all 6 includes of it: cone_0, cone_1' in world.warnings[0]
+
+
+def test_a_missing_mesh_used_by_many_models_is_one_warning_naming_it(isolated, monkeypatch, physics):
+    folder = mesh_fixtures.write_model(str(isolated / 'models'), 'cone', WALL_MODEL.replace('wall', 'cone'))
+    assert not os.path.exists(os.path.join(folder, 'meshes'))
+    monkeypatch.setenv('GAZEBO_MODEL_PATH', str(isolated / 'models'))
+    world = sdf_world.parse_world(world_with(''.join(
+        '<include><uri>model://cone</uri><name>cone_%d</name></include>' % i for i in range(3))))
+    assert len(world.warnings) == 2, world.warnings  # the collision's mesh and the visual's, once each
+    assert 'model://cone/meshes/cone.stl not found; searched' in world.warnings[0]
+    skipped = []
+    assert physics().load_world(world, warn=skipped.append) == []  # nothing left to build: one line per model
+    assert all("model 'cone_%d' has no link with supported geometry" % i in skipped[i] for i in range(3)), skipped
+
+
 def test_a_broken_mesh_in_a_model_warns_and_the_rest_loads(isolated, monkeypatch):
     folder = write_wall_model(isolated / 'models')
     Path(folder, 'meshes', 'wall.stl').write_bytes(b'')

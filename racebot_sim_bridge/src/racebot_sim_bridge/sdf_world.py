@@ -251,6 +251,14 @@ class _Skip(Exception):
     """An element's content is unusable; the message says why.  Caught where it is skipped."""
 
 
+class _NotFound(_Skip):
+    """An included model is on no folder of the model path."""
+
+
+class _Repeated(_Skip):
+    """A mesh that already failed (and was warned about) once: skipped without a second warning."""
+
+
 _UNSUPPORTED_GEOMETRY = {
     'heightmap': 'heightmap geometry is not supported',
     'polyline': 'polyline geometry is not supported; use boxes',
@@ -330,6 +338,8 @@ class _WorldReader:
         self._search = search  # the model path, looked up on first use (it lists ROS packages)
         # relative mesh URIs: relative to the folder of the model being read, else the world file's
         self.base_dir = os.path.dirname(source) if os.path.isfile(source) else None
+        self._meshes = {}  # (uri, base_dir) -> (path, rgba) or the _Skip it gave: each mesh read and warned once
+        self._missing_models = {}  # model:// URI -> [message, names of the includes skipped]
 
     @property
     def search(self):
@@ -412,12 +422,20 @@ class _WorldReader:
         self._positive(tuple(abs(c) for c in scale), 'mesh scale')
         if elem.find('submesh') is not None:
             self.warn('', 'mesh %s: <submesh> is not supported; the whole mesh is used' % uri)
-        try:
-            path = model_path.resolve_uri(uri, self.base_dir, self.search if uri.startswith('model://') else None)
-            converted = meshes.convert(path)
-        except (model_path.ResolveError, meshes.MeshError) as err:
-            raise _Skip(str(err)) from None
-        return Shape('mesh', filename=converted.obj_path, scale=scale, uri=uri), converted.rgba
+        key = (uri, self.base_dir)
+        if key not in self._meshes:
+            try:
+                path = model_path.resolve_uri(uri, self.base_dir,
+                                              self.search if uri.startswith('model://') else None)
+                converted = meshes.convert(path)
+                self._meshes[key] = (converted.obj_path, converted.rgba)
+            except (model_path.ResolveError, meshes.MeshError) as err:
+                self._meshes[key] = _Skip(str(err))
+                raise self._meshes[key] from None
+        known = self._meshes[key]
+        if isinstance(known, _Skip):
+            raise _Repeated(str(known))
+        return Shape('mesh', filename=known[0], scale=scale, uri=uri), known[1]
 
     @staticmethod
     def _positive(values, what):
@@ -464,7 +482,8 @@ class _WorldReader:
                     if value is not None and value < 0.0:
                         raise _Skip('friction %s must be >= 0, got %g' % (label, value))
         except _Skip as err:
-            self.warn(where, '%s; skipped' % err)
+            if not isinstance(err, _Repeated):
+                self.warn(where, '%s; skipped' % err)
             return None
         return Collision(name, pose, shape, mu, mu2)
 
@@ -479,7 +498,8 @@ class _WorldReader:
             # an SDF <material> overrides the mesh's own, as in Gazebo
             rgba = self.rgba(elem.find('material')) or mesh_rgba
         except _Skip as err:
-            self.warn(where, '%s; skipped' % err)
+            if not isinstance(err, _Repeated):
+                self.warn(where, '%s; skipped' % err)
             return None
         return Visual(name, pose, shape, rgba)
 
@@ -572,6 +592,10 @@ class _WorldReader:
         if not uri:
             self.warn(where, 'no <uri>; give <uri>model://NAME</uri>; skipped')
             return None
+        name = (elem.findtext('name') or '').strip()
+        if target in self._missing_models:
+            self._missing_models[target][1].append(name or target)
+            return None
         try:
             folder = self.model_folder(target)
             sdf_file = model_path.model_sdf_file(folder)
@@ -582,9 +606,12 @@ class _WorldReader:
             model_elem = root if root.tag == 'model' else root.find('model')
             if model_elem is None:
                 raise _Skip('%s has no <model> (only models can be included); skipped' % sdf_file)
-            name = (elem.findtext('name') or '').strip()
             pose = self.pose(elem, where) if elem.find('pose') is not None else None
             static = _child_bool(elem, 'static', None, 'static')
+        except _NotFound as err:
+            # one warning per missing model however often it is included, given with the world's others
+            self._missing_models[target] = [str(err), [name or target]]
+            return None
         except (_Skip, model_path.ResolveError) as err:
             self.warn(where, '%s; skipped' % err)
             return None
@@ -610,7 +637,7 @@ class _WorldReader:
             name = target[len('model://'):].split('/')[0]
             folder, searched = model_path.find_model(name, self.search)
             if folder is None:
-                raise _Skip("model '%s' not found; searched %s; add the folder holding %s/ to "
+                raise _NotFound("model '%s' not found; searched %s; add the folder holding %s/ to "
                             'GAZEBO_MODEL_PATH (or put the model in ~/.gazebo/models)'
                             % (name, ', '.join(searched) or '(an empty model path)', name))
             return folder
@@ -751,6 +778,9 @@ class _WorldReader:
         state = world_elem.find('state')
         if state is not None:
             self.state(state, world.models)
+        for uri, (message, names) in self._missing_models.items():
+            self.warn('include %s' % _quote(uri), '%s; skipped%s' % (message, '' if len(names) == 1 else (
+                ' (all %d includes of it: %s)' % (len(names), ', '.join(names)))))
         world.warnings = self.warnings
         return world
 
