@@ -271,6 +271,20 @@ def test_a_missing_mesh_used_by_many_models_is_one_warning_naming_it(isolated, m
     assert all("model 'cone_%d' has no link with supported geometry" % i in skipped[i] for i in range(3)), skipped
 
 
+@pytest.mark.parametrize('sdf, needle', [
+    ('<sdf version="1.6"><model name="x"><link', 'cannot be read as XML'),
+    ('<sdf version="1.6"><world name="w"/></sdf>', 'has no <model> (only models can be included)'),
+])
+def test_an_included_model_file_that_cannot_be_used_is_one_warning(isolated, monkeypatch, sdf, needle):
+    folder = mesh_fixtures.write_model(str(isolated / 'models'), 'odd', '')
+    Path(folder, 'model.sdf').write_text(sdf)
+    monkeypatch.setenv('GAZEBO_MODEL_PATH', str(isolated / 'models'))
+    world = sdf_world.parse_world(world_with('<include><uri>model://odd</uri></include>'))
+    assert world.models == [] and len(world.warnings) == 1, world.warnings
+    assert needle in world.warnings[0] and world.warnings[0].endswith('; skipped')
+    assert 'skipped; skipped' not in world.warnings[0]
+
+
 def test_a_broken_mesh_in_a_model_warns_and_the_rest_loads(isolated, monkeypatch):
     folder = write_wall_model(isolated / 'models')
     Path(folder, 'meshes', 'wall.stl').write_bytes(b'')

@@ -605,7 +605,7 @@ class _WorldReader:
                 raise _Skip('%s cannot be read as XML: %s' % (sdf_file, err))
             model_elem = root if root.tag == 'model' else root.find('model')
             if model_elem is None:
-                raise _Skip('%s has no <model> (only models can be included); skipped' % sdf_file)
+                raise _Skip('%s has no <model> (only models can be included)' % sdf_file)
             pose = self.pose(elem, where) if elem.find('pose') is not None else None
             static = _child_bool(elem, 'static', None, 'static')
         except _NotFound as err:
@@ -632,14 +632,14 @@ class _WorldReader:
 
     def model_folder(self, target):
         """The folder of an included model: model://NAME on the model path, or a file:// or
-        plain path to the folder. _Skip naming every place searched when it is not there."""
+        plain path to the folder. _NotFound naming every place searched when it is not there."""
         if target.startswith('model://'):
             name = target[len('model://'):].split('/')[0]
             folder, searched = model_path.find_model(name, self.search)
             if folder is None:
                 raise _NotFound("model '%s' not found; searched %s; add the folder holding %s/ to "
-                            'GAZEBO_MODEL_PATH (or put the model in ~/.gazebo/models)'
-                            % (name, ', '.join(searched) or '(an empty model path)', name))
+                                'GAZEBO_MODEL_PATH (or put the model in ~/.gazebo/models)'
+                                % (name, ', '.join(searched) or '(an empty model path)', name))
             return folder
         path = target[len('file://'):] if target.startswith('file://') else os.path.expanduser(target)
         if '://' in path:
