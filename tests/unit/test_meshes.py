@@ -422,3 +422,33 @@ def test_each_visual_of_a_link_keeps_its_colour_in_a_camera_image(isolated, phys
     left, right = rgb[32, 20].astype(int), rgb[32, 44].astype(int)  # +y (the red box) is on the image's left
     assert left[0] > 100 and left[2] < 60, left
     assert right[2] > 100 and right[0] < 60, right
+
+
+def test_a_world_of_included_dynamic_mesh_cones_stands_on_the_ground(isolated, monkeypatch, physics):
+    """As the tutorial's race_with_cone.world with Gazebo's construction_cone: a non-static model without
+    <inertial>, a DAE mesh scaled by 10, included six times; the cones stand and rays hit their surface."""
+    import trimesh
+    cone_sdf = '''<model name="Construction Cone"><link name="link">
+      <collision name="collision"><geometry><mesh><scale>10 10 10</scale>
+        <uri>model://construction_cone/meshes/construction_cone.dae</uri></mesh></geometry></collision>
+      <visual name="visual"><geometry><mesh><scale>10 10 10</scale>
+        <uri>model://construction_cone/meshes/construction_cone.dae</uri></mesh></geometry></visual></link></model>'''
+    folder = mesh_fixtures.write_model(str(isolated / 'models'), 'construction_cone', cone_sdf)
+    cone = trimesh.creation.cone(radius=0.015, height=0.05, sections=32)  # apex up, base at z = 0
+    mesh_fixtures.write_mesh(cone, os.path.join(folder, 'meshes', 'construction_cone.dae'), rgba=(1, 0.5, 0, 1))
+    monkeypatch.setenv('GAZEBO_MODEL_PATH', str(isolated / 'models'))
+    includes = ''.join('<include><uri>model://construction_cone</uri><name>cone_%d</name><pose>%g 1 0 0 0 0</pose>'
+                       '</include>' % (i, i) for i in range(6))
+    spec = sdf_world.parse_world(world_with('<include><uri>model://ground_plane</uri></include>' + includes))
+    assert spec.warnings == []
+    world = physics()
+    assert world.load_world(spec) == ['ground_plane'] + ['cone_%d' % i for i in range(6)]
+    for _ in range(1000):
+        world.step()
+    for i in range(6):
+        body = world.bodies['cone_%d' % i]
+        frame = body.frame_pose()
+        assert abs(frame.position[2]) < 0.005 and abs(frame.position[0] - i) < 0.005, frame
+        hit = pb.rayTest((i - 0.5, 1, 0.1), (i, 1, 0.1), physicsClientId=world.client)[0]  # from between two cones
+        # the cone's radius at 0.1 m height is 0.15 * (1 - 0.1 / 0.5) = 0.12 m (hull of 32 sides: within 1 cm)
+        assert hit[0] == body.id and abs(hit[3][0] - (i - 0.12)) < 0.01, hit
