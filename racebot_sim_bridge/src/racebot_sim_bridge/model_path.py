@@ -15,7 +15,6 @@ import xml.etree.ElementTree as ET
 
 __all__ = ['ResolveError', 'resolve_uri', 'model_path', 'find_model', 'model_sdf_file']
 
-DEFAULT_MODEL_DIR = os.path.join('~', '.gazebo', 'models')
 
 
 class ResolveError(ValueError):
