@@ -13,8 +13,7 @@ A URI that cannot be found raises ResolveError naming the URI and every place se
 import os
 import xml.etree.ElementTree as ET
 
-__all__ = ['ResolveError', 'resolve_uri', 'model_path', 'find_model', 'model_sdf_file']
-
+__all__ = ['ResolveError', 'resolve_uri', 'model_path', 'find_model', 'model_sdf_file', 'package_dir']
 
 
 class ResolveError(ValueError):
