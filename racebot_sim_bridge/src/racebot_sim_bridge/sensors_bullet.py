@@ -145,7 +145,7 @@ class SceneColours(object):
                 continue
             rgba = next((v.rgba for v in link.visuals if v.rgba), None)
             plane = next((c for c in link.collisions if c.shape.kind == 'plane'), None)
-            if rgba is None and plane is None:
+            if plane is None and (rgba is None or getattr(self.world, "visuals", False)):  # visuals: coloured when built
                 continue
             kwargs = dict(rgbaColor=list(rgba or (0.8, 0.8, 0.8, 1.0)))
             if plane is not None:
