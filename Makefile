@@ -6,7 +6,7 @@ VENV := $(ROOT)/.venv
 SYSTEM_PYTHON := /usr/bin/python3
 IN_WS := source $(ROOT)/devel/setup.bash &&
 
-.PHONY: setup debian venv build test unit run demo bench bench-quick soak clean help
+.PHONY: setup debian venv build test unit run demo bench bench-quick soak fresh-check clean help
 
 help:
 	@echo "make run    set up, build, start the simulator with the racebot in the room"
@@ -14,6 +14,7 @@ help:
 	@echo "make setup  install what is missing (Debian packages, .venv) and build into build/ devel/"
 	@echo "make demo   headless: drive a scripted route, print it, draw it (out/demo/demo_path.png)"
 	@echo "make unit   only the unit tests (no ROS master)"
+	@echo "make fresh-check  'make test' in a brand-new minimal Debian 12 root (root only; ~10 min); CI runs it"
 	@echo "            extra roslaunch arguments: make run ARGS='paused:=true x_pos:=1'"
 	@echo "make clean  remove build/ devel/ (keeps .venv)"
 
@@ -70,6 +71,11 @@ bench-quick: setup
 # out/soak/. Shorter or other: make soak ARGS='--sim-minutes 5'.
 soak: setup
 	@$(IN_WS) $(VENV)/bin/python3 tools/soak.py $(ARGS)
+
+# The README's `make test` on a brand-new minimal Debian 12 (mmdebstrap, chroot) from a clone of HEAD:
+# proves that `make setup` installs everything the suite calls. Needs root; CI runs it.
+fresh-check: debian
+	@tools/fresh_check.sh
 
 clean:
 	rm -rf build devel

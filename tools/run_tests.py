@@ -20,6 +20,21 @@ OUT = os.path.join(ROOT, 'out', 'test-results')
 ROSTEST_TIMEOUT_S = 420
 
 
+def use_loopback_ros_networking(env):
+    """Puts ROS networking in `env` (a dict, or os.environ) on loopback: every node of the suite runs here.
+
+    Without ROS_HOSTNAME or ROS_IP, each node advertises the machine's host name, and roslaunch and
+    rostest fail where that name does not resolve (a common container set-up): "Unable to contact my
+    own server", "cannot resolve host address for machine [localhost]". Only the suite's processes get
+    this; `make run` leaves a user's networking as it is.
+    """
+    for name in ('ROS_IP', 'ROS_IPV6'):  # a user's address for other machines has no use here
+        env.pop(name, None)
+    env['ROS_HOSTNAME'] = 'localhost'
+    env['ROS_MASTER_URI'] = 'http://localhost:11311'  # rostest starts its own master on a free port
+    return env
+
+
 def count_junit(path):
     """(passed, failed, skipped, names of failures) of one JUnit XML file."""
     try:
@@ -103,6 +118,7 @@ def main():
         sys.exit('racebot: source devel/setup.bash first (or use `make test`)')
     shutil.rmtree(OUT, ignore_errors=True)
     os.makedirs(OUT)
+    use_loopback_ros_networking(os.environ)
     os.environ.setdefault('ROS_LOG_DIR', os.path.join(ROOT, 'out', 'ros_log'))
     totals = [0, 0, 0]
     failures = []

@@ -130,6 +130,9 @@ class Process(object):
     def __init__(self, args, env=None):
         self.args = args
         self.output = []
+        # A Python node's stdout into a pipe is block-buffered: its loginfo lines would reach us only
+        # when it exits (a machine whose environment sets PYTHONUNBUFFERED hides this).
+        env = dict(os.environ if env is None else env, PYTHONUNBUFFERED='1')
         self.proc = subprocess.Popen(args, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
                                      env=env, start_new_session=True)
         self.reader = threading.Thread(target=self._read, daemon=True)

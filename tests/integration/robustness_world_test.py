@@ -141,7 +141,7 @@ class RobustnessWorldTest(unittest.TestCase):
         self.assertIn('box size must be > 0, got 1 0 1', p.text)
         self.assertIn('sphere radius must be > 0', p.text)
         self.assertIn('cylinder length must be finite', p.text)
-        self.assertIn('mesh geometry is not supported', p.text)
+        self.assertIn('model://thing/meshes/thing.dae not found; searched', p.text)  # a mesh that is nowhere
         self.assertTrue(p.alive())
         self.assertEqual(p.stop(), 0, p.text[-3000:])
         self.assert_no_crash(p)

@@ -14,6 +14,12 @@ Gazebo behaviours reproduced here, because the car drives differently without th
 - URDF cylinders (the wheels) stay true cylinders (URDF_USE_IMPLICIT_CYLINDER): PyBullet's default
   convex-hull approximation makes the contact point jump between hull vertices, and the car veered
   ~2 degrees per metre driving straight with the hinges locked.
+
+Meshes (URDF and SDF) arrive as checked OBJ files in the mesh cache (meshes.py; urdf_assets.py for
+URDFs, sdf_world.py for SDF). A static SDF body collides with the exact triangles (concave triangle
+mesh, as Gazebo does); a dynamic body (every URDF link) with one convex hull per part of the mesh.
+Colours are given when a body is built (visual shapes with their rgba; URDF colours written into the
+URDF before loadURDF), so any copy built from `Body.source` (the viewer's) looks the same.
 """
 import math
 import os
@@ -24,7 +30,7 @@ from collections import namedtuple
 
 import pybullet as pb
 
-from . import sdf_world
+from . import sdf_world, urdf_assets
 
 # Mass and inertia given to links that declare no <inertial> (Gazebo drops such links' mass).
 NEGLIGIBLE_MASS = 1e-4
@@ -95,12 +101,15 @@ class Body(object):
 
 
 class PhysicsWorld(object):
-    """Owns one PyBullet client. `gui=True` opens PyBullet's own window (needs a display)."""
+    """Owns one PyBullet client. `gui=True` opens PyBullet's own window (needs a display).
+    `visuals=False` builds no visual shapes (no meshes to draw, no colours): for a client that
+    only steps physics and casts rays while another client draws."""
 
-    def __init__(self, step_size=0.001, gravity=(0.0, 0.0, -9.8), gui=False):
+    def __init__(self, step_size=0.001, gravity=(0.0, 0.0, -9.8), gui=False, visuals=True):
         if not (step_size > 0 and math.isfinite(step_size)):
             raise PhysicsError('physics step size must be a positive number of seconds, got %r' % (step_size,))
         self.gui = gui
+        self.visuals = visuals
         self.client = pb.connect(pb.GUI if gui else pb.DIRECT)
         if self.client < 0:
             raise PhysicsError('could not start PyBullet (%s mode)' % ('GUI' if gui else 'DIRECT'))
@@ -141,8 +150,8 @@ class PhysicsWorld(object):
             if body_id is not None:
                 ids.append((link.name, body_id))
         if not ids:
-            raise PhysicsError("model '%s' has no link with supported geometry (give it a box, cylinder, sphere "
-                               "or plane of positive size)" % model.name)
+            raise PhysicsError("model '%s' has no link with supported geometry (give it a box, cylinder, sphere, "
+                               "plane or mesh of positive size)" % model.name)
         # A multi-link SDF model is kept as its first link's body plus extra bodies named model::link.
         first_link, first_id = ids[0]
         body = Body(self.client, model.name, first_id, model.static, 'sdf')
@@ -154,26 +163,29 @@ class PhysicsWorld(object):
 
     def _create_sdf_link(self, model, link):
         shapes, visuals = [], []
-        for col in link.collisions:
-            pos, orn = sdf_world.as_transform(col.pose)
-            shape = self._collision_shape(col.shape, pos, orn)
-            if shape is not None:
-                shapes.append((shape, col))
-        for vis in link.visuals:
-            pos, orn = sdf_world.as_transform(vis.pose)
-            shape = self._visual_shape(vis.shape, pos, orn, vis.rgba)
-            if shape is not None:
-                visuals.append(shape)
-        if not shapes and not visuals:
+        static = model.static or link.mass is None or link.mass <= 0
+        try:
+            for col in link.collisions:
+                pos, orn = sdf_world.as_transform(col.pose)
+                shape = self._collision_shape(col.shape, pos, orn, static)
+                if shape is not None:
+                    shapes.append((shape, col))
+            visuals = [v for v in link.visuals if self._drawable(v.shape)] if self.visuals else []
+            vis_id = self._visual_shapes(visuals)
+        except pb.error as err:
+            raise PhysicsError("model '%s' link '%s': PyBullet could not build its shapes (%s)"
+                               % (model.name, link.name, err))
+        if not shapes and vis_id < 0:
             return None
         world_pos, world_orn = model.world_pose_of(link)
-        static = model.static or link.mass is None or link.mass <= 0
         mass = 0.0 if static else link.mass
-        col_id = shapes[0][0] if len(shapes) == 1 else self._compound(link) if shapes else -1
-        vis_id = visuals[0] if len(visuals) == 1 else -1
+        col_id = shapes[0][0] if len(shapes) == 1 else self._compound(link, static) if shapes else -1
         body = pb.createMultiBody(baseMass=mass, baseCollisionShapeIndex=col_id, baseVisualShapeIndex=vis_id,
                                   basePosition=world_pos, baseOrientation=world_orn,
                                   physicsClientId=self.client)
+        if len(visuals) > 1:  # createVisualShapeArray takes no colours: one call per shape
+            for i, vis in enumerate(visuals):
+                pb.changeVisualShape(body, -1, shapeIndex=i, rgbaColor=_rgba(vis), physicsClientId=self.client)
         if not static and link.inertia is not None:
             ixx, _, _, iyy, _, izz = link.inertia
             pb.changeDynamics(body, -1, localInertiaDiagonal=(ixx, iyy, izz), physicsClientId=self.client)
@@ -186,16 +198,19 @@ class PhysicsWorld(object):
         pb.changeDynamics(body, -1, lateralFriction=friction, physicsClientId=self.client)
         return body
 
-    def _compound(self, link):
-        kwargs = dict(shapeTypes=[], radii=[], halfExtents=[], lengths=[], planeNormals=[],
-                                 collisionFramePositions=[], collisionFrameOrientations=[])
+    def _compound(self, link, static):
+        kwargs = dict(shapeTypes=[], radii=[], halfExtents=[], lengths=[], planeNormals=[], fileNames=[],
+                      meshScales=[], flags=[], collisionFramePositions=[], collisionFrameOrientations=[])
         for col in link.collisions:
             s = col.shape
             if s.kind == 'plane':
                 continue
             pos, orn = sdf_world.as_transform(col.pose)
             kwargs['shapeTypes'].append({'box': pb.GEOM_BOX, 'cylinder': pb.GEOM_CYLINDER,
-                                         'sphere': pb.GEOM_SPHERE}[s.kind])
+                                         'sphere': pb.GEOM_SPHERE, 'mesh': pb.GEOM_MESH}[s.kind])
+            kwargs['fileNames'].append(s.filename or '')
+            kwargs['meshScales'].append(list(s.scale or (1.0, 1.0, 1.0)))
+            kwargs['flags'].append(_mesh_flags(static) if s.kind == 'mesh' else 0)
             kwargs['radii'].append(s.radius or 0.0)
             kwargs['halfExtents'].append([x / 2.0 for x in (s.size or (0, 0, 0))])
             kwargs['lengths'].append(s.length or 0.0)
@@ -206,8 +221,12 @@ class PhysicsWorld(object):
             return -1
         return pb.createCollisionShapeArray(physicsClientId=self.client, **kwargs)
 
-    def _collision_shape(self, shape, pos, orn):
+    def _collision_shape(self, shape, pos, orn, static):
         c = self.client
+        if shape.kind == 'mesh':
+            return pb.createCollisionShape(pb.GEOM_MESH, fileName=shape.filename, meshScale=list(shape.scale),
+                                           flags=_mesh_flags(static), collisionFramePosition=pos,
+                                           collisionFrameOrientation=orn, physicsClientId=c)
         if shape.kind == 'box':
             return pb.createCollisionShape(pb.GEOM_BOX, halfExtents=[x / 2.0 for x in shape.size],
                                            collisionFramePosition=pos, collisionFrameOrientation=orn,
@@ -224,36 +243,61 @@ class PhysicsWorld(object):
                                            collisionFramePosition=pos, physicsClientId=c)
         return None
 
-    def _visual_shape(self, shape, pos, orn, rgba):
-        if not self.gui:
-            return None  # visual shapes only cost memory without a window or a camera
+    @staticmethod
+    def _drawable(shape):
+        return shape.kind in ('box', 'cylinder', 'sphere', 'plane', 'mesh')
+
+    def _visual_shapes(self, visuals):
+        """One visual shape index for a link's visuals (sdf_world.Visual), -1 for none."""
+        if not visuals:
+            return -1
         c = self.client
-        rgba = list(rgba) if rgba else [0.7, 0.7, 0.7, 1.0]
+        if len(visuals) == 1:
+            vis = visuals[0]
+            pos, orn = sdf_world.as_transform(vis.pose)
+            return pb.createVisualShape(rgbaColor=_rgba(vis), visualFramePosition=pos, visualFrameOrientation=orn,
+                                        physicsClientId=c, **self._visual_geometry(vis.shape))
+        kwargs = dict(shapeTypes=[], radii=[], halfExtents=[], lengths=[], fileNames=[], meshScales=[],
+                      planeNormals=[], visualFramePositions=[], visualFrameOrientations=[])
+        for vis in visuals:
+            pos, orn = sdf_world.as_transform(vis.pose)
+            geometry = self._visual_geometry(vis.shape)
+            kwargs['shapeTypes'].append(geometry['shapeType'])
+            kwargs['radii'].append(geometry.get('radius', 0.0))
+            kwargs['halfExtents'].append(geometry.get('halfExtents', [0.0, 0.0, 0.0]))
+            kwargs['lengths'].append(geometry.get('length', 0.0))
+            kwargs['fileNames'].append(geometry.get('fileName', ''))
+            kwargs['meshScales'].append(geometry.get('meshScale', [1.0, 1.0, 1.0]))
+            kwargs['planeNormals'].append([0.0, 0.0, 1.0])
+            kwargs['visualFramePositions'].append(list(pos))
+            kwargs['visualFrameOrientations'].append(list(orn))
+        return pb.createVisualShapeArray(physicsClientId=c, **kwargs)
+
+    @staticmethod
+    def _visual_geometry(shape):
+        """createVisualShape's geometry arguments for an sdf_world.Shape (a plane: a thin box)."""
         if shape.kind == 'box':
-            return pb.createVisualShape(pb.GEOM_BOX, halfExtents=[x / 2.0 for x in shape.size], rgbaColor=rgba,
-                                        visualFramePosition=pos, visualFrameOrientation=orn, physicsClientId=c)
+            return dict(shapeType=pb.GEOM_BOX, halfExtents=[x / 2.0 for x in shape.size])
         if shape.kind == 'cylinder':
-            return pb.createVisualShape(pb.GEOM_CYLINDER, radius=shape.radius, length=shape.length,
-                                        rgbaColor=rgba, visualFramePosition=pos, visualFrameOrientation=orn,
-                                        physicsClientId=c)
+            return dict(shapeType=pb.GEOM_CYLINDER, radius=shape.radius, length=shape.length)
         if shape.kind == 'sphere':
-            return pb.createVisualShape(pb.GEOM_SPHERE, radius=shape.radius, rgbaColor=rgba,
-                                        visualFramePosition=pos, physicsClientId=c)
-        if shape.kind == 'plane':
-            size = shape.size or (100.0, 100.0)
-            return pb.createVisualShape(pb.GEOM_BOX, halfExtents=[size[0] / 2.0, size[1] / 2.0, 0.0005],
-                                        rgbaColor=[0.8, 0.8, 0.8, 1.0], visualFramePosition=pos,
-                                        physicsClientId=c)
-        return None
+            return dict(shapeType=pb.GEOM_SPHERE, radius=shape.radius)
+        if shape.kind == 'mesh':
+            return dict(shapeType=pb.GEOM_MESH, fileName=shape.filename, meshScale=list(shape.scale))
+        size = shape.size or (100.0, 100.0)
+        return dict(shapeType=pb.GEOM_BOX, halfExtents=[size[0] / 2.0, size[1] / 2.0, 0.0005])
 
     # -- robots ---------------------------------------------------------------------------------
-    def spawn_urdf(self, name, urdf_model, urdf_xml, position=(0, 0, 0), orientation=(0, 0, 0, 1)):
-        """Spawns a parsed URDF (urdf_model.RobotModel) under `name`; returns its Body."""
+    def spawn_urdf(self, name, urdf_model, urdf_xml, position=(0, 0, 0), orientation=(0, 0, 0, 1), warn=None):
+        """Spawns a parsed URDF (urdf_model.RobotModel) under `name`; returns its Body. Its meshes
+        are resolved and converted first (urdf_assets); warn(message) hears of those that cannot
+        be (the element is left out, the robot is spawned)."""
         if name in self.bodies:
             raise PhysicsError("a model named '%s' already exists" % name)
+        urdf_xml = urdf_assets.resolve_assets(urdf_xml, urdf_model, warn)
         path = os.path.join(self._tmpdir, '%s.urdf' % name.replace('/', '_'))
         with open(path, 'w') as f:
-            f.write(prepare_urdf_for_bullet(urdf_xml, urdf_model))
+            f.write(prepare_urdf_for_bullet(urdf_xml, urdf_model, self.visuals))
         flags = pb.URDF_MERGE_FIXED_LINKS | pb.URDF_USE_INERTIA_FROM_FILE | pb.URDF_MAINTAIN_LINK_ORDER \
             | pb.URDF_USE_IMPLICIT_CYLINDER
         try:
@@ -262,7 +306,7 @@ class PhysicsWorld(object):
         except pb.error as err:
             raise PhysicsError("PyBullet could not load the URDF of '%s': %s" % (name, err))
         body = Body(self.client, name, body_id, False, 'urdf')
-        body.source = ('urdf', urdf_model, urdf_xml)
+        body.source = ('urdf', urdf_model, urdf_xml)  # meshes resolved: a copy needs no package path
         for link, index in body.link_index.items():
             # PyBullet's default link damping (0.04) has no counterpart in Gazebo: a free wheel would slow down.
             pb.changeDynamics(body_id, index, lateralFriction=min(link_friction(urdf_model, link), self.ground_mu),
@@ -353,6 +397,15 @@ class PhysicsWorld(object):
         shutil.rmtree(self._tmpdir, ignore_errors=True)
 
 
+def _mesh_flags(static):
+    # Bullet collides static bodies with triangle meshes, dynamic ones only with convex shapes.
+    return pb.GEOM_FORCE_CONCAVE_TRIMESH if static else 0
+
+
+def _rgba(visual):
+    return list(visual.rgba) if visual.rgba else [0.7, 0.7, 0.7, 1.0]  # Gazebo's default grey
+
+
 def link_friction(urdf_model, link):
     """mu of a (merged) PyBullet link: the smaller of mu1/mu2 of the URDF links merged into it that
     carry collision geometry (Gazebo keeps friction per collision; Bullet has one per link), 1 if none says."""
@@ -367,9 +420,10 @@ def link_friction(urdf_model, link):
     return min(mus) if mus else 1.0
 
 
-def prepare_urdf_for_bullet(urdf_xml, urdf_model):
+def prepare_urdf_for_bullet(urdf_xml, urdf_model, visuals=True):
     """The URDF as PyBullet should read it: negligible inertia for links that declare none;
-    <gazebo>, <transmission> and sensor blocks dropped; mesh geometry dropped (not loadable here)."""
+    <gazebo>, <transmission> and sensor blocks dropped; the visuals dropped unless `visuals`.
+    Mesh filenames must already be files PyBullet reads (urdf_assets.resolve_assets)."""
     root = ET.fromstring(urdf_xml)
     for tag in ('gazebo', 'transmission'):
         for el in root.findall(tag):
@@ -380,10 +434,8 @@ def prepare_urdf_for_bullet(urdf_xml, urdf_model):
             ET.SubElement(inertial, 'mass', value=repr(NEGLIGIBLE_MASS))
             ET.SubElement(inertial, 'inertia', ixx=repr(NEGLIGIBLE_INERTIA), iyy=repr(NEGLIGIBLE_INERTIA),
                           izz=repr(NEGLIGIBLE_INERTIA), ixy='0', ixz='0', iyz='0')
-        for kind in ('visual', 'collision'):
-            for el in link.findall(kind):
-                geom = el.find('geometry')
-                if geom is not None and geom.find('mesh') is not None:
-                    link.remove(el)
+        if not visuals:
+            for el in link.findall('visual'):
+                link.remove(el)
     ET.indent(root)  # PyBullet's URDF reader fails on some very long lines (a one-line document)
     return ET.tostring(root, encoding='unicode')

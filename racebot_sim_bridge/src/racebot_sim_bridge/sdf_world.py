@@ -3,16 +3,21 @@
 Pure Python: no rospy, no pybullet.  ``physics.py`` turns the result into bodies.
 
 What is understood: the world's physics block and gravity; models made of links with box,
-cylinder, sphere and plane geometry, their poses, masses, inertias, ODE friction (mu, mu2) and
-visual colours; ``<include>`` of ``model://ground_plane`` (built in, as Gazebo's model) and
-``model://sun`` (a light: ignored); the first ``<state>`` block's model and link poses, which
-Gazebo applies when it loads a saved world.
+cylinder, sphere, plane and mesh geometry, their poses, masses, inertias, ODE friction (mu, mu2)
+and visual colours (explicit or Gazebo material script names); ``<include>`` of models from the
+Gazebo model path (model_path.py: GAZEBO_MODEL_PATH, packages' gazebo_model_path exports,
+~/.gazebo/models; model.config picks the SDF file) with the include's name, pose and static,
+``model://ground_plane`` and ``model://sun`` built in as Gazebo ships them; the first ``<state>``
+block's model and link poses, which Gazebo applies when it loads a saved world.  Mesh URIs
+(model://, package://, file://, paths) are resolved and the files converted here
+(meshes.convert), so a parsed world names only absolute files and needs no search path again.
 
-Everything else that matters to the physics (mesh, heightmap and polyline geometry, plugins,
-joints of world models, nested models, other includes, actors) is skipped with ONE entry in
+Everything else that matters to the physics (heightmap and polyline geometry, plugins, joints
+of world models, nested models, includes inside models, actors) is skipped with ONE entry in
 ``World.warnings`` naming the element, where it is and why; so are elements whose values are
-unusable (non-numeric, non-finite, zero or negative sizes).  Only a missing file, text that is
-not XML and a document without ``<world>`` raise ``WorldError``.
+unusable (non-numeric, non-finite, zero or negative sizes) and models or meshes that cannot be
+found (the warning names the URI and every place searched) or read.  Only a missing file, text
+that is not XML and a document without ``<world>`` raise ``WorldError``.
 
 Poses are 6-tuples ``(x, y, z, roll, pitch, yaw)``; roll, pitch, yaw are fixed-axis rotations
 about X, then Y, then Z (R = Rz(yaw) Ry(pitch) Rx(roll)), as SDF and URDF define them.
@@ -33,21 +38,8 @@ __all__ = [
 
 ZERO_POSE = (0.0, 0.0, 0.0, 0.0, 0.0, 0.0)
 
-# Colours of the Gazebo material scripts worlds commonly name (media/materials/scripts/
-# gazebo.material, diffuse), used when a visual gives a script and no explicit colour.
-GAZEBO_MATERIALS = {
-    'Gazebo/Grey': (0.7, 0.7, 0.7, 1.0),
-    'Gazebo/Gray': (0.7, 0.7, 0.7, 1.0),
-    'Gazebo/DarkGrey': (0.175, 0.175, 0.175, 1.0),
-    'Gazebo/White': (1.0, 1.0, 1.0, 1.0),
-    'Gazebo/Black': (0.0, 0.0, 0.0, 1.0),
-    'Gazebo/Red': (1.0, 0.0, 0.0, 1.0),
-    'Gazebo/Green': (0.0, 1.0, 0.0, 1.0),
-    'Gazebo/Blue': (0.0, 0.0, 1.0, 1.0),
-    'Gazebo/Yellow': (1.0, 1.0, 0.0, 1.0),
-    'Gazebo/Orange': (1.0, 0.5088, 0.0468, 1.0),
-    'Gazebo/Wood': (1.0, 0.8, 0.6, 1.0),
-}
+from . import meshes, model_path
+from .materials import GAZEBO_MATERIALS, gazebo_material_rgba  # GAZEBO_MATERIALS: re-exported
 
 # What Gazebo's worlds/empty.world holds, for world_name:=worlds/empty.world (the default of
 # empty_world.launch), which Gazebo finds in its own resource path.
@@ -165,12 +157,17 @@ class Physics:
 @dataclass
 class Shape:
     """Geometry.  box: ``size`` (x, y, z); cylinder: ``radius``, ``length`` (along z);
-    sphere: ``radius``; plane: unit ``normal`` and ``size`` (x, y), infinite for physics."""
+    sphere: ``radius``; plane: unit ``normal`` and ``size`` (x, y), infinite for physics;
+    mesh: ``filename`` (the absolute path of the converted OBJ in the mesh cache, so that any
+    process can build it), ``scale`` (x, y, z) and ``uri`` (as written, for messages)."""
     kind: str
     size: tuple = None
     radius: float = None
     length: float = None
     normal: tuple = None
+    filename: str = None
+    scale: tuple = None
+    uri: str = None
 
 
 @dataclass
@@ -254,9 +251,15 @@ class _Skip(Exception):
     """An element's content is unusable; the message says why.  Caught where it is skipped."""
 
 
+class _NotFound(_Skip):
+    """An included model is on no folder of the model path."""
+
+
+class _Repeated(_Skip):
+    """A mesh that already failed (and was warned about) once: skipped without a second warning."""
+
+
 _UNSUPPORTED_GEOMETRY = {
-    'mesh': 'mesh geometry is not supported (the mesh files are not available); '
-            'stand in a box, cylinder or sphere of the same size',
     'heightmap': 'heightmap geometry is not supported',
     'polyline': 'polyline geometry is not supported; use boxes',
     'image': 'image geometry is not supported',
@@ -329,9 +332,20 @@ def _quote(name):
 
 
 class _WorldReader:
-    def __init__(self, source):
+    def __init__(self, source, search=None):
         self.source = source
         self.warnings = []
+        self._search = search  # the model path, looked up on first use (it lists ROS packages)
+        # relative mesh URIs: relative to the folder of the model being read, else the world file's
+        self.base_dir = os.path.dirname(source) if os.path.isfile(source) else None
+        self._meshes = {}  # (uri, base_dir) -> (path, rgba) or the _Skip it gave: each mesh read and warned once
+        self._missing_models = {}  # model:// URI -> [message, names of the includes skipped]
+
+    @property
+    def search(self):
+        if self._search is None:
+            self._search = model_path.model_path()
+        return self._search
 
     def warn(self, where, message):
         self.warnings.append('%s: %s' % (where, message) if where else message)
@@ -365,6 +379,8 @@ class _WorldReader:
                       % ', '.join(k.tag for k in kinds))
         elem = kinds[0]
         kind = elem.tag
+        if kind == 'mesh':
+            return self.mesh(elem)
         if kind in _UNSUPPORTED_GEOMETRY or kind not in ('box', 'cylinder', 'sphere', 'plane'):
             reason = _UNSUPPORTED_GEOMETRY.get(kind, 'unknown geometry <%s>' % kind)
             self.warn(where, '%s; skipped' % reason)
@@ -395,6 +411,32 @@ class _WorldReader:
         self._positive(size, 'plane size')
         return Shape('plane', size=size, normal=tuple(c / norm for c in normal))
 
+    def mesh(self, elem):
+        """A mesh Shape with its file resolved and converted (meshes.convert); _Skip naming the
+        URI and where it was looked for when it cannot be used."""
+        uri = (elem.findtext('uri') or '').strip()
+        if not uri:
+            raise _Skip('a <mesh> without <uri>; give <uri>model://NAME/meshes/FILE.dae</uri>')
+        scale_elem = elem.find('scale')
+        scale = (1.0, 1.0, 1.0) if scale_elem is None else _floats(scale_elem.text, 3, 'mesh scale')
+        self._positive(tuple(abs(c) for c in scale), 'mesh scale')
+        if elem.find('submesh') is not None:
+            self.warn('', 'mesh %s: <submesh> is not supported; the whole mesh is used' % uri)
+        key = (uri, self.base_dir)
+        if key not in self._meshes:
+            try:
+                path = model_path.resolve_uri(uri, self.base_dir,
+                                              self.search if uri.startswith('model://') else None)
+                converted = meshes.convert(path)
+                self._meshes[key] = (converted.obj_path, converted.rgba)
+            except (model_path.ResolveError, meshes.MeshError) as err:
+                self._meshes[key] = _Skip(str(err))
+                raise self._meshes[key] from None
+        known = self._meshes[key]
+        if isinstance(known, _Skip):
+            raise _Repeated(str(known))
+        return Shape('mesh', filename=known[0], scale=scale, uri=uri), known[1]
+
     @staticmethod
     def _positive(values, what):
         if not all(v > 0.0 for v in values):
@@ -414,17 +456,21 @@ class _WorldReader:
                 return values if len(values) == 4 else values + (1.0,)
         script = material.find('script/name')
         if script is not None:
-            return GAZEBO_MATERIALS.get((script.text or '').strip())
+            return gazebo_material_rgba(script.text)
         return None
 
     # -- elements ---------------------------------------------------------------------
+
+    def _shape_and_colour(self, elem, where):
+        result = self.shape(elem.find('geometry'), where)
+        return result if isinstance(result, tuple) else (result, None)
 
     def collision(self, elem, where):
         name = elem.get('name', '')
         where = '%s collision %s' % (where, _quote(name))
         try:
             pose = self.pose(elem, where)
-            shape = self.shape(elem.find('geometry'), where)
+            shape, _ = self._shape_and_colour(elem, where)
             if shape is None:
                 return None
             ode = elem.find('surface/friction/ode')
@@ -436,7 +482,8 @@ class _WorldReader:
                     if value is not None and value < 0.0:
                         raise _Skip('friction %s must be >= 0, got %g' % (label, value))
         except _Skip as err:
-            self.warn(where, '%s; skipped' % err)
+            if not isinstance(err, _Repeated):
+                self.warn(where, '%s; skipped' % err)
             return None
         return Collision(name, pose, shape, mu, mu2)
 
@@ -445,12 +492,14 @@ class _WorldReader:
         where = '%s visual %s' % (where, _quote(name))
         try:
             pose = self.pose(elem, where)
-            shape = self.shape(elem.find('geometry'), where)
+            shape, mesh_rgba = self._shape_and_colour(elem, where)
             if shape is None:
                 return None
-            rgba = self.rgba(elem.find('material'))
+            # an SDF <material> overrides the mesh's own, as in Gazebo
+            rgba = self.rgba(elem.find('material')) or mesh_rgba
         except _Skip as err:
-            self.warn(where, '%s; skipped' % err)
+            if not isinstance(err, _Repeated):
+                self.warn(where, '%s; skipped' % err)
             return None
         return Visual(name, pose, shape, rgba)
 
@@ -530,15 +579,78 @@ class _WorldReader:
         return model
 
     def include(self, elem):
+        """An <include>d model: model://ground_plane and model://sun are built in (as Gazebo ships
+        them); any other model is read from its folder on the model path (model.config picks the
+        SDF file), with the include's <name>, <pose> and <static> overriding the model's own."""
         uri = (elem.findtext('uri') or '').strip()
         target = uri.rstrip('/')
         if target == 'model://sun':
             return None  # a light: nothing to simulate
-        if target != 'model://ground_plane':
-            self.warn('world', '<include> of %s: only model://ground_plane and model://sun '
-                               'are built in (model files are not available); write the model '
-                               'out with primitive shapes; skipped' % _quote(uri or '(no uri)'))
+        if target == 'model://ground_plane':
+            return self.ground_plane(elem)
+        where = 'include %s' % _quote(uri or '(no uri)')
+        if not uri:
+            self.warn(where, 'no <uri>; give <uri>model://NAME</uri>; skipped')
             return None
+        name = (elem.findtext('name') or '').strip()
+        if target in self._missing_models:
+            self._missing_models[target][1].append(name or target)
+            return None
+        try:
+            folder = self.model_folder(target)
+            sdf_file = model_path.model_sdf_file(folder)
+            try:
+                root = ET.parse(sdf_file).getroot()
+            except (ET.ParseError, OSError) as err:
+                raise _Skip('%s cannot be read as XML: %s' % (sdf_file, err))
+            model_elem = root if root.tag == 'model' else root.find('model')
+            if model_elem is None:
+                raise _Skip('%s has no <model> (only models can be included)' % sdf_file)
+            pose = self.pose(elem, where) if elem.find('pose') is not None else None
+            static = _child_bool(elem, 'static', None, 'static')
+        except _NotFound as err:
+            # one warning per missing model however often it is included, given with the world's others
+            self._missing_models[target] = [str(err), [name or target]]
+            return None
+        except (_Skip, model_path.ResolveError) as err:
+            self.warn(where, '%s; skipped' % err)
+            return None
+        if name:
+            model_elem.set('name', name)  # before reading, so that its warnings name it
+        outer_base, self.base_dir = self.base_dir, folder
+        try:
+            model = self.model(model_elem)
+        finally:
+            self.base_dir = outer_base
+        if model is None:
+            return None
+        if pose is not None:
+            model.pose = pose
+        if static is not None:
+            model.static = static
+        return model
+
+    def model_folder(self, target):
+        """The folder of an included model: model://NAME on the model path, or a file:// or
+        plain path to the folder. _NotFound naming every place searched when it is not there."""
+        if target.startswith('model://'):
+            name = target[len('model://'):].split('/')[0]
+            folder, searched = model_path.find_model(name, self.search)
+            if folder is None:
+                raise _NotFound("model '%s' not found; searched %s; add the folder holding %s/ to "
+                                'GAZEBO_MODEL_PATH (or put the model in ~/.gazebo/models)'
+                                % (name, ', '.join(searched) or '(an empty model path)', name))
+            return folder
+        path = target[len('file://'):] if target.startswith('file://') else os.path.expanduser(target)
+        if '://' in path:
+            raise _Skip("unknown URI scheme; use model://NAME or file:///path/to/model")
+        if not os.path.isabs(path):
+            path = os.path.join(self.base_dir or os.getcwd(), path)
+        if not os.path.isdir(path):
+            raise _Skip('no model folder at %s' % path)
+        return path
+
+    def ground_plane(self, elem):
         name = (elem.findtext('name') or '').strip() or 'ground_plane'
         where = 'include %s' % _quote(name)
         try:
@@ -666,12 +778,17 @@ class _WorldReader:
         state = world_elem.find('state')
         if state is not None:
             self.state(state, world.models)
+        for uri, (message, names) in self._missing_models.items():
+            self.warn('include %s' % _quote(uri), '%s; skipped%s' % (message, '' if len(names) == 1 else (
+                ' (all %d includes of it: %s)' % (len(names), ', '.join(names)))))
         world.warnings = self.warnings
         return world
 
 
-def parse_world(xml_text, source='<string>'):
-    """Parse SDF world text (str or bytes) into a World.  ``source`` names it in messages."""
+def parse_world(xml_text, source='<string>', search=None):
+    """Parse SDF world text (str or bytes) into a World.  ``source`` names it in messages (and,
+    when it is a file, relative mesh URIs are relative to its folder); ``search``: the model
+    path for model:// URIs (default: model_path.model_path())."""
     try:
         root = ET.fromstring(xml_text)
     except ET.ParseError as err:
@@ -680,7 +797,7 @@ def parse_world(xml_text, source='<string>'):
                          % (source, err)) from None
     except (ValueError, LookupError, TypeError) as err:
         raise WorldError('%s could not be read as XML: %s' % (source, err)) from None
-    return _WorldReader(source).world(root)
+    return _WorldReader(source, search).world(root)
 
 
 def load_world(path, search_path=()):

@@ -151,7 +151,8 @@ class Simulator(object):
                     raise SpawnError("SpawnModel: Failure - robot namespace '%s' is already used by model '%s'; "
                                      "spawn with another -robot_namespace" % (robot_ns, r.name))
             try:
-                body = self.world.spawn_urdf(name, model, xml, position, orientation)
+                body = self.world.spawn_urdf(name, model, xml, position, orientation,
+                                             warn=lambda m: self.log.warn('%s: %s' % (name, m)))
             except physics.PhysicsError as err:
                 raise SpawnError('SpawnModel: Failure - %s' % err)
             try:

@@ -1,8 +1,9 @@
 """What the cameras see of the world's colours: SceneColours.
 
-Without a window the physics world makes no visual shapes, and the renderer draws each collision
-shape in a default grey (the ground plane with a checker texture). SceneColours gives world and
-spawned SDF models the colours their <visual><material> declares.
+A world built with visuals (physics.PhysicsWorld's default) has its colours already; one built
+without draws each collision shape in a default grey, and SceneColours gives its SDF models the
+colours their <visual><material> declares. Either way an SDF ground plane gets its colour, and
+for the TinyRenderer it is drawn analytically (see SceneColours).
 """
 import numpy as np
 import pybullet as pb
@@ -72,7 +73,7 @@ class SceneColours(object):
                 continue
             rgba = next((v.rgba for v in link.visuals if v.rgba), None)
             plane = next((c for c in link.collisions if c.shape.kind == 'plane'), None)
-            if rgba is None and plane is None:
+            if plane is None and (rgba is None or getattr(self.world, "visuals", False)):  # visuals: coloured when built
                 continue
             kwargs = dict(rgbaColor=list(rgba or (0.8, 0.8, 0.8, 1.0)))
             if plane is not None:
