@@ -239,3 +239,25 @@ def test_the_copy_follows_a_respawn_under_the_same_name():
     finally:
         world.close()
         other.close()
+
+
+@pytest.mark.parametrize('renderer', ['tiny', 'egl'])
+def test_worker_depth_sees_the_floor(racebot_xml, closing, renderer):
+    """The ground plane is in the depth image where the pinhole model puts it, with both renderers
+    (PyBullet's OpenGL renderer does not draw a plane collision shape: scene.py draws it)."""
+    if renderer == 'egl' and not egl_available():
+        pytest.skip('no EGL driver on this machine')
+    sim, fake, manager, robot = worker_world(racebot_xml, renderer)
+    closing((sim, manager))
+    listen(fake, DEPTH)
+    frames = fake.publishers[DEPTH].messages
+    step_until(sim, lambda: len(frames) >= 2, 'depth frames')
+    assert manager.worker.renderer == renderer and manager.worker.restarts == 0
+    depth = np.frombuffer(frames[-1].data, dtype='<f4').reshape(480, 640)
+    sensor = sensor_of(manager, 'depth')
+    position, orientation = sensor.mount.pose()
+    expected = sensor.camera.plane_depth(sensor.camera.rays_optical_3d(), position,
+                                         quaternion_to_matrix(orientation), [0.0, 0.0, 0.0], [0.0, 0.0, 1.0])
+    rows = [r for r in range(240, 480) if 0.6 < expected[r, 320] < 1.0]  # floor 0.6-1 m ahead, nothing on it
+    assert rows
+    assert depth[rows, 320] == pytest.approx(expected[rows, 320], abs=0.02)

@@ -25,17 +25,19 @@ class GroundPlane(object):
 class SceneColours(object):
     """Colours the bodies of SDF models as their visuals say (the first visual with a colour).
 
-    Planes: the CPU renderer rasterises an infinite plane as huge triangles, which costs half of
-    an 800 x 800 frame. Without a window, a world model's plane is therefore made invisible to the
-    renderer and listed in `planes` with the colour the renderer gives it (measured once on a
-    tiny image); cameras then draw it per pixel where it is nearer than what was rendered
-    (camera.PinholeCamera.plane_depth), which gives the same picture for a fraction of
-    the cost. With a window on this client the plane stays as it is (the window shows it).
+    Planes: a ground plane covers half of a camera's image, and rasterising it costs half of an
+    800 x 800 frame in the TinyRenderer, and ~30 ms a frame in EGL on llvmpipe (its visual is a
+    100 m box; PyBullet's OpenGL renderer does not draw a plane collision shape at all). Without a
+    window, a world model's plane is therefore made invisible to the renderer and listed in
+    `planes` with the colour the renderer gives it (measured once on a tiny image); cameras then
+    draw it per pixel where it is nearer than what was rendered
+    (camera.PinholeCamera.plane_depth), which gives the same picture for a fraction of the cost.
+    With a window on this client the plane stays as it is (the window shows it).
     """
 
-    def __init__(self, world, renderer='tiny'):
-        """`renderer`: 'tiny' draws planes analytically (see above); 'egl' rasterises them cheaply
-        itself, so they keep their colour and stay visible."""
+    def __init__(self, world, renderer=TINY):
+        """`renderer`: the renderer the cameras use ('tiny' or 'egl'); plane colours are measured
+        with it."""
         self.world = world
         self.renderer = renderer
         self.planes = []
@@ -82,7 +84,7 @@ class SceneColours(object):
                 pb.changeVisualShape(body_id, -1, physicsClientId=self.world.client, **kwargs)
             except pb.error:
                 continue  # a body without any drawable shape: nothing to colour
-            if plane is not None and not self.world.gui and self.renderer == TINY:
+            if plane is not None and not self.world.gui:
                 self._draw_analytically(model, link, plane, body_id, (model.name, body.id))
 
     def _draw_analytically(self, model, link, collision, body_id, body_key):
@@ -98,7 +100,7 @@ class SceneColours(object):
         client = self.world.client
         view = pb.computeViewMatrix(eye.tolist(), point.tolist(), up.tolist(), physicsClientId=client)
         proj = pb.computeProjectionMatrixFOV(1.0, 1.0, 0.001, 1.0, physicsClientId=client)
-        rgb, _ = render(self.world, 4, 4, view, proj, TINY)
+        rgb, _ = render(self.world, 4, 4, view, proj, self.renderer)
         colour = rgb[2, 2].copy()
         pb.changeVisualShape(body_id, -1, rgbaColor=[0.0, 0.0, 0.0, 0.0], physicsClientId=client)
         self.planes.append(GroundPlane(body_key, point, normal, colour))
