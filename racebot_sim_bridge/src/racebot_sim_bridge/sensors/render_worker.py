@@ -55,6 +55,9 @@ class FrameBuffers(object):
         os.close(fd)
         self.slot_bytes = size
         self.maps = [view_slot(self.path, i * size, width, height) for i in range(count)]
+        for rgb, depth in self.maps:  # resident from the start: memory does not grow when a slot is first used
+            rgb.fill(0)
+            depth.fill(0.0)
         self.free = list(range(count))
         self.lock = threading.Lock()
 
