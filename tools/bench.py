@@ -4,7 +4,8 @@
     tools/bench.py [--quick] [--out DIR]      (in a shell where devel/setup.bash is sourced)
 
 Prints the table (figure, ours, reference, target, met?) and writes under DIR (default out/bench):
-bench.json (every raw figure, the machine, its load), turning_circles.png, hinge_step.png, logs/.
+bench.json (every raw figure, the machine, its load), turning_circles.png, hinge_step.png,
+sensor_rates.png, logs/.
 --quick runs every part briefly (under a minute) to show the bench works; its figures mean little.
 Exit status 0 when every part ran (whether or not each target is met), 1 when a part failed.
 
@@ -29,6 +30,7 @@ from bench import common  # noqa: E402  (tools/bench/, next to this script)
 FULL = {
     'speed': dict(rounds=5, window_s=5.0, warmup_s=2.0, profile_s=5, memory_sim_s=600.0, memory_timeout_s=900),
     'realtime': dict(settle_s=3.0, parts=6, part_s=10.0, commands=1000, command_rate_hz=100.0),
+    'sensors': dict(settle_s=5.0, window_s=30.0),
     'startup_runs': 3,
     'fidelity': dict(speeds=[0.5, 1.0, 2.0], speed_settle_s=3.0, speed_measure_s=3.0, angles=[0.1, 0.2, 0.3],
                      circle_speed=0.5, circle_turns=1.1, circle_settle_s=4.0, lock_angles=[0.6, -0.6], lock_speed=2.0,
@@ -40,6 +42,7 @@ FULL = {
 QUICK = {
     'speed': dict(rounds=2, window_s=1.0, warmup_s=0.5, profile_s=0, memory_sim_s=10.0, memory_timeout_s=120),
     'realtime': dict(settle_s=0.5, parts=1, part_s=3.0, commands=100, command_rate_hz=100.0),
+    'sensors': dict(settle_s=3.0, window_s=3.0),
     'startup_runs': 0,
     'fidelity': dict(speeds=[1.0], speed_settle_s=1.0, speed_measure_s=1.0, angles=[0.3], circle_speed=0.5,
                      circle_turns=1.1, circle_max_s=3.0, circle_settle_s=1.0, lock_angles=[0.6], lock_speed=2.0,
@@ -142,6 +145,17 @@ def part_realtime(cfg, out, results):
     results['realtime'] = run_scenario('realtime', cfg['realtime'], out)
 
 
+def part_sensors(cfg, out, results):
+    """Every sensor subscribed in real time: the old rendering path (TinyRenderer in the physics
+    thread) and the new (render worker, EGL when it loads), one after the other in this run."""
+    from bench import plot, report
+    sens = results['sensors'] = {}
+    for path in ('old', 'new'):
+        sens[path] = run_scenario('sensors', dict(cfg['sensors'], path=path), out, timeout=600)
+    plot.sensor_rates(os.path.join(out, 'sensor_rates.png'), report.sensor_rate_rows(sens),
+                      {report.SENSOR_PATH_NAMES[k]: v['loadavg'][0] for k, v in sens.items()})
+
+
 def part_startup(cfg, out, results):
     runs = [run_scenario('startup', {'run': i}, out, timeout=300)['startup_s'] for i in range(cfg['startup_runs'])]
     results['startup'] = {'cold_runs': runs, 'cold_s': common.median(runs)}
@@ -167,7 +181,7 @@ def part_fidelity(cfg, out, results):
 
 
 PARTS = (('inprocess', part_inprocess), ('determinism', part_determinism), ('speed', part_speed),
-         ('realtime', part_realtime), ('startup', part_startup), ('fidelity', part_fidelity))
+         ('realtime', part_realtime), ('sensors', part_sensors), ('startup', part_startup), ('fidelity', part_fidelity))
 
 
 def machine():
@@ -255,6 +269,9 @@ def main():
     print()
     print(report.table(rows))
     print()
+    if results.get('sensors'):
+        print(report.sensor_table(results['sensors']))
+        print()
     print('machine: %s, %s cores; 1-min load average during the run %s..%s (%s cores are shared with '
           'whatever else runs)' % (results['machine'].get('cpu'), os.cpu_count(), min(loads, default='-'),
                                    max(loads, default='-'), os.cpu_count()))
@@ -268,7 +285,7 @@ def main():
     for name, err in results['errors'].items():
         print('\n%s failed:\n%s' % (name, err))
     print('\nraw figures: %s; plots: %s' % (os.path.relpath(os.path.join(out, 'bench.json')), ', '.join(
-        os.path.relpath(os.path.join(out, p)) for p in ('turning_circles.png', 'hinge_step.png')
+        os.path.relpath(os.path.join(out, p)) for p in ('turning_circles.png', 'hinge_step.png', 'sensor_rates.png')
         if os.path.exists(os.path.join(out, p)))))
     print('total %.0f s' % results['total_s'])
     return 1 if results['errors'] else 0

@@ -57,20 +57,8 @@ def wall_footprints(world_file):
 
 
 def draw(path_png, shapes, path):
-    canvas = plot.Canvas(900, 720)
-    xs = [p[0] for s in shapes for p in s if abs(p[0]) < 50]
-    ys = [p[1] for s in shapes for p in s if abs(p[1]) < 50]
-    axes = plot.Axes(canvas, (90, 70, 870, 660), (min(xs) - 0.5, max(xs) + 0.5), (min(ys) - 0.5, max(ys) + 0.5),
-                     equal=True, title='RACEBOT DEMO: PATH IN THE ROOM', xlabel='X (M)', ylabel='Y (M)')
-    for s in shapes:
-        axes.polyline(s, plot.GREY, width=2)
-    axes.polyline([(x, y) for _, x, y, _ in path], plot.COLOURS[1], width=3)
-    sx, sy = axes.px(path[0][1], path[0][2])
-    canvas.dot(sx, sy, plot.COLOURS[2], r=5)
-    ex, ey = axes.px(path[-1][1], path[-1][2])
-    canvas.dot(ex, ey, plot.COLOURS[0], r=5)
-    axes.legend([('PATH', plot.COLOURS[1], False), ('WALLS, OBJECTS', plot.GREY, False)])
-    canvas.png(path_png)
+    near = [s for s in shapes if all(abs(x) < 50 and abs(y) < 50 for x, y in s)]  # not the ground plane
+    plot.room_path(path_png, near, path)
 
 
 def main():

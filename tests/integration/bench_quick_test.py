@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """tools/bench.py --quick completes, exits 0 and writes bench.json with every part's figures, the
-table and two PNG plots. Checks that figures exist and are physically possible (finite, positive,
+table and three PNG plots. Checks that figures exist and are physically possible (finite, positive,
 all commands delivered, determinism exact), never that they reach a target: the suite must not
 fail on a busy machine, and a quick run's timings are not measurements.
 """
@@ -80,8 +80,16 @@ class BenchQuickTest(unittest.TestCase):
         self.assertGreater(d['samples'], 10)
         self.assertLessEqual(d['max_diff_m'], 1e-9, 'two runs of the same script differ')
 
+    def test_sensor_paths_side_by_side(self):
+        sens = self.results['sensors']
+        for path in ('old', 'new'):
+            self.assertTrue(0.1 < sens[path]['rtf'] < 10.0, sens[path])
+            for topic in ('/scan', '/imu', '/rrbot/camera1/image_raw', '/real_sense/depth/image_raw'):
+                self.assertGreater(sens[path]['topics'][topic]['wall_hz'], 0.0, (path, topic))
+        self.assertIn('TinyRenderer in the physics thread', self.output)  # the side-by-side table
+
     def test_plots_are_png_files(self):
-        for name in ('turning_circles.png', 'hinge_step.png'):
+        for name in ('turning_circles.png', 'hinge_step.png', 'sensor_rates.png'):
             with open(os.path.join(OUT, name), 'rb') as f:
                 self.assertEqual(f.read(8), b'\x89PNG\r\n\x1a\n', name)
 

@@ -406,7 +406,8 @@ def test_a_copy_built_from_body_source_in_another_process_needs_no_search_path(i
 
 def test_each_visual_of_a_link_keeps_its_colour_in_a_camera_image(isolated, physics):
     """A red box and a blue mesh in one link, seen through the cameras' renderer (after SceneColours)."""
-    from racebot_sim_bridge.sensors_bullet import SceneColours, render
+    from racebot_sim_bridge.sensors.render import render
+    from racebot_sim_bridge.sensors.scene import SceneColours
     path = mesh_fixtures.write_mesh(mesh_fixtures.box((0.5, 0.5, 0.5)), str(isolated / 'b.stl'))
     mesh = sdf_world.Shape('mesh', filename=meshes.convert(path).obj_path, scale=(1, 1, 1))
     link = sdf_world.Link('link', visuals=[

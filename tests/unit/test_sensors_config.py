@@ -3,7 +3,7 @@ and rates come from the URDF (no master, no physics)."""
 import pytest
 
 from racebot_sim_bridge import urdf_model
-from racebot_sim_bridge.sensors_config import SensorConfigError, join_topic, plugin_kind, sensor_config
+from racebot_sim_bridge.sensors.config import SensorConfigError, join_topic, plugin_kind, sensor_config
 
 
 @pytest.fixture(scope='module')

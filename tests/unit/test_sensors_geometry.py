@@ -8,11 +8,11 @@ import pybullet as pb
 import pytest
 
 from racebot_sim_bridge.sdf_world import rpy_to_quaternion
-from racebot_sim_bridge.sensors_camera import OPTICAL_FROM_SENSOR, PinholeCamera, mask_depth
-from racebot_sim_bridge.sensors_imu import ImuKinematics, quaternion_to_matrix
-from racebot_sim_bridge.sensors_noise import GaussianNoise, ImageNoise, make_noise
-from racebot_sim_bridge.sensors_ray import ScanGeometry
-from racebot_sim_bridge.sensors_schedule import RateMeter, RenderBudget, UpdateSchedule
+from racebot_sim_bridge.sensors.camera import OPTICAL_FROM_SENSOR, PinholeCamera, mask_depth
+from racebot_sim_bridge.sensors.imu import ImuKinematics, quaternion_to_matrix
+from racebot_sim_bridge.sensors.noise import GaussianNoise, ImageNoise, make_noise
+from racebot_sim_bridge.sensors.ray import ScanGeometry
+from racebot_sim_bridge.sensors.schedule import RateMeter, RenderBudget, UpdateSchedule
 from racebot_sim_bridge.urdf_model import RaySpec
 
 HOKUYO = RaySpec(samples=1081, resolution=1, min_angle=-2.3561944902, max_angle=2.3561944902,

@@ -6,9 +6,9 @@ import numpy as np
 import pytest
 import rospy
 
-from racebot_sim_bridge import sensors_messages as msgs
-from racebot_sim_bridge.sensors_camera import PinholeCamera
-from racebot_sim_bridge.sensors_ray import ScanGeometry
+from racebot_sim_bridge.sensors import messages as msgs
+from racebot_sim_bridge.sensors.camera import PinholeCamera
+from racebot_sim_bridge.sensors.ray import ScanGeometry
 from racebot_sim_bridge.urdf_model import RaySpec
 
 STAMP = rospy.Time(12, 500000000)

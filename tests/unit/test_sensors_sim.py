@@ -9,7 +9,8 @@ import numpy as np
 import pytest
 import rospy
 
-from racebot_sim_bridge import sdf_world, sensors, urdf_model
+from racebot_sim_bridge import sdf_world, urdf_model
+from racebot_sim_bridge.sensors import devices, render
 from racebot_sim_bridge.sensors import SensorManager
 from racebot_sim_bridge.simulator import Simulator
 
@@ -82,8 +83,9 @@ class Log(object):
 def make_world(racebot_xml, params=None, pose=(0.0, 0.0, 0.0)):
     spec = sdf_world.load_world(str(ROOM))
     sim = Simulator(spec, NullIO(), Log(), lambda path: None)
+    # Rendering in the physics thread (the old path), synchronous; test_render_worker.py covers the worker.
     fake = FakeRospy(dict({'~sensors/report_period': 0, '~sensors/render_budget': 1.0,
-                           '~sensors/noise': False}, **(params or {})))
+                           '~sensors/noise': False, '~sensors/render_worker': False}, **(params or {})))
     manager = SensorManager(fake, sim)
     robot = sim.spawn_urdf('racebot', racebot_xml, '', pose)
     frame = robot.body.com_pose_for_frame(pose, (0, 0, 0, 1))  # as spawn_urdf_model places it
@@ -123,11 +125,12 @@ def test_every_sensor_block_becomes_its_topics(world):
 def test_nobody_listening_costs_nothing(world, monkeypatch):
     sim, fake, manager, robot = world
     calls = []
-    monkeypatch.setattr(sensors, 'cast_rays', lambda *a: calls.append('ray'))
-    monkeypatch.setattr(sensors, 'render', lambda *a: calls.append('render'))
+    monkeypatch.setattr(devices, 'cast_rays', lambda *a: calls.append('ray'))
+    monkeypatch.setattr(render, 'render', lambda *a: calls.append('render'))
     run(sim, 0.5)
     assert calls == []
     assert all(not p.messages for p in fake.publishers.values())
+    assert manager.worker is None  # no render worker started either
 
 
 def test_scan_matches_the_room_geometry(world):
@@ -207,8 +210,8 @@ def test_camera_shows_a_red_box_where_the_pinhole_says(world):
     vs, us = np.nonzero(red)
     # the box centre in the camera's optical frame, projected with camera_info's K
     position, orientation = sensor_of(manager, 'camera').mount.pose()
-    from racebot_sim_bridge.sensors_camera import OPTICAL_FROM_SENSOR
-    from racebot_sim_bridge.sensors_imu import quaternion_to_matrix
+    from racebot_sim_bridge.sensors.camera import OPTICAL_FROM_SENSOR
+    from racebot_sim_bridge.sensors.imu import quaternion_to_matrix
     p_sensor = quaternion_to_matrix(orientation).T @ (np.array([1.2, 0.25, 0.1]) - position)
     x, y, z = OPTICAL_FROM_SENSOR @ p_sensor
     fx, cx, fy, cy = info.K[0], info.K[2], info.K[4], info.K[5]

@@ -89,6 +89,21 @@ def cpu_seconds(pid):
     return (int(fields[11]) + int(fields[12])) / float(CLOCK_TICKS)  # utime, stime (fields 14, 15)
 
 
+def child_pids(pid):
+    """The pids of a process's children (the world server's render worker), from /proc."""
+    children = []
+    for entry in os.listdir('/proc'):
+        if not entry.isdigit():
+            continue
+        try:
+            with open('/proc/%s/stat' % entry) as f:
+                if int(f.read().rsplit(')', 1)[1].split()[1]) == pid:
+                    children.append(int(entry))
+        except (OSError, ValueError, IndexError):
+            continue
+    return children
+
+
 def rss_bytes(pid):
     with open('/proc/%d/status' % pid) as f:
         for line in f:

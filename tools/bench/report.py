@@ -2,6 +2,13 @@
 
 MB = 1024.0 * 1024.0
 
+# Sensors in real time, every topic subscribed: (label, topic, declared Hz, target wall Hz for the new path).
+SENSOR_ROWS = (('/scan', '/scan', 40.0, 39.0), ('/imu', '/imu', 100.0, 98.0),
+               ('camera 800x800', '/rrbot/camera1/image_raw', 30.0, 12.0),
+               ('depth camera 640x480', '/real_sense/depth/image_raw', 20.0, 10.0))
+SENSOR_RTF_TARGET = 0.98
+SENSOR_PATH_NAMES = {'old': 'old: TinyRenderer in the physics thread', 'new': 'new: render worker'}
+
 
 def _fmt(value, spec='%.2f', missing='-'):
     return missing if value is None else spec % value
@@ -58,6 +65,21 @@ def rows(r):
     elif 'realtime' in errors:
         add('real time, command path', 'ERROR', '-', '-', 'NO')
 
+    sens = r.get('sensors')
+    if sens and sens.get('new'):
+        new, old = sens['new'], sens.get('old')
+        add('sensors in real time, all subscribed, render worker: real-time factor',
+            '%.3f' % new['rtf'], 'old path: %s' % (_fmt(old['rtf'], '%.3f') if old else '-'),
+            '>= %.2f' % SENSOR_RTF_TARGET, _met(new['rtf'] >= SENSOR_RTF_TARGET))
+        for label, topic, declared, target in SENSOR_ROWS:
+            hz = new['topics'].get(topic, {}).get('wall_hz')
+            was = old['topics'].get(topic, {}).get('wall_hz') if old else None
+            add('sensors in real time: %s, messages per wall second (declared %g Hz)' % (label, declared),
+                _fmt(hz, '%.1f Hz'), 'old path: %s' % _fmt(was, '%.1f Hz'), '>= %g Hz' % target,
+                _met(hz is not None and hz >= target))
+    elif 'sensors' in errors:
+        add('sensors in real time', 'ERROR', '-', '-', 'NO')
+
     su = r.get('startup')
     if su and su.get('cold_s'):
         add('start-up: racebot.launch to 7 controllers running (median of %d, cold)' % len(su['cold_runs']),
@@ -111,6 +133,32 @@ def rows(r):
     elif 'determinism' in errors:
         add('determinism', 'ERROR', '-', '-', 'NO')
     return out
+
+
+def sensor_rate_rows(sens):
+    """The rows plot.sensor_rates draws: each topic's wall Hz per path (None when not measured)."""
+    return [{'label': label, 'declared_hz': declared, 'target_hz': target,
+             'paths': {SENSOR_PATH_NAMES[k]: sens[k]['topics'].get(topic, {}).get('wall_hz')
+                       for k in ('old', 'new') if k in sens}}
+            for label, topic, declared, target in SENSOR_ROWS]
+
+
+def sensor_table(sens):
+    """Old path and new path side by side: RTF, each sensor's wall Hz, CPU, load average."""
+    paths = [k for k in ('old', 'new') if k in sens]
+    header = ('sensors in real time, all subscribed',) + tuple(SENSOR_PATH_NAMES[k] for k in paths)
+    rows_ = [('real-time factor',) + tuple('%.3f' % sens[k]['rtf'] for k in paths)]
+    for label, topic, declared, _ in SENSOR_ROWS:
+        rows_.append(('%s (declared %g Hz), wall Hz' % (label, declared),) + tuple(
+            _fmt(sens[k]['topics'].get(topic, {}).get('wall_hz'), '%.1f') for k in paths))
+    rows_.append(('CPU: world server / render worker (one core = 100 %)',) + tuple(
+        '%.0f %% / %.0f %%' % (100 * sens[k]['cpu_world_server'], 100 * sens[k]['cpu_children']) for k in paths))
+    rows_.append(('renderer',) + tuple(str(sens[k].get('renderer') or '-') for k in paths))
+    rows_.append(('1-min load average after',) + tuple('%.2f' % sens[k]['loadavg'][0] for k in paths))
+    n = len(header)
+    widths = [max(len(r[i]) for r in rows_ + [header]) for i in range(n)]
+    line = lambda r: '| ' + ' | '.join(r[i].ljust(widths[i]) for i in range(n)) + ' |'
+    return '\n'.join([line(header), '|' + '|'.join('-' * (w + 2) for w in widths) + '|'] + [line(r) for r in rows_])
 
 
 def notes(r):

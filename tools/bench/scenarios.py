@@ -274,6 +274,69 @@ def realtime(p, out):
     return result
 
 
+# -- sensors in real time: the old rendering path against the new, one after the other --------------
+SENSOR_PATHS = {
+    # TinyRenderer in the physics thread, within the default render budget: before the render worker
+    'old': {'render_worker': False, 'renderer': 'tiny'},
+    # the render worker with EGL when it loads
+    'new': {'render_worker': True, 'renderer': 'auto'},
+}
+
+
+def sensors_realtime(p, out):
+    """racebot.launch in real time with every sensor topic subscribed, rendering the `path` way:
+    the real-time factor, each topic's messages per wall second, the CPU of the world server and
+    of its render worker, and the load average."""
+    import rosgraph
+    import rospy
+    port, path = p['port'], p['path']
+    core = common.roscore(port, os.path.join(out, 'logs', 'sensors_%s_roscore.log' % path))
+    launch = None
+    result = {'path': path}
+    try:
+        master = rosgraph.Master('/racebot_bench', master_uri='http://localhost:%d' % port)
+        for key, value in SENSOR_PATHS[path].items():
+            master.setParam(WORLD_SERVER + '/sensors/' + key, value)
+        master.setParam(WORLD_SERVER + '/sensors/report_period', 5.0)
+        launch = common.roslaunch(['racebot_gazebo', 'racebot.launch', 'gui:=false', 'teleop:=false'], port,
+                                  os.path.join(out, 'logs', 'sensors_%s_roslaunch.log' % path))
+        wait_controllers(launch)
+        init_node('racebot_bench_sensors_' + path)
+        pid = node_pid(WORLD_SERVER, port)
+        world = World()
+        topics = sensor_topics()
+        counts = dict.fromkeys(topics, 0)
+
+        def counter(topic):
+            def cb(_msg):
+                counts[topic] += 1
+            return cb
+        subs = [rospy.Subscriber(t, rospy.AnyMsg, counter(t), queue_size=2) for t in sorted(topics)]
+        common.wait_for(lambda: all(s.get_num_connections() > 0 for s in subs), 20, 'sensor subscriptions')
+        time.sleep(p['settle_s'])  # the worker starts with the first frame wanted
+        before, s0, w0 = dict(counts), world.time(), time.perf_counter()
+        c0 = {q: common.cpu_seconds(q) for q in [pid] + common.child_pids(pid)}
+        time.sleep(p['window_s'])
+        after, s1, w1 = dict(counts), world.time(), time.perf_counter()
+        c1 = {q: common.cpu_seconds(q) for q in c0 if os.path.exists('/proc/%d' % q)}
+        wall = w1 - w0
+        result.update(rtf=(s1 - s0) / wall, wall_s=wall, loadavg=common.loadavg(),
+                      topics={t: {'type': topics[t], 'wall_hz': (after[t] - before[t]) / wall} for t in sorted(topics)},
+                      cpu_world_server=(c1[pid] - c0[pid]) / wall,
+                      cpu_children=sum(c1[q] - c0[q] for q in c1 if q != pid) / wall)
+        try:
+            result['renderer'] = master.getParam(WORLD_SERVER + '/sensors/rates').get('renderer')
+        except Exception:  # no report yet
+            result['renderer'] = None
+        for s in subs:
+            s.unregister()
+    finally:
+        if launch is not None:
+            launch.stop()
+        core.stop()
+    return result
+
+
 def command_path(n, rate_hz, trace_path):
     """n distinct AckermannDriveStamped at rate_hz through servo_commands; latency from publishing to
     the controllers' callbacks and to the update that applies the new wheel commands, from the world
@@ -535,5 +598,5 @@ def determinism(p, out):
     return {'samples': len(trajectory)}
 
 
-SCENARIOS = {'speed': speed, 'realtime': realtime, 'startup': startup, 'fidelity': fidelity,
+SCENARIOS = {'speed': speed, 'realtime': realtime, 'sensors': sensors_realtime, 'startup': startup, 'fidelity': fidelity,
              'determinism': determinism}

@@ -255,6 +255,7 @@ class WorldServer(object):
 
     def shutdown(self):
         self.services.shutdown()
+        self.sensors.close()  # the render worker stops with us
         if self.viewer is not None:
             self.viewer.close()
         self.sim.close()

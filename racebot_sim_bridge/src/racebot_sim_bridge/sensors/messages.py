@@ -23,7 +23,7 @@ def header(stamp, frame_id):
 
 
 def laser_scan(stamp, frame_id, geometry, ranges):
-    """`geometry`: sensors_ray.ScanGeometry; `ranges`: the reported ranges (inf allowed)."""
+    """`geometry`: ray.ScanGeometry; `ranges`: the reported ranges (inf allowed)."""
     ranges = np.asarray(ranges, dtype=np.float32)
     return LaserScan(header=header(stamp, frame_id), angle_min=geometry.angle_min, angle_max=geometry.angle_max,
                      angle_increment=geometry.angle_increment, time_increment=0.0, scan_time=0.0,
@@ -46,7 +46,7 @@ def depth_image(stamp, frame_id, depth):
 
 
 def camera_info(stamp, frame_id, camera, baseline=0.0, distortion=(0.0, 0.0, 0.0, 0.0, 0.0)):
-    """`camera`: sensors_camera.PinholeCamera."""
+    """`camera`: camera.PinholeCamera."""
     return CameraInfo(header=header(stamp, frame_id), height=camera.height, width=camera.width,
                       distortion_model='plumb_bob', D=list(distortion), K=camera.K(),
                       R=[1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0], P=camera.P(baseline))

@@ -1,0 +1,18 @@
+"""The simulated sensors: what gazebo_ros's laser, camera, depth camera and IMU plugins publish.
+
+The pipeline, module by module:
+  config.py        which sensors, topics, frames and rates a URDF's <sensor> blocks declare
+  schedule.py      when: update times in sim time, achieved rates, the in-thread render budget
+  mount.py         where: a sensor's pose on its robot
+  raycast.py       laser: the ray casts; ray.py: beam geometry and ranges as Gazebo reports them
+  render.py        cameras: renderer choice (EGL / TinyRenderer) and one camera's frame;
+                   camera.py: pinhole maths; scene.py: colours and analytic ground planes
+  world_copy.py    the world's poses at a frame's sim time, and a copy of the world posed by them
+  render_worker.py the worker process that renders frames off the physics thread
+  imu.py, noise.py what an IMU measures; Gazebo's noise models
+  messages.py      the ROS messages, filled as gazebo_ros fills them
+  devices.py       one class per plugin, running the pipeline for its sensor
+  manager.py       SensorManager: sensors of every spawned robot, hooked into the Simulator
+Only devices.py, manager.py and messages.py touch ROS (message classes; manager gets rospy passed in).
+"""
+from .manager import SensorManager  # noqa: F401

@@ -1,0 +1,268 @@
+"""The simulated sensors, one class per gazebo_ros plugin: laser, camera, depth camera, IMU.
+
+Each sensor runs the pipeline on the physics thread after every step: its schedule says whether an
+update is due (schedule.py); if anybody listens it measures (laser: raycast.py; IMU: imu.py;
+cameras: a frame from the render worker or, without one, rendered here: render.py,
+render_worker.py) and builds the messages (messages.py), stamped with the sim time of the
+measurement. A camera frame rendered by the worker is published from the worker's reader thread
+when it is ready, still stamped with the sim time whose poses it shows.
+"""
+import time as walltime
+
+import numpy as np
+from sensor_msgs.msg import CameraInfo, Image, Imu, LaserScan, PointCloud2
+
+from . import messages as msgs
+from ..sdf_world import quaternion_multiply, rpy_to_quaternion
+from .camera import PinholeCamera, mask_depth
+from .imu import ImuKinematics, quaternion_to_matrix
+from .mount import SensorMount
+from .noise import make_noise
+from .ray import ScanGeometry
+from .raycast import cast_rays
+from .render import TINY, CameraFrames
+from .render_worker import FrameBuffers
+from .schedule import RateMeter, UpdateSchedule
+
+
+class Sensor(object):
+    """One simulated sensor: its schedule, mount, publishers and rate meter."""
+    main_topic = None  # the role whose rate is reported
+
+    def __init__(self, manager, robot, spec, config):
+        self.manager = manager
+        self.sim = manager.sim
+        self.robot_name = robot.name
+        self.spec = spec
+        self.config = config
+        self.mount = SensorMount(self.sim.world, robot.body, robot.model, spec.reference, spec.pose)
+        self.schedule = UpdateSchedule(config.rate, start=self.sim.time)
+        self.meter = RateMeter()
+        self.publishers = {}
+        self.failed = False
+
+    def advertise(self, role, msg_class, queue_size):
+        self.publishers[role] = self.manager.rospy.Publisher(self.config.topics[role], msg_class,
+                                                             queue_size=queue_size)
+
+    def listened(self, *roles):
+        """True when any of the roles' topics (all, if none named) has a subscriber."""
+        pubs = [self.publishers[r] for r in roles] if roles else self.publishers.values()
+        return any(p.get_num_connections() > 0 for p in pubs)
+
+    def step(self, time):
+        if not self.schedule.due(time):
+            return
+        self.schedule.advance(time)
+        self.update(time, self.manager.rospy.Time.from_sec(time))
+
+    def update(self, time, stamp):
+        raise NotImplementedError
+
+    def close(self):
+        publishers, self.publishers = self.publishers, {}
+        for p in publishers.values():
+            p.unregister()
+        buffers = getattr(self, 'buffers', None)
+        if buffers is not None:
+            buffers.close()
+
+    @property
+    def topic(self):
+        return self.config.topics[self.main_topic]
+
+
+class LaserSensor(Sensor):
+    main_topic = 'scan'
+
+    def __init__(self, manager, robot, spec, config):
+        super(LaserSensor, self).__init__(manager, robot, spec, config)
+        self.geometry = ScanGeometry(spec.ray)
+        ray = spec.ray
+        self.noise = make_noise(ray.noise_type, ray.noise_mean, ray.noise_stddev, manager.noise_enabled)
+        self.advertise('scan', LaserScan, 5)
+
+    def update(self, time, stamp):
+        if not self.listened():
+            return
+        position, orientation = self.mount.pose()
+        starts, ends = self.geometry.endpoints(position, quaternion_to_matrix(orientation))
+        fractions, hit = cast_rays(self.sim.world, starts, ends)
+        ranges = self.geometry.report(self.geometry.ranges_from_hits(fractions, hit), self.noise)
+        self.publishers['scan'].publish(msgs.laser_scan(stamp, self.config.frame_id, self.geometry, ranges))
+        self.meter.tick()
+
+
+class CameraSensor(Sensor):
+    """gazebo_ros_camera: image + camera_info."""
+    main_topic = 'image'
+
+    def __init__(self, manager, robot, spec, config):
+        super(CameraSensor, self).__init__(manager, robot, spec, config)
+        cam = spec.camera
+        if cam.format not in ('R8G8B8', 'RGB_INT8'):
+            config.warnings.append("sensor '%s': image format %s is published as rgb8" % (spec.name, cam.format))
+        self.camera = PinholeCamera(cam.width, cam.height, cam.horizontal_fov, cam.clip_near, cam.clip_far)
+        noise = make_noise(cam.noise_type, cam.noise_mean, cam.noise_stddev, manager.noise_enabled)
+        self.frames = CameraFrames(self.camera, noise)  # frames rendered in the physics thread
+        # What the worker needs to make this camera's frames (hashable: it keys them by it).
+        self.worker_camera = (self.camera.width, self.camera.height, self.camera.hfov, self.camera.near,
+                              self.camera.far, noise.mean if noise else 0.0, noise.stddev if noise else None)
+        self.buffers = None  # FrameBuffers shared with the worker, made for the first frame it renders
+        self.in_worker = 0   # frames sent to the worker and not rendered yet
+        self.advertise('image', Image, 2)
+        self.advertise('info', CameraInfo, 2)
+
+    def info(self, stamp):
+        return msgs.camera_info(stamp, self.config.frame_id, self.camera, self.config.params['baseline'],
+                                self.config.params['distortion'])
+
+    def capture(self, time, stamp, wanted, want_depth):
+        """A frame of the world at sim `time`, published as `wanted` roles when it is ready: from the
+        render worker when there is one, else rendered here within the render budget. A frame
+        that cannot be taken is skipped (counted)."""
+        manager = self.manager
+        if manager.worker_expected():
+            worker = manager.worker
+            if not worker.ready or self.in_worker:
+                self.meter.skip()  # starting, restarting, or this camera's last frame not rendered yet
+                return
+            if self.buffers is None:
+                self.buffers = FrameBuffers(self.camera.width, self.camera.height)
+            slot = self.buffers.take()
+            if slot is None:  # both buffers still being published
+                self.meter.skip()
+                return
+            position, orientation = self.mount.pose()
+            buffers = self.buffers
+
+            def done(rgb, depth):
+                self.in_worker -= 1
+                try:
+                    self.publish_frame(stamp, wanted, rgb, depth)
+                finally:
+                    buffers.give_back(slot)
+
+            def failed(reason):
+                self.in_worker -= 1
+                buffers.give_back(slot)
+                self.meter.skip()
+                manager.frame_failed(self, reason)
+
+            self.in_worker += 1
+            if not worker.submit(self.sim.world, manager.snapshot(), self.worker_camera, position,
+                                 quaternion_to_matrix(orientation), want_depth, buffers, slot, done, failed):
+                self.in_worker -= 1
+                buffers.give_back(slot)
+                self.meter.skip()
+            return
+        budget = manager.budget
+        if not budget.allow(self):
+            self.meter.skip()
+            return
+        start = walltime.perf_counter()
+        planes = manager.scene_colours().planes
+        position, orientation = self.mount.pose()
+        rgb, depth = self.frames.make(self.sim.world, TINY, planes, position, quaternion_to_matrix(orientation),
+                                      want_depth)
+        budget.spend(walltime.perf_counter() - start)
+        self.publish_frame(stamp, wanted, rgb, depth)
+
+    def update(self, time, stamp):
+        if not self.listened('image'):
+            if self.listened('info'):  # camera_info alone needs no render
+                self.publishers['info'].publish(self.info(stamp))
+            return
+        self.capture(time, stamp, {'image'}, want_depth=False)
+
+    def publish_frame(self, stamp, wanted, rgb, depth):
+        pubs = self.publishers  # the reader thread may publish while the robot is deleted
+        if self.failed or not pubs:
+            return
+        pubs['image'].publish(msgs.rgb_image(stamp, self.config.frame_id, rgb))
+        pubs['info'].publish(self.info(stamp))
+        self.meter.tick()
+
+
+class DepthCameraSensor(CameraSensor):
+    """gazebo_ros_openni_kinect: rgb image, depth image (32FC1 m), point cloud, two camera_infos.
+    Depth is worked out only while its depth image or point cloud has a subscriber."""
+    main_topic = 'depth'
+
+    def __init__(self, manager, robot, spec, config):
+        super(DepthCameraSensor, self).__init__(manager, robot, spec, config)
+        self.advertise('depth', Image, 2)
+        self.advertise('depth_info', CameraInfo, 2)
+        self.advertise('points', PointCloud2, 2)
+        self.rays = None  # per-pixel rays of the point cloud, made when first needed
+
+    def update(self, time, stamp):
+        wanted = {role for role in ('image', 'depth', 'points') if self.listened(role)}
+        if not wanted:
+            for role in ('info', 'depth_info'):
+                if self.listened(role):
+                    self.publishers[role].publish(self.info(stamp))
+            return
+        self.capture(time, stamp, wanted, want_depth=bool(wanted & {'depth', 'points'}))
+
+    def publish_frame(self, stamp, wanted, rgb, depth):
+        pubs = self.publishers
+        if self.failed or not pubs:
+            return
+        frame_id = self.config.frame_id
+        if depth is not None and wanted & {'depth', 'points'}:
+            depth = mask_depth(depth, self.config.params['cutoff'], self.config.params['cutoff_max'])
+            if 'depth' in wanted:
+                pubs['depth'].publish(msgs.depth_image(stamp, frame_id, depth))
+            if 'points' in wanted:
+                if self.rays is None:
+                    self.rays = self.camera.rays_optical()
+                points = self.camera.points(depth, self.rays)
+                pubs['points'].publish(msgs.point_cloud(stamp, frame_id, points, rgb))
+        if 'image' in wanted:
+            pubs['image'].publish(msgs.rgb_image(stamp, frame_id, rgb))
+        for role in ('info', 'depth_info'):
+            pubs[role].publish(self.info(stamp))
+        self.meter.tick()
+
+
+class ImuSensor(Sensor):
+    main_topic = 'imu'
+
+    def __init__(self, manager, robot, spec, config):
+        super(ImuSensor, self).__init__(manager, robot, spec, config)
+        self.kinematics = ImuKinematics(manager.sim.world.gravity)
+        enabled = manager.noise_enabled
+        imu = spec.imu
+        self.gyro_noise = make_noise('gaussian', imu.angular_velocity_noise[0], imu.angular_velocity_noise[1],
+                                     enabled)
+        self.accel_noise = make_noise('gaussian', imu.linear_acceleration_noise[0],
+                                      imu.linear_acceleration_noise[1], enabled)
+        self.plugin_stddev = config.params['gaussian_noise']
+        self.plugin_noise = make_noise('gaussian', 0.0, self.plugin_stddev, enabled)
+        self.offset = rpy_to_quaternion(*config.params['rpy_offset'])
+        self.advertise('imu', Imu, 10)
+
+    def update(self, time, stamp):
+        if not self.listened():
+            self.kinematics.reset()  # the next sample after a silence primes the acceleration
+            return
+        _, orientation, velocity, omega = self.mount.motion()
+        m = self.kinematics.measure(time, orientation, velocity, omega)
+        if m is None:
+            return
+        q = np.asarray(quaternion_multiply(self.offset, m.orientation))  # the plugin's rpyOffset
+        gyro, accel = m.angular_velocity, m.linear_acceleration
+        if self.gyro_noise is not None:
+            gyro = self.gyro_noise.apply(gyro)
+        if self.accel_noise is not None:
+            accel = self.accel_noise.apply(accel)
+        if self.plugin_noise is not None:  # gazebo_ros_imu_sensor's gaussianNoise: on every field
+            gyro, accel = self.plugin_noise.apply(gyro), self.plugin_noise.apply(accel)
+            q = self.plugin_noise.apply(q)
+            q = q / np.linalg.norm(q)  # unlike the plugin, keep it a unit quaternion
+        self.publishers['imu'].publish(msgs.imu(stamp, self.config.frame_id, q, gyro, accel, self.plugin_stddev))
+        self.meter.tick()
+
+
+SENSOR_CLASSES = {'laser': LaserSensor, 'camera': CameraSensor, 'depth': DepthCameraSensor, 'imu': ImuSensor}

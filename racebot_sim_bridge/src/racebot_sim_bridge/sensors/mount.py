@@ -1,0 +1,54 @@
+"""Where a sensor is: its pose (and motion) on a spawned body.
+
+No rospy here. Calls run on the physics client; callers hold the simulator's lock.
+- SensorMount: a sensor's pose on a spawned body. PyBullet merges fixed-joint links into their
+  parent (as Gazebo does), so a sensor link such as `lidar` is no PyBullet link: the mount is the
+  link it was merged into plus the fixed offset urdf_model computes, plus the sensor's <pose>.
+"""
+import numpy as np
+import pybullet as pb
+
+from .. import sdf_world
+
+
+class SensorMount(object):
+    def __init__(self, world, body, model, reference, sensor_pose=(0.0, 0.0, 0.0, 0.0, 0.0, 0.0)):
+        """`body`: physics.Body of the robot; `model`: its urdf_model.RobotModel; `reference`: the
+        link named by <gazebo reference>; `sensor_pose`: the sensor's <pose> (x y z r p y) in it.
+        Raises KeyError when the link it is merged into is not a PyBullet link of the body."""
+        self.world = world
+        self.body = body
+        self.link = model.lumped_link(reference)
+        if self.link not in body.link_index:
+            raise KeyError("link %r (carrying %r) is not a link of the spawned body (links: %s)"
+                           % (self.link, reference, ', '.join(sorted(body.link_index))))
+        self.index = body.link_index[self.link]
+        self.offset = sdf_world.compose(model.pose_in_lumped_link(reference), sensor_pose)
+
+    def _link(self, velocity):
+        """(frame position, frame orientation, COM position, linear velocity at the COM, angular
+        velocity) of the carrying link, all in world coordinates."""
+        client, body = self.world.client, self.body
+        if self.index < 0:
+            frame = body.frame_pose()
+            com = body.pose()
+            lin, ang = body.twist() if velocity else ((0.0, 0.0, 0.0), (0.0, 0.0, 0.0))
+            return frame.position, frame.orientation, com.position, lin, ang
+        s = pb.getLinkState(body.id, self.index, computeLinkVelocity=1 if velocity else 0,
+                            computeForwardKinematics=1, physicsClientId=client)
+        lin, ang = (s[6], s[7]) if velocity else ((0.0, 0.0, 0.0), (0.0, 0.0, 0.0))
+        return s[4], s[5], s[0], lin, ang
+
+    def pose(self):
+        """World (position, quaternion xyzw) of the sensor."""
+        pos, orn, _, _, _ = self._link(False)
+        p, q = pb.multiplyTransforms(pos, orn, self.offset[0], self.offset[1])
+        return np.asarray(p), tuple(q)
+
+    def motion(self):
+        """(position, quaternion, world velocity of the sensor point, world angular velocity)."""
+        pos, orn, com, lin, ang = self._link(True)
+        p, q = pb.multiplyTransforms(pos, orn, self.offset[0], self.offset[1])
+        p, omega = np.asarray(p), np.asarray(ang)
+        velocity = np.asarray(lin) + np.cross(omega, p - np.asarray(com))
+        return p, tuple(q), velocity, omega

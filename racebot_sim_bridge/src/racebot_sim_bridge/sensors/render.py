@@ -1,0 +1,141 @@
+"""Camera frames from a PyBullet client: which renderer, and one camera's frame from a pose.
+
+No rospy here. Two renderers:
+- 'egl': PyBullet's EGL plugin, hardware OpenGL without a window (a GPU, or Mesa's llvmpipe on
+  the CPU: ~45-60 ms for an 800 x 800 frame here, about half the TinyRenderer's time; a GPU is
+  expected to take a few ms, not measured here). The plugin must be loaded into a DIRECT client
+  before its bodies are created.
+- 'tiny': PyBullet's TinyRenderer, on the CPU, always there.
+`load_renderer(client, 'auto')` loads EGL when it loads and draws a correct test image
+(`renderer_draws_correctly`), the TinyRenderer otherwise.
+"""
+import os
+import pkgutil
+import tempfile
+
+import numpy as np
+import pybullet as pb
+
+from .camera import PinholeCamera
+from .noise import ImageNoise
+
+TINY = 'tiny'
+EGL = 'egl'
+RENDERER_CHOICES = ('auto', EGL, TINY)
+RENDERER_FLAGS = {TINY: pb.ER_TINY_RENDERER, EGL: pb.ER_BULLET_HARDWARE_OPENGL}
+RENDERER_NAMES = {TINY: 'TinyRenderer (CPU)', EGL: 'EGL (OpenGL)'}
+
+
+class RendererError(RuntimeError):
+    """A renderer that cannot be used; the message says why."""
+
+
+def render(world, width, height, view_matrix, projection_matrix, renderer=TINY):
+    """(rgb uint8 height x width x 3, depth buffer float32 height x width). No segmentation mask."""
+    w, h, rgba, depth, _ = pb.getCameraImage(width, height, view_matrix, projection_matrix, shadow=0,
+                                             renderer=RENDERER_FLAGS[renderer], flags=pb.ER_NO_SEGMENTATION_MASK,
+                                             physicsClientId=world.client)
+    rgb = np.asarray(rgba, dtype=np.uint8).reshape(h, w, 4)[:, :, :3]
+    return rgb, np.asarray(depth, dtype=np.float32).reshape(h, w)
+
+
+def load_egl(client):
+    """Loads PyBullet's EGL renderer plugin into `client` (DIRECT, no bodies yet). Returns what the
+    plugin says of the OpenGL driver (e.g. 'Mesa/X.org, llvmpipe (LLVM 15.0.6, 256 bits)').
+    Raises RendererError when it does not load."""
+    loader = pkgutil.get_loader('eglRenderer')
+    if loader is None:
+        raise RendererError('PyBullet has no eglRenderer plugin')
+    # The plugin prints the driver's vendor and renderer on stdout: keep them for the log.
+    with tempfile.TemporaryFile(mode='w+b') as out:
+        saved = os.dup(1)
+        try:
+            os.dup2(out.fileno(), 1)
+            plugin = pb.loadPlugin(loader.get_filename(), '_eglRendererPlugin', physicsClientId=client)
+        finally:
+            os.dup2(saved, 1)
+            os.close(saved)
+        out.seek(0)
+        said = out.read().decode('utf-8', 'replace')
+    if plugin < 0:
+        raise RendererError('the EGL plugin did not load (no EGL driver: install libegl1 libegl-mesa0 '
+                            'libgl1-mesa-dri for Mesa)')
+    lines = dict(line.split(' = ', 1) for line in said.splitlines() if ' = ' in line)
+    return ', '.join(v.strip() for k, v in lines.items() if k.strip() in ('Vendor', 'Renderer')) or 'unknown driver'
+
+
+def renderer_draws_correctly(world, renderer):
+    """Renders a red cube 1 m in front of a 16 x 16 camera and checks colour and depth: a driver
+    can load and still draw black or garbage. Adds and removes its own body."""
+    half = 0.1
+    visual = pb.createVisualShape(pb.GEOM_BOX, halfExtents=[half] * 3, rgbaColor=[0.9, 0.1, 0.1, 1.0],
+                                  physicsClientId=world.client)
+    collision = pb.createCollisionShape(pb.GEOM_BOX, halfExtents=[half] * 3, physicsClientId=world.client)
+    box = pb.createMultiBody(0.0, collision, visual, basePosition=[1.0, 0.0, 50.0], physicsClientId=world.client)
+    try:
+        camera = PinholeCamera(16, 16, 0.6, 0.05, 10.0)
+        view = camera.view_matrix([0.0, 0.0, 50.0], np.eye(3))
+        rgb, buffer = render(world, 16, 16, view, camera.projection_matrix(), renderer)
+        depth = camera.linear_depth(buffer)
+    finally:
+        pb.removeBody(box, physicsClientId=world.client)
+    centre = rgb[7:9, 7:9].astype(int).mean(axis=(0, 1))
+    corner = rgb[0, 0].astype(int)
+    red = centre[0] > 120 and centre[0] > centre[1] + 60 and centre[0] > centre[2] + 60
+    depth_ok = abs(float(np.median(depth[7:9, 7:9])) - (1.0 - half)) < 0.02
+    background = not (corner[0] > corner[1] + 60) and abs(float(depth[0, 0]) - 10.0) < 0.5
+    return bool(red and depth_ok and background)
+
+
+def load_renderer(world, choice='auto'):
+    """(renderer, description) for `world` (a physics.PhysicsWorld with no bodies yet): EGL when
+    `choice` allows it and it loads and draws correctly, else the TinyRenderer. With choice 'egl'
+    a failing EGL raises RendererError; with 'auto' the reason is in the description."""
+    if choice not in RENDERER_CHOICES:
+        raise RendererError('renderer must be one of %s, got %r' % (', '.join(RENDERER_CHOICES), choice))
+    if choice == TINY:
+        return TINY, RENDERER_NAMES[TINY]
+    try:
+        driver = load_egl(world.client)
+        if not renderer_draws_correctly(world, EGL):
+            raise RendererError('the EGL renderer (%s) loaded but drew a wrong test image' % driver)
+    except (RendererError, pb.error) as err:
+        if choice == EGL:
+            raise RendererError(str(err))
+        return TINY, '%s; EGL unavailable: %s' % (RENDERER_NAMES[TINY], err)
+    return EGL, '%s: %s' % (RENDERER_NAMES[EGL], driver)
+
+
+class CameraFrames(object):
+    """Makes one camera's frames: render, the analytically drawn ground planes (SceneColours),
+    depth along the optical axis in metres (`far` where nothing is) and the image noise."""
+
+    def __init__(self, camera, noise=None):
+        """`camera`: camera.PinholeCamera; `noise`: noise.GaussianNoise or None."""
+        self.camera = camera
+        self.projection = camera.projection_matrix()
+        self.noise = noise
+        self.rays3 = None  # per-pixel rays, made on the first frame that needs them
+        self.image_noise = None  # its sample pool (MBs) is made on the first frame
+
+    def make(self, world, renderer, planes, position, rotation, want_depth=True):
+        """(rgb, depth or None) seen from the sensor frame at `position` with world `rotation`
+        (3 x 3). Depth is worked out only when `want_depth` (or planes need it to hide behind)."""
+        camera = self.camera
+        view = camera.view_matrix(position, rotation)
+        rgb, buffer = render(world, camera.width, camera.height, view, self.projection, renderer)
+        depth = camera.linear_depth(buffer).astype(np.float32) if want_depth or planes else None
+        if planes:
+            rgb = rgb.copy()
+            if self.rays3 is None:
+                self.rays3 = camera.rays_optical_3d()
+            for plane in planes:
+                t = camera.plane_depth(self.rays3, position, rotation, plane.point, plane.normal)
+                nearer = (t >= camera.near) & (t < depth)
+                rgb[nearer] = plane.rgb
+                depth[nearer] = t[nearer]
+        if self.noise is not None:
+            if self.image_noise is None:
+                self.image_noise = ImageNoise.from_noise(self.noise, rgb.size)
+            rgb = self.image_noise.apply(rgb)
+        return rgb, (depth if want_depth else None)

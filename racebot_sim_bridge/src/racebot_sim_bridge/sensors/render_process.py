@@ -1,0 +1,86 @@
+"""The render worker process: `python -m racebot_sim_bridge.sensors.render_process FD`.
+
+Started by render_worker.RenderWorker with one end of a socket pair (FD). It holds a DIRECT client
+with the EGL renderer when that loads (else the TinyRenderer) and a world_copy.WorldCopy; for each
+request it brings the copy to the request's bodies and snapshot, renders the camera's frame and
+writes it into the frame buffer the request names, then replies. It exits when asked, when its
+socket closes, or when the simulator dies (PR_SET_PDEATHSIG).
+"""
+import ctypes
+import os
+import signal
+import sys
+from multiprocessing.connection import Connection
+
+import numpy as np
+
+from ..physics import PhysicsWorld
+from .camera import PinholeCamera
+from .noise import GaussianNoise
+from .render import CameraFrames, RendererError, load_renderer
+from .render_worker import view_slot
+from .scene import SceneColours
+from .world_copy import WorldCopy
+
+
+def _die_with_parent():
+    """Linux: SIGTERM this process when the simulator dies, however it dies (no orphans)."""
+    try:
+        libc = ctypes.CDLL('libc.so.6', use_errno=True)
+        libc.prctl(1, signal.SIGTERM)  # PR_SET_PDEATHSIG
+    except (OSError, AttributeError):
+        pass
+
+
+def worker_main(fd):
+    _die_with_parent()
+    signal.signal(signal.SIGINT, signal.SIG_IGN)  # Ctrl-C reaches the simulator, which stops us
+    signal.signal(signal.SIGTERM, lambda *_: os._exit(0))
+    conn = Connection(fd)
+
+    _, choice = conn.recv()
+    world = PhysicsWorld()
+    try:
+        renderer, description = load_renderer(world, choice)
+    except RendererError as err:
+        conn.send(('error', None, str(err)))
+        return
+    conn.send(('ready', renderer, description))
+    copy = WorldCopy(world)
+    colours = SceneColours(world, renderer)
+    cameras = {}  # camera tuple -> CameraFrames
+    maps = {}     # (path, offset, width, height) -> (rgb, depth) views
+    while True:
+        try:
+            message = conn.recv()
+        except (EOFError, OSError):
+            return
+        if message[0] == 'stop':
+            return
+        (_, request_id, bodies, names, shot, camera, position, rotation, want_depth, path, offset) = message
+        try:
+            copy.sync(bodies)
+            copy.prune(set(names))
+            colours.refresh()
+            copy.pose(shot)
+            frames = cameras.get(camera)
+            if frames is None:
+                width, height, hfov, near, far, mean, stddev = camera
+                noise = GaussianNoise(mean, stddev) if stddev is not None else None
+                frames = cameras[camera] = CameraFrames(PinholeCamera(width, height, hfov, near, far), noise)
+            rgb, depth = frames.make(world, renderer, colours.planes, np.asarray(position),
+                                     np.asarray(rotation), want_depth)
+            key = (path, offset, frames.camera.width, frames.camera.height)
+            views = maps.get(key)
+            if views is None:
+                views = maps[key] = view_slot(path, offset, frames.camera.width, frames.camera.height)
+            views[0][...] = rgb
+            if depth is not None:
+                views[1][...] = depth
+            conn.send(('frame', request_id, None, depth is not None))
+        except Exception as err:  # one bad frame is reported, the worker goes on
+            conn.send(('frame', request_id, '%s: %s' % (type(err).__name__, err), False))
+
+
+if __name__ == '__main__':
+    worker_main(int(sys.argv[1]))

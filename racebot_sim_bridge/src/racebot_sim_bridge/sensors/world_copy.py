@@ -1,0 +1,85 @@
+"""A copy of the simulated world in another PyBullet client, posed as the world was at an instant.
+
+No rospy here. The render worker holds such a copy. It is built only from what physics.PhysicsWorld
+records of every body (`Body.source`, picklable) and PhysicsWorld's own loaders, as viewer.py
+does, so whatever the loaders draw (shapes, meshes, colours) appears in the copy too.
+- snapshot(world): every body's base pose(s) and joint positions, taken on the physics thread at
+  the sim time a frame is stamped with (a few microseconds a body);
+- WorldCopy.sync(bodies) / .pose(snapshot): keeps the copy's bodies and poses equal to them.
+"""
+import itertools
+
+import pybullet as pb
+
+_SERIALS = itertools.count()
+
+
+def body_key(body):
+    """Identifies a body across a delete and respawn under the same name (PyBullet may even give
+    the new body the old id): a serial number kept on the Body the first time it is asked for."""
+    key = getattr(body, 'copy_key', None)
+    if key is None:
+        key = body.copy_key = (body.name, next(_SERIALS))
+    return key
+
+
+def snapshot(world):
+    """{name: (key, [(position, orientation) of the base and each extra body], (joint positions))}."""
+    client = world.client
+    shot = {}
+    for name, body in world.bodies.items():
+        ids = [body.id] + [extra for _, extra in getattr(body, 'extra_bodies', [])]
+        poses = [pb.getBasePositionAndOrientation(i, physicsClientId=client) for i in ids]
+        joints = list(body.joints.values())
+        positions = tuple(s[0] for s in pb.getJointStates(body.id, [j.index for j in joints],
+                                                          physicsClientId=client)) if joints else ()
+        shot[name] = (body_key(body), poses, positions)
+    return shot
+
+
+def sources(world):
+    """{name: (key, Body.source)} of every body that can be copied."""
+    return {name: (body_key(body), body.source) for name, body in world.bodies.items()
+            if getattr(body, 'source', None) is not None}
+
+
+class WorldCopy(object):
+    def __init__(self, world):
+        """`world`: the physics.PhysicsWorld holding the copy (its own client)."""
+        self.world = world
+        self.keys = {}  # name -> key of the simulated body the copy stands for
+
+    def sync(self, bodies):
+        """Adds the bodies of `bodies` ({name: (key, source)}) not in the copy yet and rebuilds those
+        whose key changed. Bodies absent from it are not touched (see `prune`)."""
+        for name, (key, source) in bodies.items():
+            if self.keys.get(name) == key:
+                continue
+            if name in self.world.bodies:
+                self.world.remove(name)
+            self.keys.pop(name, None)
+            if source[0] == 'sdf':
+                self.world.add_sdf_model(source[1])
+            else:
+                self.world.spawn_urdf(name, source[1], source[2])
+            self.keys[name] = key
+
+    def prune(self, names):
+        """Removes every body whose name is not in `names`."""
+        for name in [n for n in self.world.bodies if n not in names]:
+            self.world.remove(name)
+            self.keys.pop(name, None)
+
+    def pose(self, shot):
+        """Puts every copied body where `shot` (snapshot()) says."""
+        client = self.world.client
+        for name, (key, poses, positions) in shot.items():
+            copy = self.world.bodies.get(name)
+            if copy is None or self.keys.get(name) != key:
+                continue
+            ids = [copy.id] + [extra for _, extra in getattr(copy, 'extra_bodies', [])]
+            for body_id, (position, orientation) in zip(ids, poses):
+                pb.resetBasePositionAndOrientation(body_id, position, orientation, physicsClientId=client)
+            joints = list(copy.joints.values())
+            for joint, position in zip(joints, positions):
+                pb.resetJointState(copy.id, joint.index, position, physicsClientId=client)
