@@ -20,3 +20,21 @@ def wait_for(condition, what, timeout=90.0, period=0.02):
 def yaw_of(q):
     """Yaw of a geometry_msgs/Quaternion."""
     return math.atan2(2 * (q.w * q.z + q.x * q.y), 1 - 2 * (q.y * q.y + q.z * q.z))
+
+
+class Latest(object):
+    """The latest message of a topic, and how many came."""
+
+    def __init__(self, topic, cls):
+        self.msg = None
+        self.count = 0
+        self.sub = rospy.Subscriber(topic, cls, self._on, queue_size=1, buff_size=2 ** 24)
+
+    def _on(self, msg):
+        self.msg = msg
+        self.count += 1
+
+    def after(self, sim_time, what, timeout=90.0):
+        """The first message stamped at or after sim_time."""
+        return wait_for(lambda: self.msg if self.msg is not None and self.msg.header.stamp.to_sec() >= sim_time
+                        else None, what, timeout, period=0.01)

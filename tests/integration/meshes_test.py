@@ -24,10 +24,12 @@ from controller_manager_msgs.srv import ListControllers
 from gazebo_msgs.srv import DeleteModel, SpawnModel
 from geometry_msgs.msg import Pose
 from racebot_sim_bridge import sdf_world, urdf_model
+from racebot_sim_bridge.sensors.imu import quaternion_to_matrix as rotation
 from sensor_msgs.msg import Image, LaserScan
 from std_msgs.msg import Float64
 
 import mesh_fixtures
+from integration_common import Latest
 from robustness_common import WALL_TIMEOUT, Process, SimProbe, wait_for
 
 CONTROLLERS = ['left_rear_wheel_velocity_controller', 'right_rear_wheel_velocity_controller',
@@ -57,26 +59,6 @@ COLOUR_BOX = '''<robot name="{name}"><link name="box"><inertial><mass value="0.5
   <inertia ixx="0.001" iyy="0.001" izz="0.001" ixy="0" ixz="0" iyz="0"/></inertial>
   <visual><geometry><box size="0.12 0.12 0.12"/></geometry><material name="m"><color rgba="{rgba}"/></material></visual>
   <collision><geometry><box size="0.12 0.12 0.12"/></geometry></collision></link>{gazebo}</robot>'''
-
-
-def rotation(q):
-    x, y, z, w = q
-    return np.array([[1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)],
-                     [2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)],
-                     [2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)]])
-
-
-class Latest(object):
-    def __init__(self, topic, cls):
-        self.msg = None
-        self.sub = rospy.Subscriber(topic, cls, self._on, queue_size=1, buff_size=2 ** 24)
-
-    def _on(self, msg):
-        self.msg = msg
-
-    def after(self, sim_time, what):
-        return wait_for(lambda: self.msg if self.msg is not None and self.msg.header.stamp.to_sec() >= sim_time
-                        else None, what)
 
 
 class MeshesTest(unittest.TestCase):

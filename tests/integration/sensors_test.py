@@ -19,7 +19,9 @@ import integration_common  # next to this file
 from gazebo_msgs.msg import ModelStates
 from gazebo_msgs.srv import DeleteModel, GetPhysicsProperties, SpawnModel
 from geometry_msgs.msg import Pose
+from integration_common import Latest
 from racebot_sim_bridge import sdf_world, urdf_model
+from racebot_sim_bridge.sensors.imu import quaternion_to_matrix as rotation
 from rosgraph_msgs.msg import Clock
 from sensor_msgs.msg import CameraInfo, Image, Imu, LaserScan, PointCloud2
 
@@ -37,31 +39,6 @@ BOX_SDF = """<sdf version="1.6"><model name="box"><static>true</static><link nam
 
 
 wait_for = functools.partial(integration_common.wait_for, timeout=WALL_TIMEOUT, period=0.01)
-
-
-def rotation(q):
-    x, y, z, w = q
-    return np.array([[1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)],
-                     [2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)],
-                     [2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)]])
-
-
-class Latest(object):
-    """The latest message of a topic."""
-
-    def __init__(self, topic, cls):
-        self.msg = None
-        self.count = 0
-        self.sub = rospy.Subscriber(topic, cls, self._on, queue_size=1, buff_size=2 ** 24)
-
-    def _on(self, msg):
-        self.msg = msg
-        self.count += 1
-
-    def after(self, sim_time, what):
-        """The first message stamped at or after sim_time."""
-        return wait_for(lambda: self.msg if self.msg is not None and self.msg.header.stamp.to_sec() >= sim_time
-                        else None, what)
 
 
 class SensorsTest(unittest.TestCase):

@@ -161,11 +161,10 @@ def sensor_topics():
     return {t: types.get(t) for t, nodes in pubs if WORLD_SERVER in nodes and types.get(t) in SENSOR_TYPES}
 
 
-def _with_sensors(world, ceiling, pid, p, step):
+def subscribe_counting(topics):
+    """Subscribes to every topic (as any type) and counts its messages -> ({topic: count}, subscribers),
+    once every subscription is connected."""
     import rospy
-    topics = sensor_topics()
-    if not topics:
-        return {'available': False}
     counts = dict.fromkeys(topics, 0)
 
     def counter(topic):
@@ -173,8 +172,16 @@ def _with_sensors(world, ceiling, pid, p, step):
             counts[topic] += 1
         return cb
     subs = [rospy.Subscriber(t, rospy.AnyMsg, counter(t), queue_size=2) for t in sorted(topics)]
+    common.wait_for(lambda: all(s.get_num_connections() > 0 for s in subs), 20, 'sensor subscriptions')
+    return counts, subs
+
+
+def _with_sensors(world, ceiling, pid, p, step):
+    topics = sensor_topics()
+    if not topics:
+        return {'available': False}
+    counts, subs = subscribe_counting(topics)
     try:
-        common.wait_for(lambda: all(s.get_num_connections() > 0 for s in subs), 20, 'sensor subscriptions')
         time.sleep(1.0)
         before, w0, s0 = dict(counts), time.perf_counter(), world.time()
         result = _rounds(world, ceiling, pid, p['rounds'], p['window_s'], step)
@@ -288,7 +295,6 @@ def sensors_realtime(p, out):
     the real-time factor, each topic's messages per wall second, the CPU of the world server and
     of its render worker, and the load average."""
     import rosgraph
-    import rospy
     port, path = p['port'], p['path']
     core = common.roscore(port, os.path.join(out, 'logs', 'sensors_%s_roscore.log' % path))
     launch = None
@@ -305,14 +311,7 @@ def sensors_realtime(p, out):
         pid = node_pid(WORLD_SERVER, port)
         world = World()
         topics = sensor_topics()
-        counts = dict.fromkeys(topics, 0)
-
-        def counter(topic):
-            def cb(_msg):
-                counts[topic] += 1
-            return cb
-        subs = [rospy.Subscriber(t, rospy.AnyMsg, counter(t), queue_size=2) for t in sorted(topics)]
-        common.wait_for(lambda: all(s.get_num_connections() > 0 for s in subs), 20, 'sensor subscriptions')
+        counts, subs = subscribe_counting(topics)
         time.sleep(p['settle_s'])  # the worker starts with the first frame wanted
         before, s0, w0 = dict(counts), world.time(), time.perf_counter()
         c0 = {q: common.cpu_seconds(q) for q in [pid] + common.child_pids(pid)}
