@@ -111,21 +111,30 @@ def test_a_frame_shows_the_world_at_its_stamp(racebot_xml, closing):
     listen(fake, CAMERA, '/rrbot/camera1/camera_info')
     images = fake.publishers[CAMERA].messages
     step_until(sim, lambda: len(images) >= 1, 'the first frame')
-    camera = sensor_of(manager, 'camera')
-    # Step until a request is in flight, then move the box at once (before the worker renders).
-    step_until(sim, lambda: camera.in_worker > 0, 'a frame request', sim.step_size)
+    requested = []  # sim times of the frame requests the worker took
+    submit = manager.worker.submit
+
+    def recording(*args):
+        queued = submit(*args)
+        if queued:
+            requested.append(sim.time)
+        return queued
+    manager.worker.submit = recording
+    # Step until a request is made, then move the box at once (before the worker renders it).
+    step_until(sim, lambda: requested, 'a frame request', sim.step_size)
     with sim.lock:
-        stamp_of_request = sim.time
+        stamp_of_request = requested[-1]
         pb.resetBasePositionAndOrientation(box.id, [1.2, -0.25, 0.1], [0, 0, 0, 1], physicsClientId=sim.world.client)
-    count = len(images)
-    step_until(sim, lambda: len(images) > count, 'the requested frame')
-    img = images[count]
-    assert img.header.stamp.to_sec() == pytest.approx(stamp_of_request, abs=1e-9)
+
+    def stamped(t):
+        return [m for m in images if abs(m.header.stamp.to_sec() - t) < 1e-9]
+    step_until(sim, lambda: stamped(stamp_of_request), 'the requested frame')
+    img = stamped(stamp_of_request)[0]
     info = fake.publishers['/rrbot/camera1/camera_info'].messages[-1]
     vs, us = np.nonzero(red_pixels(img))
     before, after = projected(manager, info, [1.2, 0.25, 0.1]), projected(manager, info, [1.2, -0.25, 0.1])
     assert us.mean() == pytest.approx(before[0], abs=6)  # where it was at the stamp
-    step_until(sim, lambda: len(images) > count + 1, 'the next frame')
+    step_until(sim, lambda: images[-1].header.stamp.to_sec() > stamp_of_request + 1e-9, 'a later frame')
     vs, us = np.nonzero(red_pixels(images[-1]))
     assert us.mean() == pytest.approx(after[0], abs=6)  # and the next frame sees it moved
     assert manager.worker.restarts == 0

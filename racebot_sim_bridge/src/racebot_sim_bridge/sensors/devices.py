@@ -25,6 +25,12 @@ from .render_worker import FrameBuffers
 from .schedule import RateMeter, UpdateSchedule
 
 
+# Frames of one camera the worker may hold at once. With one, the worker sat idle after each frame
+# until the camera's next due time; with two, the next frame already waits in its queue (measured:
+# 11.7 -> 12.5 Hz for the 800 x 800 camera). Each frame is still of the sim time it is stamped with.
+FRAMES_IN_WORKER = 2
+
+
 class Sensor(object):
     """One simulated sensor: its schedule, mount, publishers and rate meter."""
     main_topic = None  # the role whose rate is reported
@@ -124,13 +130,13 @@ class CameraSensor(Sensor):
         manager = self.manager
         if manager.worker_expected():
             worker = manager.worker
-            if not worker.ready or self.in_worker:
-                self.meter.skip()  # starting, restarting, or this camera's last frame not rendered yet
+            if not worker.ready or self.in_worker >= FRAMES_IN_WORKER:
+                self.meter.skip()  # starting, restarting, or this camera's frames not rendered yet
                 return
             if self.buffers is None:
-                self.buffers = FrameBuffers(self.camera.width, self.camera.height)
+                self.buffers = FrameBuffers(self.camera.width, self.camera.height, FRAMES_IN_WORKER + 1)
             slot = self.buffers.take()
-            if slot is None:  # both buffers still being published
+            if slot is None:  # every buffer still being rendered or published
                 self.meter.skip()
                 return
             position, orientation = self.mount.pose()
