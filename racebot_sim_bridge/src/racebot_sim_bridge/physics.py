@@ -319,6 +319,13 @@ class PhysicsWorld(object):
         self.bodies[name] = body
         return body
 
+    def add_copy(self, name, source):
+        """Builds here a copy of another client's body from its Body.source (a window's or a render
+        worker's copy of the simulated world); returns the new Body."""
+        if source[0] == 'sdf':
+            return self.add_sdf_model(source[1])
+        return self.spawn_urdf(name, source[1], source[2])
+
     def remove(self, name):
         body = self.bodies.pop(name)
         pb.removeBody(body.id, physicsClientId=self.client)

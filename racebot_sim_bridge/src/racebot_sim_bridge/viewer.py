@@ -55,9 +55,7 @@ class Viewer(object):
         source = getattr(body, 'source', None)
         if source is None:
             return None
-        if source[0] == 'sdf':
-            return self.view.add_sdf_model(source[1])
-        return self.view.spawn_urdf(body.name, source[1], source[2])
+        return self.view.add_copy(body.name, source)
 
     def close(self):
         self.view.close()

@@ -58,10 +58,7 @@ class WorldCopy(object):
             if name in self.world.bodies:
                 self.world.remove(name)
             self.keys.pop(name, None)
-            if source[0] == 'sdf':
-                self.world.add_sdf_model(source[1])
-            else:
-                self.world.spawn_urdf(name, source[1], source[2])
+            self.world.add_copy(name, source)
             self.keys[name] = key
 
     def prune(self, names):
