@@ -20,9 +20,19 @@ class ResolveError(ValueError):
     """A URI names no existing file; the message lists where it was looked for."""
 
 
+_ROSPACKS = {}  # ROS_PACKAGE_PATH -> rospkg.RosPack
+
+
 def _rospack():
+    """One RosPack per ROS_PACKAGE_PATH: a new one crawls the whole path again (~13 ms here for each
+    package:// mesh, ~40 ms for each model path with its manifest exports), and it caches what it read:
+    a package made on disk later, under an unchanged ROS_PACKAGE_PATH, is not seen until a restart."""
     import rospkg  # Debian's python3-rospkg; imported late so that pure users need no ROS
-    return rospkg.RosPack()
+    key = os.environ.get('ROS_PACKAGE_PATH', '')
+    rospack = _ROSPACKS.get(key)
+    if rospack is None:
+        rospack = _ROSPACKS[key] = rospkg.RosPack()
+    return rospack
 
 
 def package_dir(name, rospack=None):
