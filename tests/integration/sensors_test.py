@@ -49,7 +49,9 @@ class SensorsTest(unittest.TestCase):
         cls.models = None
         rospy.Subscriber('/clock', Clock, cls._on_clock, queue_size=1)
         rospy.Subscriber('/gazebo/model_states', ModelStates, cls._on_models, queue_size=1)
-        rospy.wait_for_service('/gazebo/spawn_sdf_model', timeout=WALL_TIMEOUT)
+        # each service it calls: the world server advertises them one after another, as Gazebo does
+        for name in ('spawn_sdf_model', 'delete_model', 'get_physics_properties'):
+            rospy.wait_for_service('/gazebo/' + name, timeout=WALL_TIMEOUT)
         cls.spawn = rospy.ServiceProxy('/gazebo/spawn_sdf_model', SpawnModel)
         cls.delete = rospy.ServiceProxy('/gazebo/delete_model', DeleteModel)
         cls.gravity = rospy.ServiceProxy('/gazebo/get_physics_properties', GetPhysicsProperties)().gravity
