@@ -5,9 +5,9 @@ light) before each camera frame, whatever getCameraImage's `shadow` argument say
 and no PyBullet call reaches it (configureDebugVisualizer(COV_ENABLE_SHADOWS) goes to the GUI's
 renderer, not the plugin's). The switch is the plugin's global `bool useShadowMap`, which the
 shared object does not export. Measured on llvmpipe, 2 cores: an 800 x 800 frame 69 -> 26 ms, a
-640 x 480 frame 55 -> 14 ms. The frames are then lit as the TinyRenderer lights them (the
-simulator asks for shadow=0 everywhere): a sunlit face reads (114, 152, 72) in both, and
-(103, 137, 65) with the shadow pass, whose light is PyBullet's, not the world's sun.
+640 x 480 frame 55 -> 14 ms. Neither renderer then draws shadows (the simulator asks for shadow=0
+everywhere; the pass's light was PyBullet's, not the world's sun), and a sunlit face gets the
+TinyRenderer's colour: (114, 152, 72) in both in one scene, (103, 137, 65) with the pass.
 
 How: the flag's offset and that of the exported `PyInit_eglRenderer` are read from the file's
 ELF symbol table (pyelftools); dlopen of the same file returns the already-loaded plugin, whose

@@ -4,9 +4,8 @@ No rospy here. Two renderers:
 - 'egl': PyBullet's EGL plugin, hardware OpenGL without a window (a GPU, or Mesa's llvmpipe on
   the CPU: ~20 ms for an 800 x 800 frame here with its shadow-map pass off (egl_shadow_map), a
   quarter of the TinyRenderer's time; a GPU is expected to take a few ms, not measured here). The
-  plugin must be loaded into a DIRECT client before its bodies are created. Its frames are at most
-  1024 x 768 pixels (the plugin's fixed surface): a taller or wider camera gets that many rows or
-  columns, repeated to its size.
+  plugin must be loaded into a DIRECT client before its bodies are created. It draws into a fixed
+  1024 x 768 surface, so render() renders a bigger frame in tiles (EGL_SURFACE).
 - 'tiny': PyBullet's TinyRenderer, on the CPU, always there.
 `load_renderer(client, 'auto')` loads EGL when it loads and draws a correct test image
 (`renderer_draws_correctly`), the TinyRenderer otherwise.
