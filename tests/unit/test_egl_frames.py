@@ -80,6 +80,21 @@ def test_the_switch_is_the_shadow_pass(egl_world):
     assert np.abs(median(off, wall) - median(tiny, wall)).max() <= 3, (median(off, wall), median(tiny, wall))
 
 
+def test_egl_still_renders_when_the_switch_cannot_be_found(monkeypatch):
+    """A PyBullet build without the symbol: EGL is used all the same (slower), and the renderer's
+    description, which the simulator logs once, says why."""
+    def cannot(path):
+        raise egl_shadow_map.ShadowMapError('%s has no symbol useShadowMap (a stripped build)' % path)
+    monkeypatch.setattr(egl_shadow_map, 'switch_off', cannot)
+    world, description = scene(EGL)
+    try:
+        assert 'shadow-map pass stays on' in description and 'no symbol useShadowMap' in description
+        _, depth = frame(world, EGL, 64, 48)
+        assert abs(float(np.median(depth[20:28, 28:36])) - 2.95) < 0.02  # the wall, 3 m ahead
+    finally:
+        world.close()
+
+
 def test_a_library_without_the_flag_is_left_alone():
     with pytest.raises(egl_shadow_map.ShadowMapError, match='no symbol'):
         egl_shadow_map.switch_off(pb.__file__)  # pybullet itself: no useShadowMap, no PyInit_eglRenderer
