@@ -27,7 +27,8 @@ class ShadowMapError(RuntimeError):
 
 
 def symbol_offsets(path, names):
-    """{name: st_value} of the named symbols in the ELF file's symbol tables (.symtab and .dynsym)."""
+    """{name: (offset, size, 'STT_OBJECT' or 'STT_FUNC')} of those of the named symbols found in the
+    ELF file's symbol tables (.symtab and .dynsym)."""
     from elftools.common.exceptions import ELFError
     from elftools.elf.elffile import ELFFile
     from elftools.elf.sections import SymbolTableSection
