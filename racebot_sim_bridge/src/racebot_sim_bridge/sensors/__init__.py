@@ -6,7 +6,8 @@ The pipeline, module by module:
   mount.py         where: a sensor's pose on its robot
   raycast.py       laser: the ray casts; ray.py: beam geometry and ranges as Gazebo reports them
   render.py        cameras: renderer choice (EGL / TinyRenderer) and one camera's frame;
-                   camera.py: pinhole maths; scene.py: colours and analytic ground planes
+                   camera.py: pinhole maths; scene.py: colours and analytic ground planes;
+                   egl_shadow_map.py: the EGL plugin's per-frame shadow pass, switched off
   world_copy.py    the world's poses at a frame's sim time, and a copy of the world posed by them
   render_worker.py the worker process that renders frames off the physics thread
   imu.py, noise.py what an IMU measures; Gazebo's noise models
