@@ -43,6 +43,15 @@ def frame(world, renderer, width, height):
     return rgb, camera.linear_depth(buffer)
 
 
+def tiny_frame(width, height):
+    """frame() of the same scene from the TinyRenderer, the reference EGL is compared with."""
+    world, _ = scene(TINY)
+    try:
+        return frame(world, TINY, width, height)
+    finally:
+        world.close()
+
+
 @pytest.fixture
 def egl_world():
     world, description = scene(EGL)
@@ -60,11 +69,7 @@ def test_the_switch_is_the_shadow_pass(egl_world):
     """The byte written is the plugin's shadow switch: with it back on, the shadow shader darkens
     the floor; off, a sunlit face has the TinyRenderer's colour."""
     world, _ = egl_world
-    tiny_world, _ = scene(TINY)
-    try:
-        tiny, _ = frame(tiny_world, TINY, 160, 120)
-    finally:
-        tiny_world.close()
+    tiny, _ = tiny_frame(160, 120)
     off, _ = frame(world, EGL, 160, 120)
     flag = egl_shadow_map.flag_of(plugin_path())
     flag.value = True
@@ -131,11 +136,7 @@ def test_a_frame_taller_than_the_plugin_surface_has_all_its_rows(egl_world, monk
     near_floor = depth[650:]  # 0.5 m below the camera: each row is a little nearer than the one above
     assert (np.diff(near_floor, axis=0) < 0).all(axis=1).all(), 'repeated rows in the near floor'
 
-    tiny_world, _ = scene(TINY)
-    try:
-        _, tiny_depth = frame(tiny_world, TINY, 800, 800)
-    finally:
-        tiny_world.close()
+    _, tiny_depth = tiny_frame(800, 800)
     wall = np.abs(tiny_depth - 2.95) < 0.02  # its face; rows ~283-517, across the tiles' seam at row 400
     wall[500:] = False  # where the floor meets it
     assert wall[399].any() and wall[400].any()
