@@ -35,8 +35,18 @@ def use_loopback_ros_networking(env):
     return env
 
 
+def failure_reason(element, limit=300):
+    """' -- ' and the first line of a JUnit failure's message (or of its text), cut to `limit`."""
+    text = (element.get('message') or element.text or '').strip()
+    line = text.splitlines()[0] if text else ''
+    if not line:
+        return ''
+    return ' -- ' + (line if len(line) <= limit else line[:limit - 3] + '...')
+
+
 def count_junit(path):
-    """(passed, failed, skipped, names of failures) of one JUnit XML file."""
+    """(passed, failed, skipped, failures) of one JUnit XML file; a failure is the case's name and
+    the first line of its message, so the summary at the end of a CI log says why, not only what."""
     try:
         root = ET.parse(path).getroot()
     except (ET.ParseError, OSError) as err:
@@ -45,9 +55,12 @@ def count_junit(path):
     failures = []
     for case in root.iter('testcase'):
         name = '%s.%s' % (case.get('classname', ''), case.get('name', ''))
-        if case.find('failure') is not None or case.find('error') is not None:
+        bad = case.find('failure')
+        if bad is None:
+            bad = case.find('error')
+        if bad is not None:
             failed += 1
-            failures.append(name)
+            failures.append(name + failure_reason(bad))
         elif case.find('skipped') is not None:
             skipped += 1
         else:

@@ -10,9 +10,11 @@ subscribes to every sensor topic the car offers (laser, IMU, cameras, point clou
 scripted route through servo_commands (/ackermann_cmd_mux/output): figure eights, reverse arcs,
 speed changes and stops, chosen by sim time. It measures:
   - the resident memory (RSS) of the simulator (the /gazebo node) after a warm-up and at the end:
-    it must grow less than --max-growth percent (5). Each is the lowest of RSS_WINDOW samples: a
-    point cloud (10 MB) on its way out is there in some samples and gone in the next; a leak
-    raises them all;
+    it must grow less than --max-growth percent (5). Each is the lowest of RSS_WINDOW samples taken
+    SAMPLE_WALL_PERIOD apart: a point cloud (10 MB, 5 % of the simulator) on its way out is there
+    in about 40 % of the samples and gone in the next; a leak raises them all. With 3 samples 2 s
+    apart, the three at the end all caught a cloud in about one run in 16 (a CI failure);
+    with 12 samples the odds are below 1 in 50,000;
   - every ERROR or FATAL on /rosout_agg, and any node that died (roslaunch's output): none allowed;
   - /clock: it must never go back (the soak does no reset);
   - at the end: the simulator still serves, the seven controllers run, the car's state is finite.
@@ -36,7 +38,7 @@ import time
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 ROOM_WORLD = os.path.join(ROOT, 'racebot_gazebo', 'worlds', 'room_mini.world')
-RSS_WINDOW = 3  # samples whose lowest RSS stands for the warm-up and for the end (see above)
+RSS_WINDOW = 12  # samples whose lowest RSS stands for the warm-up and for the end (see above)
 CONTROLLERS = ['left_rear_wheel_velocity_controller', 'right_rear_wheel_velocity_controller',
                'left_front_wheel_velocity_controller', 'right_front_wheel_velocity_controller',
                'left_steering_hinge_position_controller', 'right_steering_hinge_position_controller',
@@ -48,7 +50,7 @@ ROUTE = [(0.5, 0.3, 10.0), (0.5, -0.3, 10.0), (0.0, 0.0, 1.0), (-0.3, 0.4, 5.0),
          (0.0, 0.0, 2.0)]
 ROUTE_PERIOD = sum(seg[2] for seg in ROUTE)
 COMMAND_WALL_PERIOD = 0.1   # s of wall time between two published commands
-SAMPLE_WALL_PERIOD = 2.0    # s of wall time between two RSS samples
+SAMPLE_WALL_PERIOD = 0.5    # s of wall time between two RSS samples (reading /proc costs ~50 us)
 SENSOR_TYPES = ('sensor_msgs/LaserScan', 'sensor_msgs/Imu', 'sensor_msgs/Image', 'sensor_msgs/PointCloud2')
 STARTUP_TIMEOUT = 180.0     # wall s for the launch to bring up the car with its controllers
 
@@ -98,6 +100,16 @@ def rss_kb(pid):
     except OSError:
         return None
     return None
+
+
+def rss_windows(samples, warmup, window=RSS_WINDOW):
+    """(warm-up, end): the (sim time, RSS) samples with the lowest RSS among the first `window` samples
+    taken at or after `warmup` s of sim time, and among the last `window` samples; (None, None)
+    while fewer than 2 * window samples lie after the warm-up, so the two never share a sample."""
+    after = [s for s in samples if s[0] >= warmup]
+    if len(after) < 2 * window:
+        return None, None
+    return min(after[:window], key=lambda s: s[1]), min(after[-window:], key=lambda s: s[1])
 
 
 class Soak(object):
@@ -243,7 +255,6 @@ class Soak(object):
         with self.lock:
             self.start_sim = self.clock or 0.0
         samples = []
-        warm_rss = None
         next_sample = 0.0
         last_report = time.time()
         while True:
@@ -261,9 +272,6 @@ class Soak(object):
                     self.failures.append('the simulator (pid %d) is gone at %.0f s of sim time' % (self.sim_pid, sim))
                     break
                 samples.append((round(driven, 3), rss))
-                after_warmup = [x for x in samples if x[0] >= self.warmup]
-                if warm_rss is None and len(after_warmup) >= RSS_WINDOW:
-                    warm_rss = min(after_warmup[:RSS_WINDOW], key=lambda x: x[1])
                 next_sample = now + SAMPLE_WALL_PERIOD
             if now - last_report >= 30.0:
                 last_report = now
@@ -277,14 +285,12 @@ class Soak(object):
                 break
             time.sleep(COMMAND_WALL_PERIOD)
         self.wall_seconds = time.time() - start_wall
-        self.samples = samples
-        self.warm_rss = warm_rss
-        end = rss_kb(self.sim_pid)
         self.driven = (self.clock or 0.0) - self.start_sim
+        end = rss_kb(self.sim_pid)
         if end is not None:
-            self.end_rss = min(samples[-(RSS_WINDOW - 1):] + [(round(self.driven, 3), end)], key=lambda x: x[1])
-        else:
-            self.end_rss = None
+            samples.append((round(self.driven, 3), end))
+        self.samples = samples
+        self.warm_rss, self.end_rss = rss_windows(samples, self.warmup)
 
     # -- verdict ----------------------------------------------------------------------------------
     def final_checks(self):
@@ -346,7 +352,8 @@ class Soak(object):
                                      % (growth, self.warm_rss[1] / 1024.0, self.end_rss[1] / 1024.0,
                                         self.args.max_growth))
         elif not self.failures:
-            self.failures.append('no RSS measured after the warm-up of %.0f s of sim time' % self.warmup)
+            self.failures.append('fewer than %d RSS samples after the warm-up of %.0f s of sim time: drive longer '
+                                 '(--sim-minutes) or shorten the warm-up (--warmup)' % (2 * RSS_WINDOW, self.warmup))
         if self.errors:
             self.failures.append('%d ERROR/FATAL log messages, first: %s' % (len(self.errors), self.errors[0]))
         if self.clock_regressions:
