@@ -229,7 +229,7 @@ def test_the_copy_follows_a_respawn_under_the_same_name():
     """Delete a model and spawn another under its name (PyBullet may reuse the body id): the copy
     must be rebuilt from the new model, and posed by the snapshot."""
     from racebot_sim_bridge import sdf_world
-    from racebot_sim_bridge.sensors.world_copy import WorldCopy, snapshot, sources
+    from racebot_sim_bridge.world_copy import WorldCopy, snapshot, sources
     from test_sensors_sim import RED_BOX
     world, other = PhysicsWorld(), PhysicsWorld()
     try:

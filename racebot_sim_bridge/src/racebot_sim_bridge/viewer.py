@@ -1,65 +1,92 @@
-"""Our gzclient: PyBullet's window showing a copy of the simulated world.
+"""Our gzclient: PyBullet's window, in a process of its own, showing a copy of the simulated world.
 
-Physics always runs in a DIRECT client. Every call into a GUI client waits on its render thread,
-so stepping the physics there makes a step cost a share of a frame (with software OpenGL the
-simulation then crawls). Instead, this window holds its own copy of every body and receives poses
-and joint positions about 30 times a second of wall time; the physics never waits on rendering.
+No rospy here. Physics always runs in a DIRECT client. A GUI client draws in a thread that never
+rests (with software OpenGL it takes most of a core) and every call into it waits on that thread.
+Held in the simulator's process, it cost real time (a real-time factor of 0.67 with every sensor
+subscribed, on 2 cores), and closing or killing the window killed the simulation. So, as gzclient
+is to gzserver, the window is a process of its own (viewer_process, started by child_process),
+niced so that physics and cameras come first, holding a world_copy.WorldCopy.
+
+About 30 times a second of wall time the physics thread sends it the world's snapshot (poses and
+joint positions, a few kB), but only once the window has applied the previous one: the physics never
+waits for the window, and a slow window shows fewer updates, never old ones. If the window goes away
+(closed, killed, the X server gone), `sync` says why once and returns False; the simulation goes on.
 """
-import pybullet as pb
-
-from .physics import PhysicsWorld
+from . import child_process
+from .physics import PhysicsError
+from .world_copy import snapshot, sources
 
 SYNC_PERIOD = 1.0 / 30  # wall seconds between window updates
+START_TIMEOUT = 60.0    # s for the window to open (software OpenGL on a loaded machine is slow)
+MODULE = 'racebot_sim_bridge.viewer_process'
 
 
 class Viewer(object):
-    def __init__(self, world):
-        """world: the simulated physics.PhysicsWorld. Raises physics.PhysicsError without a display."""
+    def __init__(self, world, start_timeout=START_TIMEOUT):
+        """world: the simulated physics.PhysicsWorld. Raises PhysicsError when the window does not open
+        (no display, no OpenGL), saying why."""
         self.world = world
-        self.view = PhysicsWorld(world.step_size, world.gravity, gui=True)
-        pb.configureDebugVisualizer(pb.COV_ENABLE_GUI, 0, physicsClientId=self.view.client)
-        self.shown = {}  # body name -> (pose, joint positions) last sent to the window
+        self.process, self._conn = child_process.start(MODULE)
+        self._known = {}      # name -> key of the bodies the window has been sent
+        self._busy = False    # a snapshot is on its way or being applied
+        self.gone = None      # why the window went away
+        try:
+            self._conn.send(('init',))
+            if not self._conn.poll(start_timeout):
+                raise PhysicsError('the window did not open within %g s' % start_timeout)
+            reply = self._conn.recv()
+        except (EOFError, OSError):
+            code = self.process.wait()
+            self.close()
+            raise PhysicsError('the window process exited (code %s) before it opened' % code)
+        except PhysicsError:
+            self.close()
+            raise
+        if reply[0] != 'ready':
+            self.close()
+            raise PhysicsError(reply[1])
+
+    @property
+    def pid(self):
+        return self.process.pid
 
     def sync(self):
-        """Brings the window's bodies to the simulated state; call with the simulation's lock held."""
-        world, view = self.world, self.view
-        for name in [n for n in view.bodies if n not in world.bodies]:
-            view.remove(name)
-        for name, body in world.bodies.items():
-            copy = view.bodies.get(name)
-            if copy is None:
-                copy = self._add(body)
-                if copy is None:
-                    continue
-            if body.static:
-                continue
-            # Each call into the window waits for its render thread: send only what moved.
-            pose = body.pose()
-            joints = list(body.joints.values())
-            positions = tuple(round(s.position, 4) for s in world.joint_states(body, [j.index for j in joints])) \
-                if joints else ()
-            last = self.shown.get(name)
-            if last is not None and _close(last[0], pose) and last[1] == positions:
-                continue
-            self.shown[name] = (pose, positions)
-            pb.resetBasePositionAndOrientation(copy.id, pose.position, pose.orientation, physicsClientId=view.client)
-            if joints:
-                pb.resetJointStatesMultiDof(copy.id, [copy.joints[j.name].index for j in joints],
-                                            [[p] for p in positions], physicsClientId=view.client)
-            if body.kind == 'urdf' and name == next(n for n, b in world.bodies.items() if b.kind == 'urdf'):
-                view.follow_with_camera(copy)
-        for name in [n for n in self.shown if n not in world.bodies]:
-            del self.shown[name]
-
-    def _add(self, body):
-        source = getattr(body, 'source', None)
-        if source is None:
-            return None
-        return self.view.add_copy(body.name, source)
+        """Sends the window the simulated state, unless it is still applying the last one; call with
+        the simulation's lock held. False once the window has gone (see `gone`)."""
+        if self.gone is not None:
+            return False
+        try:
+            if self._busy:
+                if not self._conn.poll(0):
+                    return True
+                self._conn.recv()
+                self._busy = False
+            world = self.world
+            bodies = {name: entry for name, entry in sources(world).items() if self._known.get(name) != entry[0]}
+            follow = next((name for name, body in world.bodies.items() if body.kind == 'urdf'), None)
+            self._conn.send(('sync', bodies, list(world.bodies), snapshot(world), follow))
+        except (EOFError, OSError) as err:
+            code = self.process.poll()
+            if code is None:
+                try:
+                    code = self.process.wait(2.0)
+                except Exception:
+                    code = 'still running'
+            self.gone = 'the window closed (process %d, exit code %s; %s)' % (
+                self.process.pid, code, type(err).__name__)
+            child_process.stop(self.process, self._conn)
+            return False
+        self._busy = True
+        for name, (key, _) in bodies.items():
+            self._known[name] = key
+        return True
 
     def close(self):
-        self.view.close()
-
-
-def _close(a, b, tol=1e-4):
-    return all(abs(x - y) < tol for x, y in zip(a.position + a.orientation, b.position + b.orientation))
+        """Closes the window and waits for its process."""
+        if self.gone is None:
+            try:
+                self._conn.send(('stop',))
+                self.process.wait(2.0)
+            except Exception:
+                pass
+        child_process.stop(self.process, self._conn)

@@ -151,6 +151,7 @@ class WorldServer(object):
         if gui:
             try:
                 self.viewer = Viewer(self.sim.world)
+                rospy.loginfo('PyBullet window open (our gzclient, process %d)' % self.viewer.pid)
             except PhysicsError as err:
                 rospy.logwarn('could not open the PyBullet window (%s): running headless' % err)
         self.sim.rendering = self.viewer is not None
@@ -245,7 +246,12 @@ class WorldServer(object):
             if self.viewer is not None and time.perf_counter() - last_view >= VIEWER_SYNC_PERIOD:
                 last_view = time.perf_counter()
                 with self.sim.lock:
-                    self.viewer.sync()
+                    shown = self.viewer.sync()
+                if not shown:
+                    rospy.logwarn('%s: the simulation goes on without a window; restart the launch to see '
+                                  'it again' % self.viewer.gone)
+                    self.viewer = None
+                    self.sim.rendering = False
             if self.update_rate > 0:
                 ahead = wall_start + steps_since / self.update_rate - time.perf_counter()
                 if ahead > PACING_SLACK:  # sleep until this update's wall time: Gazebo's one update per period

@@ -8,9 +8,8 @@ The pipeline, module by module:
   render.py        cameras: renderer choice (EGL / TinyRenderer) and one camera's frame;
                    camera.py: pinhole maths; scene.py: colours and analytic ground planes;
                    egl_shadow_map.py: the EGL plugin's per-frame shadow pass, switched off
-  world_copy.py    the world's poses at a frame's sim time, and a copy of the world posed by them
-  render_worker.py the worker process that renders frames off the physics thread;
-                   render_process.py: its main
+  render_worker.py the worker process that renders frames off the physics thread, from a
+                   ../world_copy.py posed at the frame's sim time; render_process.py: its main
   imu.py, noise.py what an IMU measures; Gazebo's noise models
   messages.py      the ROS messages, filled as gazebo_ros fills them
   devices.py       one class per plugin, running the pipeline for its sensor

@@ -39,7 +39,7 @@ from .render import RENDERER_CHOICES, RENDERER_NAMES, TINY
 from .render_worker import RenderWorker
 from .scene import SceneColours
 from .schedule import RenderBudget
-from .world_copy import snapshot
+from ..world_copy import snapshot
 
 DEFAULT_RENDER_BUDGET = 0.5
 DEFAULT_REPORT_PERIOD = 10.0

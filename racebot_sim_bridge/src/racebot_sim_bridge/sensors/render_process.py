@@ -4,39 +4,24 @@ Started by render_worker.RenderWorker with one end of a socket pair (FD). It hol
 with the EGL renderer when that loads (else the TinyRenderer) and a world_copy.WorldCopy; for each
 request it brings the copy to the request's bodies and snapshot, renders the camera's frame and
 writes it into the frame buffer the request names, then replies. It exits when asked, when its
-socket closes, or when the simulator dies (PR_SET_PDEATHSIG).
+socket closes, or when the simulator dies (child_process.helper_main).
 """
-import ctypes
-import os
-import signal
 import sys
-from multiprocessing.connection import Connection
 
 import numpy as np
 
+from ..child_process import helper_main
 from ..physics import PhysicsWorld
 from .camera import PinholeCamera
 from .noise import GaussianNoise
 from .render import CameraFrames, RendererError, load_renderer
 from .render_worker import view_slot
 from .scene import SceneColours
-from .world_copy import WorldCopy
-
-
-def _die_with_parent():
-    """Linux: SIGTERM this process when the simulator dies, however it dies (no orphans)."""
-    try:
-        libc = ctypes.CDLL('libc.so.6', use_errno=True)
-        libc.prctl(1, signal.SIGTERM)  # PR_SET_PDEATHSIG
-    except (OSError, AttributeError):
-        pass
+from ..world_copy import WorldCopy
 
 
 def worker_main(fd):
-    _die_with_parent()
-    signal.signal(signal.SIGINT, signal.SIG_IGN)  # Ctrl-C reaches the simulator, which stops us
-    signal.signal(signal.SIGTERM, lambda *_: os._exit(0))
-    conn = Connection(fd)
+    conn = helper_main(fd)
 
     _, choice = conn.recv()
     world = PhysicsWorld()

@@ -1,10 +1,9 @@
 """Camera rendering off the physics thread: a worker process with its own copy of the world.
 
 No rospy here. PyBullet calls hold the GIL, so a render thread would still share the physics
-thread's core; a process renders on another core. The worker is `python -m ...render_process` (not a
-multiprocessing fork of a process with rospy's threads, nor a spawn that would re-run the node's
-script). It holds a DIRECT client with the EGL renderer when that loads (else the TinyRenderer) and
-a world_copy.WorldCopy of the simulated world.
+thread's core; a process renders on another core. The worker is `python -m ...render_process`,
+started by child_process. It holds a DIRECT client with the EGL renderer when that loads (else the
+TinyRenderer) and a world_copy.WorldCopy of the simulated world.
 
 One request per due frame, sent from the physics thread under the simulator's lock: the world's
 snapshot (world_copy.snapshot: poses of that sim time), the camera's pose, whether depth is wanted,
@@ -18,21 +17,18 @@ If the worker dies, RenderWorker logs an error, fails the requests in flight and
 worker (up to MAX_RESTARTS times); after that `alive` is False and the caller renders itself.
 """
 import os
-import socket
 import subprocess
-import sys
 import tempfile
 import threading
 import time
-from multiprocessing.connection import Connection
 
 import numpy as np
 
-from .world_copy import sources
+from .. import child_process
+from ..world_copy import sources
 
 MAX_RESTARTS = 3
 START_TIMEOUT = 60.0  # s: EGL with llvmpipe takes about a second to start; the machine may be loaded
-PACKAGE_ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 SHM_DIR = '/dev/shm' if os.path.isdir('/dev/shm') else None
 
 
@@ -187,20 +183,9 @@ class RenderWorker(object):
         return True
 
     def _start(self):
-        parent, child = socket.socketpair()
-        # Blocking, whatever socket.setdefaulttimeout says (rospy sets one): Connection reads raw fds.
-        parent.setblocking(True)
-        child.setblocking(True)
-        env = dict(os.environ)
-        env.setdefault('LP_NUM_THREADS', llvmpipe_threads(os.cpu_count() or 2))
-        # The worker imports this very package, wherever it was imported from here (tests, devel).
-        env['PYTHONPATH'] = os.pathsep.join([PACKAGE_ROOT] + [p for p in env.get('PYTHONPATH', '').split(os.pathsep) if p])
-        self.process = subprocess.Popen(
-            [sys.executable, '-m', 'racebot_sim_bridge.sensors.render_process', str(child.fileno())],
-            pass_fds=[child.fileno()], env=env, stdin=subprocess.DEVNULL, stdout=subprocess.DEVNULL,  # the EGL plugin chatters on stdout
-            close_fds=True)
-        child.close()
-        self._conn = Connection(parent.detach())
+        self.process, self._conn = child_process.start(
+            'racebot_sim_bridge.sensors.render_process',
+            env={'LP_NUM_THREADS': os.environ.get('LP_NUM_THREADS', llvmpipe_threads(os.cpu_count() or 2))})
         self._known = {}
         self._conn.send(('init', self.renderer_choice))
         if not self._conn.poll(START_TIMEOUT):
@@ -244,18 +229,7 @@ class RenderWorker(object):
                 pass
 
     def _stop_process(self):
-        if self._conn is not None:
-            try:
-                self._conn.close()
-            except OSError:
-                pass
-        if self.process is not None and self.process.poll() is None:
-            self.process.terminate()
-            try:
-                self.process.wait(5.0)
-            except subprocess.TimeoutExpired:
-                self.process.kill()
-                self.process.wait()
+        child_process.stop(self.process, self._conn)
 
     def close(self):
         """Stops the worker and waits for it."""

@@ -1,8 +1,9 @@
 """A copy of the simulated world in another PyBullet client, posed as the world was at an instant.
 
-No rospy here. The render worker holds such a copy. It is built only from what physics.PhysicsWorld
-records of every body (`Body.source`, picklable) and PhysicsWorld's own loaders, as viewer.py
-does, so whatever the loaders draw (shapes, meshes, colours) appears in the copy too.
+No rospy here. The render worker and the window (viewer_process) each hold such a copy. It is
+built only from what physics.PhysicsWorld records of every body (`Body.source`, picklable) and
+PhysicsWorld's own loaders, so whatever the loaders draw (shapes, meshes, colours) appears in the
+copy too.
 - snapshot(world): every body's base pose(s) and joint positions, taken on the physics thread at
   the sim time a frame is stamped with (a few microseconds a body);
 - WorldCopy.sync(bodies) / .pose(snapshot): keeps the copy's bodies and poses equal to them.
@@ -77,6 +78,7 @@ class WorldCopy(object):
             ids = [copy.id] + [extra for _, extra in getattr(copy, 'extra_bodies', [])]
             for body_id, (position, orientation) in zip(ids, poses):
                 pb.resetBasePositionAndOrientation(body_id, position, orientation, physicsClientId=client)
-            joints = list(copy.joints.values())
-            for joint, position in zip(joints, positions):
-                pb.resetJointState(copy.id, joint.index, position, physicsClientId=client)
+            if positions:  # one call for all joints: each call into a GUI client waits for its frame
+                indices = [joint.index for joint in copy.joints.values()][:len(positions)]
+                pb.resetJointStatesMultiDof(copy.id, indices, [[p] for p in positions[:len(indices)]],
+                                            physicsClientId=client)

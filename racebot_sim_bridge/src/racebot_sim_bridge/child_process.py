@@ -1,0 +1,72 @@
+"""The simulator's helper processes (the render worker, the window): how they start and die.
+
+No rospy here. A helper is `python -m racebot_sim_bridge.<module> FD`, a fresh interpreter (not a
+multiprocessing fork of a process with rospy's threads, nor a spawn that would re-run the node's
+script), talking over one end of a socket pair. It dies with the simulator however the simulator
+dies (PR_SET_PDEATHSIG), and leaves Ctrl-C to the simulator, which stops it.
+"""
+import ctypes
+import os
+import signal
+import socket
+import subprocess
+import sys
+from multiprocessing.connection import Connection
+
+PACKAGE_ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+
+
+def start(module, env=None):
+    """Starts `python -m <module> FD` -> (subprocess.Popen, Connection to it). `env`: variables to
+    add to this process's environment. Its stdout is discarded (PyBullet's plugins chatter there);
+    stderr is ours."""
+    parent, child = socket.socketpair()
+    # Blocking, whatever socket.setdefaulttimeout says (rospy sets one): Connection reads raw fds.
+    parent.setblocking(True)
+    child.setblocking(True)
+    full_env = dict(os.environ)
+    full_env.update(env or {})
+    # The helper imports this very package, wherever it was imported from here (tests, devel).
+    full_env['PYTHONPATH'] = os.pathsep.join(
+        [PACKAGE_ROOT] + [p for p in full_env.get('PYTHONPATH', '').split(os.pathsep) if p])
+    try:
+        process = subprocess.Popen([sys.executable, '-m', module, str(child.fileno())],
+                                   pass_fds=[child.fileno()], env=full_env, stdin=subprocess.DEVNULL,
+                                   stdout=subprocess.DEVNULL, close_fds=True)
+    except BaseException:
+        parent.close()
+        raise
+    finally:
+        child.close()
+    return process, Connection(parent.detach())
+
+
+def stop(process, conn, wait=5.0):
+    """Closes the connection and ends the process: SIGTERM, then SIGKILL after `wait` s."""
+    if conn is not None:
+        try:
+            conn.close()
+        except OSError:
+            pass
+    if process is not None and process.poll() is None:
+        process.terminate()
+        try:
+            process.wait(wait)
+        except subprocess.TimeoutExpired:
+            process.kill()
+            process.wait()
+
+
+def helper_main(fd):
+    """In the helper, first thing: the Connection to the simulator from its FD; dies with the
+    simulator (SIGTERM when the thread that started it ends), ignores Ctrl-C, exits on SIGTERM."""
+    try:
+        libc = ctypes.CDLL('libc.so.6', use_errno=True)
+        libc.prctl(1, signal.SIGTERM)  # PR_SET_PDEATHSIG
+    except (OSError, AttributeError):
+        pass
+    if os.getppid() == 1:  # the simulator died before prctl: nobody would signal us
+        os._exit(0)
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+    signal.signal(signal.SIGTERM, lambda *_: os._exit(0))
+    return Connection(fd)
