@@ -36,9 +36,8 @@ class Viewer(object):
                 raise PhysicsError('the window did not open within %g s' % start_timeout)
             reply = self._conn.recv()
         except (EOFError, OSError):
-            code = self.process.wait()
             self.close()
-            raise PhysicsError('the window process exited (code %s) before it opened' % code)
+            raise PhysicsError('the window process exited (code %s) before it opened' % self.process.poll())
         except PhysicsError:
             self.close()
             raise
@@ -66,15 +65,9 @@ class Viewer(object):
             follow = next((name for name, body in world.bodies.items() if body.kind == 'urdf'), None)
             self._conn.send(('sync', bodies, list(world.bodies), snapshot(world), follow))
         except (EOFError, OSError) as err:
-            code = self.process.poll()
-            if code is None:
-                try:
-                    code = self.process.wait(2.0)
-                except Exception:
-                    code = 'still running'
+            child_process.stop(self.process, self._conn, wait=2.0)
             self.gone = 'the window closed (process %d, exit code %s; %s)' % (
-                self.process.pid, code, type(err).__name__)
-            child_process.stop(self.process, self._conn)
+                self.process.pid, self.process.returncode, type(err).__name__)
             return False
         self._busy = True
         for name, (key, _) in bodies.items():
