@@ -125,6 +125,12 @@ class ViewerTest(unittest.TestCase):
         blue = (box[:, :, 2] > box[:, :, 0] + 60) & (box[:, :, 2] > box[:, :, 1] + 60)
         return float(blue.mean())
 
+    def still_screen(self):
+        """(screen,) if it did not change in a second (less than 2 %), else None."""
+        first = self.screen('1-car-standing')
+        time.sleep(1.0)
+        return (first,) if self.changed_share(first, self.screen('2-a-second-later')) < 0.02 else None
+
     def changed_share(self, a, b):
         return float((np.abs(a.astype(np.int16) - b) > 8).any(axis=2).mean())
 
@@ -148,11 +154,8 @@ class ViewerTest(unittest.TestCase):
         wait_for(lambda: self.car_at_centre(screen_pixels(self.fbdir)) > 0.15,
                  'the window to show the car (blue) at its centre', START_TIMEOUT, period=0.2)
         print('the window showed the car %.1f s after it was placed' % (time.time() - start))
-        time.sleep(2.0)  # the car settles on its wheels
-        still = self.screen('1-car-standing')
-        time.sleep(1.0)
-        self.assertLess(self.changed_share(still, self.screen('2-a-second-later')), 0.02,
-                        'the screen changed while nothing moved')
+        still, = wait_for(self.still_screen, 'the screen to stay still once the car stands on its wheels '
+                         '(less than 2 % of it changing in a second)', 60.0, period=0.2)
         self.place_car(*TURNED_SPOT)
         wait_for(lambda: self.changed_share(still, screen_pixels(self.fbdir)) > 0.2,
                  'the window to show the car moved (more than 20 % of the screen changed)', 30.0, period=0.2)
