@@ -32,6 +32,8 @@ from rosgraph_msgs.msg import Log
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from keyboard_teleop_xvfb import screen_pixels, start_xvfb, stop_xvfb  # noqa: E402
 from robustness_common import ROOT, Rosout, SimProbe, node_pid, pid_alive, wait_for  # noqa: E402
+sys.path.insert(0, os.path.join(ROOT, 'tools'))
+from bench.common import child_pids  # noqa: E402
 
 VIEWER_MODULE = 'racebot_sim_bridge.viewer_process'
 START_TIMEOUT = 120.0
@@ -41,22 +43,12 @@ TURNED_SPOT = (0.3, 0.0, 0.2588190, 0.9659258)  # a little ahead, turned 30 degr
 SCREENS = os.path.join(ROOT, 'out', 'test-results', 'viewer-screens')  # what the window showed, for a reader
 
 
-def children(pid):
-    """[(pid, command line)] of the processes whose parent is pid."""
-    found = []
-    for entry in os.listdir('/proc'):
-        if not entry.isdigit():
-            continue
-        try:
-            with open('/proc/%s/stat' % entry) as f:
-                stat = f.read()
-            with open('/proc/%s/cmdline' % entry, 'rb') as f:
-                cmdline = f.read().replace(b'\0', b' ').decode('utf-8', 'replace')
-        except OSError:
-            continue
-        if int(stat.rsplit(')', 1)[1].split()[1]) == pid:
-            found.append((int(entry), cmdline))
-    return found
+def command_line(pid):
+    try:
+        with open('/proc/%d/cmdline' % pid, 'rb') as f:
+            return f.read().replace(b'\0', b' ').decode('utf-8', 'replace')
+    except OSError:
+        return ''
 
 
 def niceness(pid):
@@ -81,8 +73,8 @@ class ViewerTest(unittest.TestCase):
         cls.set_model_state = rospy.ServiceProxy('/gazebo/set_model_state', SetModelState)
         wait_for(lambda: 'racebot' in cls.sim.world_properties().model_names, 'the car spawned', START_TIMEOUT)
         cls.sim_pid = wait_for(lambda: node_pid('/gazebo'), "the simulator's process id", START_TIMEOUT)
-        cls.viewer_pid = wait_for(lambda: next((p for p, cmd in children(cls.sim_pid) if VIEWER_MODULE in cmd), None),
-                                  'the window process, a child of the simulator', START_TIMEOUT)
+        cls.viewer_pid = wait_for(lambda: next((p for p in child_pids(cls.sim_pid) if VIEWER_MODULE in command_line(p)),
+                                               None), 'the window process, a child of the simulator', START_TIMEOUT)
 
     @classmethod
     def tearDownClass(cls):
