@@ -5,7 +5,9 @@ simulator sends, it brings the copy's bodies and poses up to date (only what mov
 the GUI client waits for its next frame), keeps the camera on the car, and answers, which tells the
 simulator it may send the next. It runs niced (NICENESS): on a machine without a GPU its drawing
 thread would otherwise take the cores physics and cameras need. It exits when asked, when its socket
-closes, when the window is closed, or when the simulator dies (child_process.helper_main).
+closes, or when the simulator dies (child_process.helper_main). Closing the window ends it too:
+PyBullet's window sets no WM_PROTOCOLS, so a window manager's close button kills its X connection,
+and Xlib exits the process.
 """
 import os
 import sys
@@ -17,7 +19,6 @@ from .physics import PhysicsError, PhysicsWorld
 from .world_copy import WorldCopy
 
 NICENESS = 10
-IDLE_CHECK_PERIOD = 0.25  # s: how often an idle window checks that it is still open
 FOLLOW = dict(distance=1.5, pitch=-30.0)  # the camera behind the car
 
 
@@ -36,10 +37,6 @@ class Window(object):
         self.world = PhysicsWorld(gui=True)  # PhysicsError without a display
         self.copy = WorldCopy(self.world)
         self.shown = {}  # name -> snapshot entry last applied
-        self.camera_set = False  # the camera was seen looking at the car since it last moved
-
-    def is_open(self):
-        return bool(pb.isConnected(physicsClientId=self.world.client))
 
     def show(self, bodies, names, shot, follow):
         if bodies:
@@ -56,21 +53,8 @@ class Window(object):
         changed = {name: entry for name, entry in shot.items() if moved(self.shown.get(name), entry)}
         self.copy.pose(changed)
         self.shown.update(changed)
-        car = self.world.bodies.get(follow)
-        if car is not None and (follow in changed or not self.camera_on(car)):
-            self.world.follow_with_camera(car, **FOLLOW)
-            self.camera_set = False
-
-    def camera_on(self, car):
-        """Whether the camera looks at the car, checked once after each move: the window's start-up
-        may reset the camera after our first follow. Once it does, a user may turn it freely until
-        the car moves again."""
-        if self.camera_set:
-            return True
-        target = pb.getDebugVisualizerCamera(physicsClientId=self.world.client)[11]
-        position = car.pose().position
-        self.camera_set = all(abs(a - b) < 0.01 for a, b in zip(target, position))
-        return self.camera_set
+        if follow in changed and follow in self.world.bodies:  # a user may turn the camera while the car stands
+            self.world.follow_with_camera(self.world.bodies[follow], **FOLLOW)
 
 
 def viewer_main(fd):
@@ -88,22 +72,12 @@ def viewer_main(fd):
     conn.send(('ready', os.getpid()))
     while True:
         try:
-            if not conn.poll(IDLE_CHECK_PERIOD):
-                if not window.is_open():
-                    return
-                continue
             message = conn.recv()
         except (EOFError, OSError):
             return
         if message[0] == 'stop':
             return
-        _, bodies, names, shot, follow = message
-        try:
-            window.show(bodies, names, shot, follow)
-        except pb.error:
-            if not window.is_open():  # closed between two snapshots
-                return
-            raise
+        window.show(*message[1:])
         conn.send(('shown',))
 
 
