@@ -41,6 +41,22 @@ def start(module, env=None):
     return process, Connection(parent.detach())
 
 
+def ask_to_stop(process, conn, wait=2.0, lock=None):
+    """Sends the helper ('stop',) (under `lock` when other threads send too) and gives it `wait` s
+    to exit; a helper already gone is no error. Follow with stop()."""
+    if conn is None or process is None:
+        return
+    try:
+        if lock is not None:
+            with lock:
+                conn.send(('stop',))
+        else:
+            conn.send(('stop',))
+        process.wait(wait)
+    except (OSError, EOFError, subprocess.TimeoutExpired):
+        pass
+
+
 def stop(process, conn, wait=5.0):
     """Closes the connection and ends the process: SIGTERM, then SIGKILL after `wait` s."""
     if conn is not None:

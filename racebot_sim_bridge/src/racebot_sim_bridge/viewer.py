@@ -77,9 +77,5 @@ class Viewer(object):
     def close(self):
         """Closes the window and waits for its process."""
         if self.gone is None:
-            try:
-                self._conn.send(('stop',))
-                self.process.wait(2.0)
-            except Exception:
-                pass
+            child_process.ask_to_stop(self.process, self._conn)
         child_process.stop(self.process, self._conn)

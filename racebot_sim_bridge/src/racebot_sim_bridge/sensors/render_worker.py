@@ -17,7 +17,6 @@ If the worker dies, RenderWorker logs an error, fails the requests in flight and
 worker (up to MAX_RESTARTS times); after that `alive` is False and the caller renders itself.
 """
 import os
-import subprocess
 import tempfile
 import threading
 import time
@@ -235,17 +234,7 @@ class RenderWorker(object):
         """Stops the worker and waits for it."""
         self._closing = True
         self.ready = False
-        if self._conn is not None:
-            try:
-                with self._send_lock:
-                    self._conn.send(('stop',))
-            except (OSError, EOFError):
-                pass
-        if self.process is not None:
-            try:
-                self.process.wait(2.0)
-            except subprocess.TimeoutExpired:
-                pass
+        child_process.ask_to_stop(self.process, self._conn, lock=self._send_lock)
         self._stop_process()
         self._thread.join(2.0)
         self._fail_pending('the render worker was closed')
