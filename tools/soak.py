@@ -50,7 +50,7 @@ ROUTE = [(0.5, 0.3, 10.0), (0.5, -0.3, 10.0), (0.0, 0.0, 1.0), (-0.3, 0.4, 5.0),
          (0.0, 0.0, 2.0)]
 ROUTE_PERIOD = sum(seg[2] for seg in ROUTE)
 COMMAND_WALL_PERIOD = 0.1   # s of wall time between two published commands
-SAMPLE_WALL_PERIOD = 0.5    # s of wall time between two RSS samples (reading /proc costs ~50 us)
+SAMPLE_WALL_PERIOD = 0.5    # s of wall time between two RSS samples (reading /proc costs ~20 us, measured)
 SENSOR_TYPES = ('sensor_msgs/LaserScan', 'sensor_msgs/Imu', 'sensor_msgs/Image', 'sensor_msgs/PointCloud2')
 STARTUP_TIMEOUT = 180.0     # wall s for the launch to bring up the car with its controllers
 

@@ -107,12 +107,18 @@ class ViewerTest(unittest.TestCase):
         pyplot.imsave(os.path.join(SCREENS, name + '.png'), pixels)
         return pixels
 
+    def window_centre(self):
+        """(x, y) on the screen of the window's centre; looked up once (nothing moves the window)."""
+        if getattr(ViewerTest, 'centre', None) is None:
+            out = self.xdotool('getwindowgeometry', '--shell', self.window_ids()[0]).stdout
+            geometry = dict(line.split('=', 1) for line in out.split())
+            ViewerTest.centre = (int(geometry['X']) + int(geometry['WIDTH']) // 2,
+                                 int(geometry['Y']) + int(geometry['HEIGHT']) // 2)
+        return ViewerTest.centre
+
     def car_at_centre(self, screen):
         """Share of car-blue pixels in the window's central box, where the following camera keeps the car."""
-        out = self.xdotool('getwindowgeometry', '--shell', self.window_ids()[0]).stdout
-        geometry = dict(line.split('=', 1) for line in out.split())
-        cx = int(geometry['X']) + int(geometry['WIDTH']) // 2
-        cy = int(geometry['Y']) + int(geometry['HEIGHT']) // 2
+        cx, cy = self.window_centre()
         box = screen[cy - 20:cy + 30, cx - 25:cx + 25].astype(np.int16)
         blue = (box[:, :, 2] > box[:, :, 0] + 60) & (box[:, :, 2] > box[:, :, 1] + 60)
         return float(blue.mean())
