@@ -294,6 +294,34 @@ def test_a_broken_mesh_in_a_model_warns_and_the_rest_loads(isolated, monkeypatch
     assert world.models[0].links[0].collisions == [] and len(world.models[0].links[0].visuals) == 1
 
 
+
+def test_an_include_uri_with_a_path_resolves_the_whole_path_under_each_model_folder(isolated, monkeypatch):
+    """model://PKG/models/track, as a package exporting gazebo_model_path="${prefix}/.." writes it: Gazebo
+    tries the whole path under each model folder in turn (SystemPaths::FindFileURI), not only the first name."""
+    pkg = mesh_fixtures.write_package(str(isolated / 'pkgs'), 'track_pkg',
+                                      '<gazebo_ros gazebo_model_path="${prefix}/.."/>')
+    folder = mesh_fixtures.write_model(os.path.join(pkg, 'models'), 'track', WALL_MODEL.replace(
+        'model://wall/meshes', 'model://track_pkg/models/track/meshes'))
+    mesh_fixtures.write_mesh(mesh_fixtures.box((0.2, 1.0, 0.6)), os.path.join(folder, 'meshes', 'wall.stl'))
+    mesh_fixtures.write_mesh(mesh_fixtures.box((0.2, 1.0, 0.6)), os.path.join(folder, 'meshes', 'wall.dae'))
+    decoy = isolated / 'decoy'
+    (decoy / 'track_pkg').mkdir(parents=True)  # a folder of the first name, without models/track below it
+    monkeypatch.setenv('GAZEBO_MODEL_PATH', str(decoy))
+    world = sdf_world.parse_world(world_with('<include><uri>model://track_pkg/models/track/</uri></include>'))
+    assert world.warnings == []
+    (model,) = world.models
+    assert model.name == 'wall' and model.links[0].collisions[0].shape.kind == 'mesh'
+    assert model_path.find_model('track_pkg/models/track')[0] == folder
+
+
+def test_an_include_uri_naming_a_file_is_one_warning_saying_it_is_no_model_folder(isolated, monkeypatch):
+    folder = write_wall_model(isolated / 'models')
+    monkeypatch.setenv('GAZEBO_MODEL_PATH', str(isolated / 'models'))
+    world = sdf_world.parse_world(world_with('<include><uri>model://wall/model.sdf</uri></include>'))
+    assert world.models == [] and len(world.warnings) == 1, world.warnings
+    assert os.path.join(folder, 'model.sdf') in world.warnings[0] and 'not a model folder' in world.warnings[0]
+
+
 # -- physics ----------------------------------------------------------------------------------------------
 @pytest.fixture
 def physics():

@@ -2,7 +2,8 @@
 
 No rospy, no pybullet. Resolution follows Gazebo classic with gazebo_ros:
 - package://PKG/rel: the package's folder on the ROS package path (rospkg, as roslib does);
-- model://NAME/rel: the first folder NAME found in the model path, which is, in this order,
+- model://NAME/rel: NAME/rel under the first folder of the model path that holds it (the whole
+  path is tried under each folder, as Gazebo does); the model path is, in this order,
   every entry of GAZEBO_MODEL_PATH, the `gazebo_model_path` exports of packages
   (<export><gazebo_ros gazebo_model_path="${prefix}/models"/></export>, which gazebo_ros adds
   to GAZEBO_MODEL_PATH), then ~/.gazebo/models (Gazebo's own download folder);
@@ -80,11 +81,15 @@ def model_path(environ=None, rospack=None):
 
 
 def find_model(name, search=None):
-    """(model folder, [folders searched]) for model://name; the folder is None when not found."""
+    """(path, [folders searched]) for model://name; the path is None when not found.
+
+    As Gazebo's SystemPaths::FindFileURI: the whole of `name` (``some_pkg/models/track`` too, as
+    packages exporting gazebo_model_path="${prefix}/.." write it) is tried under each model folder
+    in turn, and the first that exists wins, be it a folder or not (the caller checks which)."""
     search = model_path() if search is None else search
     for folder in search:
         candidate = os.path.join(folder, name)
-        if os.path.isdir(candidate):
+        if os.path.exists(candidate):
             return candidate, search
     return None, search
 

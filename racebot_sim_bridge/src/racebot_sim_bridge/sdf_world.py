@@ -634,12 +634,17 @@ class _WorldReader:
         """The folder of an included model: model://NAME on the model path, or a file:// or
         plain path to the folder. _NotFound naming every place searched when it is not there."""
         if target.startswith('model://'):
-            name = target[len('model://'):].split('/')[0]
+            name = target[len('model://'):]  # the whole path, as Gazebo looks it up
+            if not name:
+                raise _Skip('names no model; give <uri>model://NAME</uri>')
             folder, searched = model_path.find_model(name, self.search)
             if folder is None:
                 raise _NotFound("model '%s' not found; searched %s; add the folder holding %s/ to "
                                 'GAZEBO_MODEL_PATH (or put the model in ~/.gazebo/models)'
-                                % (name, ', '.join(searched) or '(an empty model path)', name))
+                                % (name, ', '.join(searched) or '(an empty model path)', name.split('/')[0]))
+            if not os.path.isdir(folder):
+                raise _Skip('%s is a file, not a model folder; an <include> names the folder that holds '
+                            'model.config' % folder)
             return folder
         path = target[len('file://'):] if target.startswith('file://') else os.path.expanduser(target)
         if '://' in path:
