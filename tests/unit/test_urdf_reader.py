@@ -173,6 +173,34 @@ def test_gazebo_references_hold_simple_properties(model):
         'mu1': 2.0, 'mu2': 2.0, 'kp': 1e7, 'kd': 1.0, 'material': 'Gazebo/Black'}
 
 
+
+def test_gazebo_extensions_take_the_value_attribute_else_the_text():
+    """sdformat's URDF reader (parser_urdf.cc, GetKeyValueAsString) reads the extensions it knows from
+    their value attribute when there is one, else from the text; it copies the others as they are."""
+    model = parse_urdf(with_body("""
+      <link name="a"><collision><geometry><sphere radius="0.1"/></geometry></collision></link>
+      <gazebo reference="a"><mu1 value="0.5"/><mu2 value="0.7">9</mu2><kp value="1e7"/><kd>2</kd>
+        <material value="Gazebo/Red"/><fdir1 value="0 1 0"/><maxContacts value="4"/>
+        <turnGravityOff value="true"/><selfCollide value="yes"/><static>0</static>
+        <gravity value="0"/></gazebo>"""))
+    assert model.warnings == []
+    assert model.gazebo_refs['a'] == {
+        'mu1': 0.5, 'mu2': 0.7, 'kp': 1e7, 'kd': 2.0, 'material': 'Gazebo/Red', 'fdir1': '0 1 0',
+        'maxContacts': 4.0, 'turnGravityOff': True, 'selfCollide': True, 'static': False,
+        'gravity': ''}  # not an extension sdformat reads: copied into the SDF as written, value unread
+    from racebot_sim_bridge.physics import link_friction
+    assert link_friction(model, 'a') == 0.5
+
+
+@pytest.mark.parametrize('text, flag', [('true', True), ('TRUE', True), ('yes', True), ('1', True),
+                                        ('1.0', False), ('false', False), ('', False)])
+def test_gazebo_flags_are_true_as_sdformat_reads_them(text, flag):
+    model = parse_urdf(with_body(
+        '<link name="a"/><gazebo reference="a"><selfCollide value="%s"/><turnGravityOff>%s</turnGravityOff>'
+        '</gazebo>' % (text, 'no' if flag else 'on')))
+    assert model.gazebo_refs['a'] == {'selfCollide': flag, 'turnGravityOff': not flag}
+
+
 def test_control_plugin(model):
     plugin = model.control_plugin()
     assert plugin.name == 'gazebo_ros_control' and plugin.reference is None

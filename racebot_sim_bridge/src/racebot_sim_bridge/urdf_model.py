@@ -248,8 +248,7 @@ class RobotModel:
 
     def _keeps_fixed_joint(self, joint):
         ref = self.gazebo_refs.get(joint.name, {})
-        return any(str(ref.get(key, '')).strip().lower() in ('true', '1')
-                   for key in ('preserveFixedJoint', 'disableFixedJointLumping'))
+        return any(ref.get(key) is True for key in ('preserveFixedJoint', 'disableFixedJointLumping'))
 
     def fixed_parent_chain(self, link):
         """The fixed joints from ``link`` up to the link Gazebo merges it into.
@@ -318,6 +317,35 @@ def _boolean(text, what):
     if value in ('false', '0'):
         return False
     raise UrdfError('%s: %r is not true or false' % (what, text))
+
+
+# The <gazebo reference> elements sdformat's URDF reader knows (parser_urdf.cc, ParseSDFExtension).
+# It reads them through GetKeyValueAsString: the `value` attribute when there is one (the old style,
+# <mu1 value="1.0"/>), else the text. Any other element it copies into the SDF as written.
+EXTENSION_VALUES = frozenset((
+    'material', 'static', 'turnGravityOff', 'dampingFactor', 'maxVel', 'minDepth', 'mu1', 'mu2', 'fdir1',
+    'kp', 'kd', 'selfCollide', 'maxContacts', 'laserRetro', 'springReference', 'springStiffness', 'stopCfm',
+    'stopErp', 'fudgeFactor', 'provideFeedback', 'cfmDamping', 'implicitSpringDamper',
+    'disableFixedJointLumping', 'preserveFixedJoint'))
+# Those of them that are switches, kept as booleans.
+EXTENSION_FLAGS = frozenset((
+    'static', 'turnGravityOff', 'selfCollide', 'provideFeedback', 'cfmDamping', 'implicitSpringDamper',
+    'disableFixedJointLumping', 'preserveFixedJoint'))
+
+
+def _extension_text(elem):
+    """The value of a leaf <gazebo reference> element as sdformat reads it."""
+    if elem.tag in EXTENSION_VALUES and elem.get('value') is not None:
+        return elem.get('value').strip()
+    return (elem.text or '').strip()
+
+
+def _extension_flag(tag, text):
+    """sdformat's reading of a switch: 'true', 'yes' (any case) or '1' is on, anything else off;
+    except turnGravityOff, which is on unless 'false', 'no' or '0'."""
+    if tag == 'turnGravityOff':
+        return not (text.lower() in ('false', 'no') or text == '0')
+    return text.lower() in ('true', 'yes') or text == '1'
 
 
 def _attr_number(elem, attr, what, default=None, required=False):
@@ -642,7 +670,10 @@ class _UrdfReader:
             elif child.tag == 'plugin':
                 self.model.plugins.append(self.plugin(child, what, reference))
             elif len(child) == 0:
-                text = (child.text or '').strip()
+                text = _extension_text(child)
+                if child.tag in EXTENSION_FLAGS:
+                    properties[child.tag] = _extension_flag(child.tag, text)
+                    continue
                 try:
                     value = float(text)
                     properties[child.tag] = value if math.isfinite(value) else text
