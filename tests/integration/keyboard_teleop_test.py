@@ -3,7 +3,7 @@
 
 The test starts its own Xvfb (a display number the server picks itself with -displayfd; -noreset so
 that xset's state is not reset to defaults when the last client leaves) and runs
-`rosrun racebot_gazebo keyboard_teleop` with that DISPLAY, then:
+`rosrun racebot_gazebo keyboard_teleop.py` with that DISPLAY, then:
 - holding W publishes speed 0.5 (config/keyboard_teleop.yaml) at about 10 Hz, W+A steers 0.34 left;
 - releasing every key gives exactly one stop command, then silence;
 - Q closes the window, the process exits 0, and `xset q` shows key auto-repeat back on
@@ -90,7 +90,7 @@ class KeyboardTeleopTest(unittest.TestCase):
     def start_teleop(self):
         """Starts the node, waits for its window and its connection; focuses the window."""
         self.assertEqual(self.auto_repeat(), 'on', 'Xvfb should start with auto-repeat on')
-        type(self).teleop = subprocess.Popen(['rosrun', 'racebot_gazebo', 'keyboard_teleop'], env=self.env)
+        type(self).teleop = subprocess.Popen(['rosrun', 'racebot_gazebo', 'keyboard_teleop.py'], env=self.env)
         found = self.x('xdotool', 'search', '--sync', '--name', WINDOW_NAME, timeout=START_TIMEOUT)
         window = found.stdout.split()[0] if found.stdout.split() else None
         self.assertIsNotNone(window, 'no keyboard window appeared: %s' % found.stderr)
@@ -174,7 +174,7 @@ class KeyboardTeleopTest(unittest.TestCase):
             env.pop('DISPLAY', None)
             if display:
                 env['DISPLAY'] = display
-            done = subprocess.run(['rosrun', 'racebot_gazebo', 'keyboard_teleop'], env=env, timeout=60,
+            done = subprocess.run(['rosrun', 'racebot_gazebo', 'keyboard_teleop.py'], env=env, timeout=60,
                                   stdout=subprocess.PIPE, stderr=subprocess.PIPE, universal_newlines=True)
             lines = [l for l in done.stdout.splitlines() if l.strip()]
             self.assertEqual(done.returncode, 0, 'DISPLAY=%s: exit status %d' % (display, done.returncode))

@@ -281,7 +281,7 @@ class RacebotLaunchTest(CmdVelDrive, RacebotDriving):
         def x(*args, timeout=60.0):
             return subprocess.run(list(args), env=env, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
                                   universal_newlines=True, timeout=timeout)
-        teleop = subprocess.Popen(['rosrun', 'racebot_gazebo', 'keyboard_teleop'], env=env)
+        teleop = subprocess.Popen(['rosrun', 'racebot_gazebo', 'keyboard_teleop.py'], env=env)
         try:
             found = x('xdotool', 'search', '--sync', '--name', WINDOW_NAME).stdout.split()
             self.assertTrue(found, 'no keyboard window')

@@ -45,7 +45,7 @@ BRIDGE_LAUNCH = """<?xml version="1.0"?>
   <rosparam file="$(find racebot_control)/config/racebot_control.yaml" command="load"/>
   <node name="controller_manager" pkg="controller_manager" type="spawner" ns="/racebot"
         args="%s"/>
-  <node if="$(arg servo)" pkg="racebot_control" type="servo_commands" name="servo_commands">
+  <node if="$(arg servo)" pkg="racebot_control" type="servo_commands.py" name="servo_commands">
     <param name="steering_mode" value="$(arg steering_mode)"/>
   </node>
 </launch>
