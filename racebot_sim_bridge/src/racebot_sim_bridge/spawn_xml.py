@@ -1,0 +1,35 @@
+"""What gazebo_ros's spawn services do to a model's XML before Gazebo reads it.
+
+Pure Python: no rospy, no pybullet. gazebo_ros_api_plugin (noetic) tells the formats apart by the
+document's root element (<robot>: URDF; <sdf> or <gazebo>: SDF) and, when the request names a
+robot_namespace, gives every <plugin> that has no <robotNamespace> of its own one with that namespace.
+"""
+import xml.etree.ElementTree as ET
+
+
+def root_tag(xml):
+    """The root element's tag, or None when the text is not XML."""
+    try:
+        return ET.fromstring(xml).tag
+    except (ET.ParseError, ValueError, TypeError):
+        return None
+
+
+def is_urdf(xml):
+    return root_tag(xml) == 'robot'
+
+
+def is_sdf(xml):
+    return root_tag(xml) in ('sdf', 'gazebo')
+
+
+def add_robot_namespace(xml, namespace):
+    """The document with <robotNamespace>namespace</robotNamespace> added to every <plugin> that
+    has none; unchanged when namespace is empty."""
+    if not namespace:
+        return xml
+    root = ET.fromstring(xml)
+    for plugin in root.iter('plugin'):
+        if plugin.find('robotNamespace') is None:
+            ET.SubElement(plugin, 'robotNamespace').text = namespace
+    return ET.tostring(root, encoding='unicode')
