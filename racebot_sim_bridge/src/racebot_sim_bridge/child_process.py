@@ -1,4 +1,5 @@
-"""The simulator's helper processes (the render worker, the window): how they start and die.
+"""The simulator's helper processes (the render worker): how they start and die; `die_with_parent`
+for the processes the `gazebo` command starts (gazebo_command.py).
 
 No rospy here. A helper is `python -m racebot_sim_bridge.<module> FD`, a fresh interpreter (not a
 multiprocessing fork of a process with rospy's threads, nor a spawn that would re-run the node's
@@ -73,14 +74,20 @@ def stop(process, conn, wait=5.0):
             process.wait()
 
 
-def helper_main(fd):
-    """In the helper, first thing: the Connection to the simulator from its FD; dies with the
-    simulator (SIGTERM when the thread that started it ends), ignores Ctrl-C, exits on SIGTERM."""
+def die_with_parent():
+    """SIGTERM to this process when the thread that started it ends (PR_SET_PDEATHSIG). Also usable
+    as subprocess's preexec_fn (in a parent without threads)."""
     try:
         libc = ctypes.CDLL('libc.so.6', use_errno=True)
         libc.prctl(1, signal.SIGTERM)  # PR_SET_PDEATHSIG
     except (OSError, AttributeError):
         pass
+
+
+def helper_main(fd):
+    """In the helper, first thing: the Connection to the simulator from its FD; dies with the
+    simulator (SIGTERM when the thread that started it ends), ignores Ctrl-C, exits on SIGTERM."""
+    die_with_parent()
     if os.getppid() == 1:  # the simulator died before prctl: nobody would signal us
         os._exit(0)
     signal.signal(signal.SIGINT, signal.SIG_IGN)

@@ -1,24 +1,26 @@
-"""The window's process: `python -m racebot_sim_bridge.viewer_process FD` (started by viewer.Viewer).
+"""The window of gzclient (gzclient.py): PyBullet's GUI client showing what a world server sends it.
 
-PyBullet's GUI client with a world_copy.WorldCopy of the simulated world. For each snapshot the
-simulator sends, it brings the copy's bodies and poses up to date (only what moved: every call into
-the GUI client waits for its next frame), keeps the camera on the car, and answers, which tells the
-simulator it may send the next. It runs niced (NICENESS): on a machine without a GPU its drawing
-thread would otherwise take the cores physics and cameras need. It exits when asked, when its socket
-closes, or when the simulator dies (child_process.helper_main). Closing the window ends it too:
-PyBullet's window sets no WM_PROTOCOLS, so a window manager's close button kills its X connection,
-and Xlib exits the process.
+No rospy here. The window holds a world_copy.WorldCopy of the simulated world. For each update the
+world server sends (viewer.AttachedWindows), it brings the copy's bodies and poses up to date (only
+what moved: every call into the GUI client waits for its next frame), keeps the camera on the car,
+and answers, which tells the server it may send the next.
+
+Closing the window: PyBullet's window sets no WM_PROTOCOLS, so a window manager's close button kills
+its X connection (XKillClient), and Xlib's default answer is exit(1) from PyBullet's drawing thread.
+`XConnectionWatch` replaces that answer: the main thread hears of it and gzclient ends as a window
+closed by its user should, exit code 0.
 """
+import ctypes
+import ctypes.util
 import os
-import sys
+import time
+from multiprocessing.connection import wait
 
 import pybullet as pb
 
-from .child_process import helper_main
-from .physics import PhysicsError, PhysicsWorld
+from .physics import PhysicsWorld
 from .world_copy import WorldCopy
 
-NICENESS = 10
 FOLLOW = dict(distance=1.5, pitch=-30.0)  # the camera behind the car
 
 
@@ -32,9 +34,56 @@ def moved(last, entry, tol=1e-4):
     return any(abs(a - b) >= tol for a, b in zip(last[2], entry[2]))
 
 
+def _libx11():
+    try:
+        return ctypes.CDLL(ctypes.util.find_library('X11') or 'libX11.so.6')
+    except OSError:
+        return None
+
+
+def display_problem(display=None):
+    """None if an X display can be opened (DISPLAY, or `display`), else why not, in words."""
+    name = display if display is not None else os.environ.get('DISPLAY', '')
+    if not name:
+        return 'there is no display (DISPLAY is unset)'
+    x11 = _libx11()
+    if x11 is None:
+        return None  # no libX11 to ask: PyBullet will say
+    x11.XOpenDisplay.restype = ctypes.c_void_p
+    x11.XOpenDisplay.argtypes = [ctypes.c_char_p]
+    x11.XCloseDisplay.argtypes = [ctypes.c_void_p]
+    handle = x11.XOpenDisplay(name.encode())
+    if not handle:
+        return 'the X display %r cannot be opened (no X server there, or no permission: see xhost/XAUTHORITY)' % name
+    x11.XCloseDisplay(handle)
+    return None
+
+
+class XConnectionWatch(object):
+    """Hears of the process's X connection breaking (the window closed or killed, the X server gone):
+    `fd` becomes readable. Install before the window opens. Xlib calls the handler on the thread that
+    found the break (PyBullet's drawing thread), which is then parked: Xlib would exit the process
+    when the handler returns."""
+    _HANDLER = ctypes.CFUNCTYPE(ctypes.c_int, ctypes.c_void_p)
+
+    def __init__(self):
+        self.fd, self._write_fd = os.pipe()
+        self._callback = self._HANDLER(self._on_io_error)  # kept: Xlib holds only the pointer
+        x11 = _libx11()
+        self.installed = x11 is not None
+        if self.installed:
+            x11.XSetIOErrorHandler.argtypes = [self._HANDLER]
+            x11.XSetIOErrorHandler(self._callback)
+
+    def _on_io_error(self, display):
+        os.write(self._write_fd, b'x')
+        while True:
+            time.sleep(3600)
+
+
 class Window(object):
     def __init__(self):
-        self.world = PhysicsWorld(gui=True)  # PhysicsError without a display
+        self.world = PhysicsWorld(gui=True)  # PhysicsError if PyBullet cannot open it
         self.copy = WorldCopy(self.world)
         self.shown = {}  # name -> snapshot entry last applied
 
@@ -56,30 +105,31 @@ class Window(object):
         if follow in changed and follow in self.world.bodies:  # a user may turn the camera while the car stands
             self.world.follow_with_camera(self.world.bodies[follow], **FOLLOW)
 
+    def close(self):
+        self.world.close()
 
-def viewer_main(fd):
-    conn = helper_main(fd)
-    try:
-        os.nice(NICENESS)
-    except OSError:
-        pass
-    conn.recv()  # ('init',)
-    try:
-        window = Window()
-    except PhysicsError as err:
-        conn.send(('error', str(err)))
-        return
-    conn.send(('ready', os.getpid()))
+
+# How serve() ended
+CLOSED = 'closed'    # the window was closed (its X connection broke)
+STOPPED = 'stopped'  # the world server said it shuts down
+LOST = 'lost'        # the world server's connection broke without a word
+
+
+def serve(conn, window, x_fd):
+    """Shows every update arriving on `conn` until the window closes (x_fd readable) or the world
+    server goes -> (CLOSED | STOPPED | LOST, why)."""
     while True:
+        ready = wait([conn, x_fd])
+        if x_fd in ready:
+            return CLOSED, 'its X connection closed'
         try:
             message = conn.recv()
-        except (EOFError, OSError):
-            return
+        except (EOFError, OSError) as err:
+            return LOST, 'its connection closed without a word (%s): it crashed or was killed' % type(err).__name__
         if message[0] == 'stop':
-            return
+            return STOPPED, message[1]
         window.show(*message[1:])
-        conn.send(('shown',))
-
-
-if __name__ == '__main__':
-    viewer_main(int(sys.argv[1]))
+        try:
+            conn.send(('shown',))
+        except (EOFError, OSError) as err:
+            return LOST, 'its connection closed without a word (%s): it crashed or was killed' % type(err).__name__

@@ -1,0 +1,230 @@
+"""The world server's attach point for windows (viewer.AttachedWindows) and the window's side of it
+(viewer_process.serve), over the real Unix socket with a real PyBullet world; no display, no master.
+
+What gzclient and the world server rely on: a window that says hello is sent the world's bodies and
+poses; it is sent the next update only once it has applied the last (the physics never waits for a
+window); bodies spawned or deleted after it attached appear and go; a window that goes is forgotten
+and said once; several windows at once; close() tells each window why and removes the socket."""
+import os
+import socket
+import threading
+import time
+from multiprocessing.connection import Connection
+
+import pytest
+
+from racebot_sim_bridge import sdf_world, urdf_model, viewer, viewer_process
+from racebot_sim_bridge.gzclient import connect
+from racebot_sim_bridge.physics import PhysicsWorld
+
+WORLD = """<?xml version="1.0"?><sdf version="1.6"><world name="default">
+  <model name="wall"><static>true</static><pose>2 0 0.5 0 0 0</pose><link name="link">
+    <collision name="c"><geometry><box><size>0.1 2 1</size></box></geometry></collision>
+    <visual name="v"><geometry><box><size>0.1 2 1</size></box></geometry></visual></link></model>
+</world></sdf>"""
+BOX_URDF = """<?xml version="1.0"?><robot name="box"><link name="base">
+  <inertial><mass value="1"/><inertia ixx="0.01" iyy="0.01" izz="0.01" ixy="0" ixz="0" iyz="0"/></inertial>
+  <visual><geometry><box size="0.2 0.2 0.2"/></geometry></visual>
+  <collision><geometry><box size="0.2 0.2 0.2"/></geometry></collision></link></robot>"""
+WAIT = 10.0
+
+
+class Log(object):
+    def __init__(self):
+        self.lines = []
+
+    def info(self, text):
+        self.lines.append(('info', text))
+
+    def warn(self, text):
+        self.lines.append(('warn', text))
+
+
+@pytest.fixture
+def world():
+    w = PhysicsWorld()
+    w.load_world(sdf_world.parse_world(WORLD))
+    yield w
+    w.close()
+
+
+@pytest.fixture
+def windows(world):
+    log = Log()
+    attached = viewer.AttachedWindows(world, log)
+    attached.log_lines = log.lines
+    yield attached
+    attached.close()
+
+
+def spawn_box(world, name='box', z=1.0):
+    return world.spawn_urdf(name, urdf_model.parse_urdf(BOX_URDF), BOX_URDF, position=(0.0, 0.0, z))
+
+
+def sync_until(windows, condition, what):
+    """Runs the physics thread's sync (as the world server does ~30 times a second) until condition()."""
+    deadline = time.monotonic() + WAIT
+    while time.monotonic() < deadline:
+        windows.sync()
+        if condition():
+            return
+        time.sleep(0.01)
+    raise AssertionError('timed out waiting for ' + what)
+
+
+def attach(windows, name='/gazebo_gui'):
+    conn = connect(windows.address)
+    assert conn is not None, 'nobody answers at ' + windows.address
+    conn.send(('hello', 4242, name))
+    return conn
+
+
+def next_update(windows, conn):
+    sync_until(windows, lambda: conn.poll(0), 'an update for the window')
+    return conn.recv()
+
+
+def test_a_window_that_says_hello_gets_the_world(world, windows):
+    assert windows.count == 0
+    conn = attach(windows)
+    kind, bodies, names, shot, follow = next_update(windows, conn)
+    assert kind == 'sync' and windows.count == 1
+    assert set(bodies) == set(names) == set(shot) == {'wall'}
+    assert ('info', 'a window attached: /gazebo_gui (process 4242)') in windows.log_lines
+    assert follow is None  # no robot to follow yet
+    conn.close()
+
+
+def test_the_next_update_waits_until_the_window_has_applied_the_last(world, windows):
+    conn = attach(windows)
+    next_update(windows, conn)
+    for _ in range(5):  # the window has not answered: the physics thread goes on, sending nothing
+        windows.sync()
+    assert not conn.poll(0.2)
+    conn.send(('shown',))
+    kind, bodies, names, shot, _ = next_update(windows, conn)
+    assert kind == 'sync' and bodies == {}, 'bodies already sent are not sent again'
+    assert set(shot) == {'wall'}
+    conn.close()
+
+
+def test_bodies_spawned_and_deleted_after_attaching_appear_and_go(world, windows):
+    conn = attach(windows)
+    next_update(windows, conn)
+    conn.send(('shown',))
+    spawn_box(world)
+    _, bodies, names, shot, follow = next_update(windows, conn)
+    assert set(bodies) == {'box'} and set(names) == {'wall', 'box'} and follow == 'box'
+    conn.send(('shown',))
+    world.remove('box')
+    _, bodies, names, shot, follow = next_update(windows, conn)
+    assert bodies == {} and names == ['wall'] and set(shot) == {'wall'} and follow is None
+    conn.close()
+
+
+def test_a_respawn_under_the_same_name_is_sent_again(world, windows):
+    spawn_box(world)
+    conn = attach(windows)
+    first = next_update(windows, conn)[1]['box'][0]
+    conn.send(('shown',))
+    world.remove('box')
+    spawn_box(world, z=2.0)
+    bodies = next_update(windows, conn)[1]
+    assert set(bodies) == {'box'} and bodies['box'][0] != first
+    conn.close()
+
+
+def test_a_window_that_goes_is_forgotten_and_said_once(world, windows):
+    conn = attach(windows)
+    next_update(windows, conn)
+    conn.close()
+    sync_until(windows, lambda: windows.count == 0 and not windows.links, 'the window to be forgotten')
+    warnings = [text for level, text in windows.log_lines if level == 'warn']
+    assert len(warnings) == 1 and 'the simulation goes on without it' in warnings[0], warnings
+    for _ in range(3):
+        windows.sync()
+    assert len([1 for level, _ in windows.log_lines if level == 'warn']) == 1
+
+
+def test_several_windows_at_once(world, windows):
+    a, b = attach(windows, '/a'), attach(windows, '/b')
+    assert next_update(windows, a)[0] == next_update(windows, b)[0] == 'sync'
+    assert windows.count == 2
+    a.close()
+    sync_until(windows, lambda: windows.count == 1, 'one window left')
+    b.send(('shown',))
+    assert next_update(windows, b)[0] == 'sync'
+    b.close()
+
+
+def test_a_connection_that_is_not_a_window_is_dropped(world, windows):
+    stranger = connect(windows.address)
+    stranger.send(('hi there',))
+    sync_until(windows, lambda: any('not a hello' in text for _, text in windows.log_lines),
+               'the stranger to be dropped, and said')
+    assert windows.count == 0 and not windows.links
+    silent = connect(windows.address)
+    sync_until(windows, lambda: windows.links, 'the silent connection to be taken in')
+    windows.sync(now=time.monotonic() + viewer.HELLO_TIMEOUT + 1.0)
+    assert not windows.links and any('did not say hello' in text for _, text in windows.log_lines)
+    silent.close()
+
+
+def test_close_tells_each_window_why_and_removes_the_socket(world):
+    windows = viewer.AttachedWindows(world, Log())
+    conn = attach(windows)
+    next_update(windows, conn)
+    windows.close('the world server shut down')
+    assert conn.recv() == ('stop', 'the world server shut down')
+    assert not os.path.exists(windows.address) and connect(windows.address) is None
+
+
+def test_the_socket_is_private_to_this_user(windows):
+    assert os.stat(os.path.dirname(windows.address)).st_mode & 0o077 == 0
+
+
+class FakeWindow(object):
+    def __init__(self):
+        self.shown = []
+
+    def show(self, *update):
+        self.shown.append(update)
+
+
+def pair():
+    a, b = socket.socketpair()
+    return Connection(a.detach()), Connection(b.detach())
+
+
+def test_serve_shows_updates_and_answers_until_the_server_stops():
+    server, conn = pair()
+    x_read, x_write = os.pipe()
+    window = FakeWindow()
+    result = []
+    thread = threading.Thread(target=lambda: result.append(viewer_process.serve(conn, window, x_read)))
+    thread.start()
+    server.send(('sync', {}, ['wall'], {}, None))
+    assert server.poll(WAIT) and server.recv() == ('shown',)
+    server.send(('stop', 'the world server shut down'))
+    thread.join(WAIT)
+    assert result == [(viewer_process.STOPPED, 'the world server shut down')]
+    assert window.shown == [({}, ['wall'], {}, None)]
+    os.close(x_read), os.close(x_write)
+
+
+def test_serve_ends_when_the_server_is_lost_or_the_window_closes():
+    server, conn = pair()
+    x_read, x_write = os.pipe()
+    server.close()
+    how, why = viewer_process.serve(conn, FakeWindow(), x_read)
+    assert how == viewer_process.LOST and 'crashed or was killed' in why
+    server, conn = pair()
+    os.write(x_write, b'x')
+    assert viewer_process.serve(conn, FakeWindow(), x_read)[0] == viewer_process.CLOSED
+    os.close(x_read), os.close(x_write)
+
+
+def test_no_display_is_said_in_words(monkeypatch):
+    monkeypatch.delenv('DISPLAY', raising=False)
+    assert viewer_process.display_problem() == 'there is no display (DISPLAY is unset)'
+    assert 'cannot be opened' in viewer_process.display_problem(':97531')
