@@ -80,10 +80,16 @@ def test_total_mass_is_the_urdfs(world, car):
     assert total_mass(world, car) == pytest.approx(CAR_MASS, abs=0.001)
 
 
-def test_links_without_inertial_get_negligible_mass(world, car):
-    # base_footprint, base_link and realsense_depth declare no <inertial>; merged into the root,
-    # whose mass is the chassis' 4 kg plus the fixed sensors' 0.25 kg.
-    assert dynamics(world, car, 'base_footprint')[0] == pytest.approx(4.25 + 3 * NEGLIGIBLE_MASS, abs=1e-9)
+def test_links_without_inertial_get_negligible_mass(world, car, racebot_xml):
+    # base_footprint, base_link and realsense_depth declare no <inertial>; lumped into the root as Gazebo
+    # lumps them, they add nothing: its mass is the chassis' 4 kg plus the fixed sensors' 0.25 kg.
+    assert dynamics(world, car, 'base_footprint')[0] == pytest.approx(4.25, abs=1e-9)
+    # A link of its own without <inertial> (here kept by preserveFixedJoint) gets a negligible mass.
+    xml = racebot_xml.replace('</robot>', '<gazebo reference="realsense_depth_joint">'
+                                          '<preserveFixedJoint>true</preserveFixedJoint></gazebo></robot>')
+    kept = world.spawn_urdf('kept', urdf_model.parse_urdf(xml), xml)
+    assert dynamics(world, kept, 'realsense_depth')[0] == pytest.approx(NEGLIGIBLE_MASS, abs=1e-12)
+    assert dynamics(world, kept, 'base_footprint')[0] == pytest.approx(4.25, abs=1e-9)
 
 
 def test_fixed_links_are_merged_into_their_parent(car):

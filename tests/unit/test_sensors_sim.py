@@ -277,3 +277,39 @@ def test_a_sensor_on_a_missing_link_is_refused_with_a_warning(racebot_xml):
         assert manager.sensors['racebot']
     finally:
         sim.close()
+
+
+PRESERVE_LIDAR = '<gazebo reference="lidar_joint"><preserveFixedJoint>true</preserveFixedJoint></gazebo></robot>'
+
+
+def test_a_preserved_fixed_link_is_a_real_frame_with_a_working_sensor(racebot_xml):
+    """<gazebo reference="lidar_joint"><preserveFixedJoint>: Gazebo keeps the lidar link. Its state is
+    the car's frame moved by the fixed joints' origins, it is among the model's links (link_states),
+    and the laser on it scans the room from the same place as on the lumped link."""
+    sim, fake, manager, robot = make_world(racebot_xml.replace('</robot>', PRESERVE_LIDAR))
+    try:
+        body = robot.body
+        assert 'lidar' in body.link_names() and 'lidar' not in body.joints  # a fixed link, not a joint
+        assert 'camera' not in body.link_names()  # still lumped, as Gazebo does
+        listen(fake, '/scan')
+        run(sim, 0.5)
+        (pose, twist), frame = sim.world.link_state(body, 'lidar'), body.frame_pose()
+        expected = sdf_world.compose((frame.position, frame.orientation),
+                                     sdf_world.compose((0.0, 0.0, 0.032, 0.0, 0.0, 0.0),
+                                                       (0.093603, 0.0, 0.12377, 0.0, 0.0, 0.0)))
+        assert pose.position == pytest.approx(expected[0], abs=1e-6)
+        assert pose.orientation == pytest.approx(expected[1], abs=1e-6)
+        laser = sensor_of(manager, 'laser')
+        assert laser.mount.link == 'lidar' and laser.mount.index == body.link_index['lidar']
+        scan = fake.publishers['/scan'].messages[-1]
+        assert scan.header.frame_id == 'lidar'
+        position, orientation = laser.mount.pose()
+        on_link = sdf_world.compose((pose.position, pose.orientation), laser.spec.pose)  # the <pose> on its link
+        assert position == pytest.approx(on_link[0], abs=1e-6)
+        yaw = sdf_world.quaternion_to_rpy(orientation)[2]
+        expected_ranges = sensors_geometry.expected_scan(str(ROOM), position, yaw, scan.angle_min,
+                                                         scan.angle_increment, 1081)
+        checked, bad = sensors_geometry.compare(scan.ranges, expected_ranges, scan.range_min, scan.range_max, 0.03)
+        assert checked > 1000 and not bad, bad[:10]
+    finally:
+        sim.close()

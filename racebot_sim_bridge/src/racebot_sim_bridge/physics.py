@@ -4,7 +4,8 @@ No ROS here. Every PyBullet call carries this client's id, so several worlds can
 process (tests do that). Bodies are addressed by model name; joints and links by their URDF names.
 
 Gazebo behaviours reproduced here, because the car drives differently without them:
-- fixed-joint children are merged into their parent link (URDF_MERGE_FIXED_LINKS), as Gazebo does;
+- fixed-joint children are merged into their parent link as Gazebo lumps them (urdf_lumping.py, not
+  PyBullet's URDF_MERGE_FIXED_LINKS, which would also merge a joint Gazebo keeps: preserveFixedJoint);
 - a URDF link without <inertial> would get 1 kg in PyBullet; Gazebo ignores its mass, so it gets
   a negligible one here (the racebot would otherwise be ~6 kg too heavy);
 - friction: ODE takes the smaller mu of two touching surfaces, Bullet multiplies them. Static world
@@ -30,7 +31,7 @@ from collections import namedtuple
 
 import pybullet as pb
 
-from . import sdf_world, urdf_assets
+from . import sdf_world, urdf_assets, urdf_lumping
 
 # Mass and inertia given to links that declare no <inertial> (Gazebo drops such links' mass).
 NEGLIGIBLE_MASS = 1e-4
@@ -298,8 +299,7 @@ class PhysicsWorld(object):
         path = os.path.join(self._tmpdir, '%s.urdf' % name.replace('/', '_'))
         with open(path, 'w') as f:
             f.write(prepare_urdf_for_bullet(urdf_xml, urdf_model, self.visuals))
-        flags = pb.URDF_MERGE_FIXED_LINKS | pb.URDF_USE_INERTIA_FROM_FILE | pb.URDF_MAINTAIN_LINK_ORDER \
-            | pb.URDF_USE_IMPLICIT_CYLINDER
+        flags = pb.URDF_USE_INERTIA_FROM_FILE | pb.URDF_MAINTAIN_LINK_ORDER | pb.URDF_USE_IMPLICIT_CYLINDER
         try:
             body_id = pb.loadURDF(path, basePosition=position, baseOrientation=orientation, flags=flags,
                                   physicsClientId=self.client)
@@ -428,13 +428,14 @@ def link_friction(urdf_model, link):
 
 
 def prepare_urdf_for_bullet(urdf_xml, urdf_model, visuals=True):
-    """The URDF as PyBullet should read it: negligible inertia for links that declare none;
-    <gazebo>, <transmission> and sensor blocks dropped; the visuals dropped unless `visuals`.
+    """The URDF as PyBullet should read it: links lumped as Gazebo lumps them; negligible inertia for
+    links that declare none; <gazebo>, <transmission> and sensor blocks dropped; the visuals dropped unless `visuals`.
     Mesh filenames must already be files PyBullet reads (urdf_assets.resolve_assets)."""
     root = ET.fromstring(urdf_xml)
     for tag in ('gazebo', 'transmission'):
         for el in root.findall(tag):
             root.remove(el)
+    urdf_lumping.lump_fixed_links(root, urdf_model)
     for link in root.findall('link'):
         if link.find('inertial') is None:
             inertial = ET.SubElement(link, 'inertial')

@@ -248,7 +248,7 @@ class RobotModel:
 
     def _keeps_fixed_joint(self, joint):
         ref = self.gazebo_refs.get(joint.name, {})
-        return any(ref.get(key) is True for key in ('preserveFixedJoint', 'disableFixedJointLumping'))
+        return any(ref.get(key) is True for key in KEEP_FIXED_JOINT)
 
     def fixed_parent_chain(self, link):
         """The fixed joints from ``link`` up to the link Gazebo merges it into.
@@ -327,6 +327,8 @@ EXTENSION_VALUES = frozenset((
     'kp', 'kd', 'selfCollide', 'maxContacts', 'laserRetro', 'springReference', 'springStiffness', 'stopCfm',
     'stopErp', 'fudgeFactor', 'provideFeedback', 'cfmDamping', 'implicitSpringDamper',
     'disableFixedJointLumping', 'preserveFixedJoint'))
+# The two that keep a fixed joint and its child link (sdformat: on the JOINT's reference).
+KEEP_FIXED_JOINT = ('preserveFixedJoint', 'disableFixedJointLumping')
 # Those of them that are switches, kept as booleans.
 EXTENSION_FLAGS = frozenset((
     'static', 'turnGravityOff', 'selfCollide', 'provideFeedback', 'cfmDamping', 'implicitSpringDamper',
@@ -673,6 +675,8 @@ class _UrdfReader:
                 text = _extension_text(child)
                 if child.tag in EXTENSION_FLAGS:
                     properties[child.tag] = _extension_flag(child.tag, text)
+                    if child.tag in KEEP_FIXED_JOINT and reference not in self.model.joints:
+                        self._warn_keep_on_link(what, child.tag, reference)
                     continue
                 try:
                     value = float(text)
@@ -684,6 +688,14 @@ class _UrdfReader:
                     self.warn("%s <%s>%s</%s>: a friction coefficient is a number >= 0; ignored"
                               % (what, child.tag, text, child.tag))
                     del properties[child.tag]
+
+    def _warn_keep_on_link(self, what, tag, link):
+        """Gazebo reads preserveFixedJoint / disableFixedJointLumping on joint references only."""
+        joint = self.model.parent_joint(link)
+        hint = ('write it as <gazebo reference="%s"> (the fixed joint above it)' % joint.name
+                if joint is not None else 'it names the root link, which has no joint above it')
+        self.warn('%s <%s>: Gazebo reads this on a fixed joint\'s reference, not a link\'s, so the link is '
+                  'still lumped; %s' % (what, tag, hint))
 
     def sensor(self, elem, reference):
         name = elem.get('name')

@@ -1,9 +1,10 @@
 """Where a sensor is: its pose (and motion) on a spawned body.
 
 No rospy here. Calls run on the physics client; callers hold the simulator's lock.
-- SensorMount: a sensor's pose on a spawned body. PyBullet merges fixed-joint links into their
-  parent (as Gazebo does), so a sensor link such as `lidar` is no PyBullet link: the mount is the
-  link it was merged into plus the fixed offset urdf_model computes, plus the sensor's <pose>.
+- SensorMount: a sensor's pose on a spawned body. Fixed-joint links are lumped into their parent
+  as Gazebo lumps them (urdf_lumping), so a sensor link such as `lidar` is no PyBullet link: the
+  mount is the link it was lumped into plus the fixed offset urdf_model computes, plus the sensor's
+  <pose>. A link kept by preserveFixedJoint is a PyBullet link of its own: the mount is that link.
 """
 import numpy as np
 import pybullet as pb
