@@ -47,7 +47,13 @@ def test_physics_value_is_not_taken_for_the_world():
 def test_unknown_flags_are_ignored_and_reported():
     world, paused, _, ignored = parse_args(['-u', '-r', '--minimal_comms', '--lockstep', 'w.world'])
     assert (world, paused) == ('w.world', True)
-    assert ignored == ['-r', '--minimal_comms', '--lockstep']
+    assert ignored[1:] == ['--minimal_comms', '--lockstep']
+    assert ignored[0].startswith('-r (recording:=true')  # said once, with what it would have done
+
+
+@pytest.mark.parametrize('flag', ['-r', '--record'])
+def test_recording_is_named_as_such(flag):
+    assert parse_args([flag, 'w.world'])[3] == ['%s (recording:=true: there are no Gazebo state logs here)' % flag]
 
 
 def test_empty_arguments_from_unset_launch_args_are_skipped():

@@ -5,6 +5,7 @@ options, ignored] WORLD_FILE`. `-u` starts paused. Private parameters:
   ~gui (bool, false)             PyBullet's window, the camera following the first robot (needs a display)
   ~pub_clock_frequency (Hz, 0)   if > 0, /clock at most this often in sim time (gazebo_ros's
                                  /gazebo/pub_clock_frequency); 0 = every world update, as Gazebo
+  ~enable_ros_network (bool, true)  false: no services or state topics, only /clock (gazebo_ros's)
   ~fast_clock_wall_period (s, 0.001)  as fast as possible only (real_time_update_rate 0): /clock at
                                  most once per this many wall seconds, carrying the latest update's
                                  time, so subscribers see sim time advance in steps of about
@@ -16,6 +17,7 @@ options, ignored] WORLD_FILE`. `-u` starts paused. Private parameters:
   ~command_trace (path, '')      measurements only (make bench): append to this file when each
                                  controller command arrives and when an update first applies it
                                  (controllers.CommandTrace); '' = off, and then it costs nothing
+Services and topics live under the node's own name, as gazebo_ros's (node `gazebo`: /gazebo/...).
 Pacing is in wall time (this node drives ROS time, so rospy's timers cannot pace it): the world's
 real_time_update_rate updates per wall second, or as fast as possible when it is 0.
 """
@@ -91,6 +93,8 @@ def parse_args(argv):
             paused = True
         elif a == '--verbose':
             verbose = True
+        elif a in ('-r', '--record'):
+            ignored.append('%s (recording:=true: there are no Gazebo state logs here)' % a)
         elif a in ('-e', '--physics'):
             engine = next(it, 'ode')
             if engine != 'ode':
@@ -165,7 +169,13 @@ class WorldServer(object):
         self.states_period = self._rate_param('~states_publish_rate', 100.0)
         self.clock_pub = clock_publisher()
         self.sensors = SensorManager(rospy, self.sim)  # before the services: every spawn gets its sensors
-        self.services = GazeboServices(rospy, self.sim)
+        # gazebo_ros advertises in its node's namespace (a node `gazebo` in ns /sim serves /sim/gazebo/...)
+        # and, with ~enable_ros_network false, nothing but /clock.
+        self.services = None
+        if rospy.get_param('~enable_ros_network', True):
+            self.services = GazeboServices(rospy, self.sim, rospy.get_name())
+        else:
+            rospy.loginfo('ROS gazebo topics/services are disabled (~enable_ros_network is false)')
         self.clock_msg = Clock()
         self.last_clock = -math.inf
         self.last_states = -math.inf
@@ -242,7 +252,8 @@ class WorldServer(object):
             self.publish_clock()
             if self.sim.time - self.last_states >= self.states_period - 1e-9:
                 self.last_states = self.sim.time
-                self.services.publish_states()
+                if self.services is not None:
+                    self.services.publish_states()
             if self.viewer is not None and time.perf_counter() - last_view >= VIEWER_SYNC_PERIOD:
                 last_view = time.perf_counter()
                 with self.sim.lock:
@@ -260,7 +271,8 @@ class WorldServer(object):
                     wall_start, steps_since = time.perf_counter(), 0
 
     def shutdown(self):
-        self.services.shutdown()
+        if self.services is not None:
+            self.services.shutdown()
         self.sensors.close()  # the render worker stops with us
         if self.viewer is not None:
             self.viewer.close()
@@ -296,9 +308,15 @@ def init_clock_source(name):
         rospy.rostime._set_rostime(rospy.Time(0))
 
 
-def main(argv=None):
+def main(argv=None, debugger=False):
+    """`debugger`: started as gazebo_ros's `debug` (empty_world.launch debug:=true)."""
     argv = rospy.myargv(argv if argv is not None else sys.argv)[1:]
     init_clock_source('gazebo')
+    if not rospy.has_param('/use_sim_time'):  # gazebo_ros sets it when nobody has
+        rospy.set_param('/use_sim_time', True)
+    if debugger:
+        rospy.loginfo('debug:=true starts gzserver under gdb in Gazebo; this world server is Python and '
+                      'runs without a debugger (attach one to process %d if needed)' % os.getpid())
     world, paused, verbose, ignored = parse_args(argv)
     for opt in ignored:
         rospy.loginfo('gzserver option %s has no meaning here; ignored' % opt)
