@@ -4,7 +4,10 @@ switch / list / reload_libraries / update semantics (INTERFACES.md; ros_control 
 The manager gets the racebot's RobotHW (a URDF with its six effort joints, written out here), an
 in-memory I/O object, a parameter dict and a log that records what it is told. No ROS master.
 """
+import contextlib
 import copy
+import threading
+import time
 
 import pytest
 import rospy
@@ -12,7 +15,7 @@ import rospy
 from racebot_sim_bridge import urdf_model
 from racebot_sim_bridge.controller_manager import BEST_EFFORT, STRICT, ControllerManager
 from racebot_sim_bridge.controllers import CONTROLLER_TYPES, Controller
-from racebot_sim_bridge.hardware import EFFORT, STATE, RobotHW
+from racebot_sim_bridge.hardware import EFFORT, STATE, VELOCITY, RobotHW
 
 NS = 'racebot'
 DT = 0.001
@@ -102,7 +105,7 @@ class Recorder(Controller):
             hw.handle(j, EFFORT)
 
     def claimed_resources(self):
-        return [(EFFORT, list(self.joints))]
+        return [(self.params.get('claim_as', EFFORT), list(self.joints))]
 
     def starting(self, time):
         self.journal.append(('start', self.name, time))
@@ -153,6 +156,38 @@ class Rig(object):
         types[Recorder.type_name] = recorder
         self.cm = ControllerManager(NS, self.hw, lambda name: copy.deepcopy(self.params.get(name)), self.io,
                                     self.log, types=types)
+
+    def switch(self, start, stop, strictness, t=0.0, start_asap=False):
+        """switch_controller as its service runs it: the checks, then the update at t carries it out."""
+        request = self.cm.request_switch(start, stop, strictness, start_asap)
+        if request is None:
+            return False
+        self.cm.update(t, DT)
+        assert request.done.is_set() and self.cm.pending is None
+        return request.ok
+
+    def events(self):
+        """The journal's starts and stops."""
+        return [e for e in self.journal if e[0] != 'update']
+
+    @contextlib.contextmanager
+    def updating(self):
+        """The simulation's update loop, in a thread, while the block runs."""
+        stop = threading.Event()
+
+        def loop():
+            t = 0.0
+            while not stop.is_set():
+                t += DT
+                self.cm.update(t, DT)
+                time.sleep(0.001)
+        thread = threading.Thread(target=loop, daemon=True)
+        thread.start()
+        try:
+            yield
+        finally:
+            stop.set()
+            thread.join()
 
     def states(self):
         return {name: state for name, _, state, _ in self.cm.list()}
@@ -250,11 +285,11 @@ def test_unload_unknown(rig):
 
 def test_unload_running_is_refused(rig):
     rig.load_all('joint_state_controller')
-    assert rig.cm.switch(['joint_state_controller'], [], STRICT, 0.0)
+    assert rig.switch(['joint_state_controller'], [], STRICT, 0.0)
     assert not rig.cm.unload('joint_state_controller')
     assert 'still running' in rig.log.errors[-1]
     assert rig.states() == {'joint_state_controller': 'running'}
-    assert rig.cm.switch([], ['joint_state_controller'], STRICT, 0.0)
+    assert rig.switch([], ['joint_state_controller'], STRICT, 0.0)
     assert rig.cm.unload('joint_state_controller')
 
 
@@ -262,24 +297,24 @@ def test_unload_running_is_refused(rig):
 
 def test_switch_start_and_stop(rig):
     rig.load_all('rec_a', 'rec_b')
-    assert rig.cm.switch(['rec_a', 'rec_b'], [], STRICT, 1.0)
+    assert rig.switch(['rec_a', 'rec_b'], [], STRICT, 1.0)
     assert rig.states() == {'rec_a': 'running', 'rec_b': 'running'}
-    assert rig.cm.switch([], ['rec_a'], STRICT, 2.0)
+    assert rig.switch([], ['rec_a'], STRICT, 2.0)
     assert rig.states() == {'rec_a': 'stopped', 'rec_b': 'running'}
-    assert rig.journal == [('start', 'rec_a', 1.0), ('start', 'rec_b', 1.0), ('stop', 'rec_a', 2.0)]
+    assert rig.events() == [('start', 'rec_a', 1.0), ('start', 'rec_b', 1.0), ('stop', 'rec_a', 2.0)]
 
 
 def test_strict_unknown_name_changes_nothing(rig):
     rig.load_all('rec_a')
-    assert not rig.cm.switch(['rec_a', 'ghost'], [], STRICT, 0.0)
+    assert not rig.switch(['rec_a', 'ghost'], [], STRICT, 0.0)
     assert "'ghost'" in rig.log.errors[-1]
     assert rig.states() == {'rec_a': 'initialized'}
-    assert rig.journal == []
+    assert rig.events() == []
 
 
 def test_best_effort_unknown_name_is_skipped(rig):
     rig.load_all('rec_a')
-    assert rig.cm.switch(['rec_a', 'ghost'], ['ghost2'], BEST_EFFORT, 0.0)
+    assert rig.switch(['rec_a', 'ghost'], ['ghost2'], BEST_EFFORT, 0.0)
     assert rig.states() == {'rec_a': 'running'}
     assert any("'ghost'" in w for w in rig.log.warnings)
     assert any("'ghost2'" in w for w in rig.log.warnings)
@@ -288,111 +323,197 @@ def test_best_effort_unknown_name_is_skipped(rig):
 
 def test_strict_start_already_running(rig):
     rig.load_all('rec_a', 'rec_b')
-    assert rig.cm.switch(['rec_a'], [], STRICT, 0.0)
-    assert not rig.cm.switch(['rec_a', 'rec_b'], [], STRICT, 1.0)
-    assert "Could not start controller 'rec_a' since it is already running" in rig.log.errors[-1]
+    assert rig.switch(['rec_a'], [], STRICT, 0.0)
+    assert rig.cm.request_switch(['rec_a', 'rec_b'], [], STRICT) is None
+    assert "Controller 'rec_a' is already running" in rig.log.errors[-1]
     assert rig.states() == {'rec_a': 'running', 'rec_b': 'initialized'}
-    assert rig.journal == [('start', 'rec_a', 0.0)]
+    assert rig.events() == [('start', 'rec_a', 0.0)]
 
 
-def test_best_effort_start_already_running(rig):
+def test_best_effort_start_already_running_restarts_it(rig):
+    # controller_manager 0.20: the check skips it, but startControllers() starts every requested one
     rig.load_all('rec_a', 'rec_b')
-    assert rig.cm.switch(['rec_a'], [], STRICT, 0.0)
-    assert rig.cm.switch(['rec_a', 'rec_b'], [], BEST_EFFORT, 1.0)
+    assert rig.switch(['rec_a'], [], STRICT, 0.0)
+    assert rig.switch(['rec_a', 'rec_b'], [], BEST_EFFORT, 1.0)
     assert rig.states() == {'rec_a': 'running', 'rec_b': 'running'}
-    assert rig.journal == [('start', 'rec_a', 0.0), ('start', 'rec_b', 1.0)]  # rec_a not restarted
+    assert rig.events() == [('start', 'rec_a', 0.0), ('start', 'rec_a', 1.0), ('start', 'rec_b', 1.0)]
+
+
+def test_best_effort_start_asap_leaves_a_running_controller_alone(rig):
+    # startControllersAsap() starts only the requested controllers that do not run yet
+    rig.load_all('rec_a', 'rec_b')
+    assert rig.switch(['rec_a'], [], STRICT, 0.0)
+    assert rig.switch(['rec_a', 'rec_b'], [], BEST_EFFORT, 1.0, start_asap=True)
+    assert rig.states() == {'rec_a': 'running', 'rec_b': 'running'}
+    assert rig.events() == [('start', 'rec_a', 0.0), ('start', 'rec_b', 1.0)]
 
 
 def test_strict_stop_not_running(rig):
     rig.load_all('rec_a', 'rec_b')
-    assert rig.cm.switch(['rec_b'], [], STRICT, 0.0)
-    assert not rig.cm.switch([], ['rec_a', 'rec_b'], STRICT, 1.0)
+    assert rig.switch(['rec_b'], [], STRICT, 0.0)
+    assert rig.cm.request_switch([], ['rec_a', 'rec_b'], STRICT) is None
     assert "Could not stop controller 'rec_a' since it is not running" in rig.log.errors[-1]
     assert rig.states() == {'rec_a': 'initialized', 'rec_b': 'running'}
 
 
 def test_best_effort_stop_not_running(rig):
     rig.load_all('rec_a', 'rec_b')
-    assert rig.cm.switch(['rec_b'], [], STRICT, 0.0)
-    assert rig.cm.switch([], ['rec_a', 'rec_b'], BEST_EFFORT, 1.0)
+    assert rig.switch(['rec_b'], [], STRICT, 0.0)
+    assert rig.switch([], ['rec_a', 'rec_b'], BEST_EFFORT, 1.0)
     assert rig.states() == {'rec_a': 'initialized', 'rec_b': 'stopped'}
     assert ('stop', 'rec_a', 1.0) not in rig.journal
 
 
-def test_restart_in_one_switch(rig):
+@pytest.mark.parametrize('strictness', [STRICT, BEST_EFFORT])
+def test_a_running_controller_in_both_lists_is_refused(rig, strictness):
+    rig.load_all('rec_a', 'rec_b')
+    assert rig.switch(['rec_a'], [], STRICT, 0.0)
+    assert rig.cm.request_switch(['rec_a', 'rec_b'], ['rec_a'], strictness) is None
+    assert ("Could no start or stop controller 'rec_a' because of conflicting switching command"
+            in rig.log.errors[-1])
+    rig.cm.update(1.0, DT)
+    assert rig.states() == {'rec_a': 'running', 'rec_b': 'initialized'}
+    assert rig.events() == [('start', 'rec_a', 0.0)]
+
+
+def test_a_stopped_controller_in_both_lists(rig):
+    # not running: STRICT refuses the stop; BEST_EFFORT drops the stop and starts it
     rig.load_all('rec_a')
-    assert rig.cm.switch(['rec_a'], [], STRICT, 0.0)
-    assert rig.cm.switch(['rec_a'], ['rec_a'], STRICT, 1.0)
-    assert rig.journal[-2:] == [('stop', 'rec_a', 1.0), ('start', 'rec_a', 1.0)]
+    assert rig.cm.request_switch(['rec_a'], ['rec_a'], STRICT) is None
+    assert "Could not stop controller 'rec_a' since it is not running" in rig.log.errors[-1]
+    assert rig.switch(['rec_a'], ['rec_a'], BEST_EFFORT, 1.0)
     assert rig.states() == {'rec_a': 'running'}
+    assert rig.events() == [('start', 'rec_a', 1.0)]
 
 
 def test_stopped_controller_can_be_started_again(rig):
     rig.load_all('rec_a')
-    assert rig.cm.switch(['rec_a'], [], STRICT, 0.0)
-    assert rig.cm.switch([], ['rec_a'], STRICT, 1.0)
-    assert rig.cm.switch(['rec_a'], [], STRICT, 2.0)
+    assert rig.switch(['rec_a'], [], STRICT, 0.0)
+    assert rig.switch([], ['rec_a'], STRICT, 1.0)
+    assert rig.switch(['rec_a'], [], STRICT, 2.0)
     assert rig.states() == {'rec_a': 'running'}
 
 
-@pytest.mark.parametrize('strictness', [0, 3, 255])
-def test_other_strictness_falls_back_to_best_effort_with_a_warning(rig, strictness):
+@pytest.mark.parametrize('strictness, words', [(0, 'Defaulting to ::BEST_EFFORT'), (3, 'treated as BEST_EFFORT'),
+                                               (255, 'treated as BEST_EFFORT')])
+def test_other_strictness_falls_back_to_best_effort_with_a_warning(rig, strictness, words):
     rig.load_all('rec_a')
-    assert rig.cm.switch(['rec_a', 'ghost'], [], strictness, 0.0)
+    assert rig.switch(['rec_a', 'ghost'], [], strictness, 0.0)
     assert rig.states() == {'rec_a': 'running'}
-    assert any('Defaulting to ::BEST_EFFORT' in w for w in rig.log.warnings)
+    assert any(words in w for w in rig.log.warnings)
     assert any('STRICT (2)' in w and 'BEST_EFFORT (1)' in w for w in rig.log.warnings)
 
 
 def test_strictness_zero_is_best_effort_not_strict(rig):
     rig.load_all('rec_a', 'rec_b')
-    assert rig.cm.switch(['rec_a'], [], STRICT, 0.0)
-    assert rig.cm.switch(['rec_a', 'rec_b'], [], 0, 1.0)  # STRICT would refuse: rec_a already runs
+    assert rig.switch(['rec_a'], [], STRICT, 0.0)
+    assert rig.switch(['rec_a', 'rec_b'], [], 0, 1.0)  # STRICT would refuse: rec_a already runs
     assert rig.states() == {'rec_a': 'running', 'rec_b': 'running'}
 
 
 def test_resource_conflict_refused(rig):
     rig.load_all('left_rear_wheel_velocity_controller', 'rear_wheel_effort')
     for strictness in (STRICT, BEST_EFFORT):
-        assert not rig.cm.switch(['left_rear_wheel_velocity_controller', 'rear_wheel_effort'], [], strictness, 0.0)
-        assert 'Resource conflict' in ' '.join(rig.log.errors)
-        assert 'left_rear_wheel_joint' in ' '.join(rig.log.errors)
+        assert not rig.switch(['left_rear_wheel_velocity_controller', 'rear_wheel_effort'], [], strictness, 0.0)
+        assert 'Could not switch controllers, due to resource conflict' in rig.log.errors[-1]
+        assert ('Resource conflict on [left_rear_wheel_joint].  Controllers = '
+                '[left_rear_wheel_velocity_controller, rear_wheel_effort, ]') in rig.log.warnings[-1]
     assert set(rig.states().values()) == {'initialized'}
+
+
+def test_conflicts_are_per_joint_whatever_the_interfaces(rig):
+    # RobotHW::checkForConflict maps resource names to controllers: one joint claimed through two
+    # interfaces is a conflict too
+    rig.params['rec_velocity'] = {'type': Recorder.type_name, 'joints': ['left_front_wheel_joint'],
+                                  'claim_as': VELOCITY}
+    rig.load_all('rec_a', 'rec_velocity', 'rec_b')
+    assert rig.cm.request_switch(['rec_a', 'rec_velocity'], [], BEST_EFFORT) is None
+    assert 'Resource conflict on [left_front_wheel_joint]' in rig.log.warnings[-1]
+    assert rig.switch(['rec_a', 'rec_b'], [], STRICT, 0.0)  # different joints: fine
+    assert rig.switch(['rec_velocity'], ['rec_a'], STRICT, 1.0)  # handed over in one switch: fine
 
 
 def test_resource_conflict_with_a_running_controller(rig):
     rig.load_all('left_rear_wheel_velocity_controller', 'rear_wheel_effort')
-    assert rig.cm.switch(['left_rear_wheel_velocity_controller'], [], STRICT, 0.0)
-    assert not rig.cm.switch(['rear_wheel_effort'], [], STRICT, 1.0)
+    assert rig.switch(['left_rear_wheel_velocity_controller'], [], STRICT, 0.0)
+    assert not rig.switch(['rear_wheel_effort'], [], STRICT, 1.0)
     assert rig.states()['rear_wheel_effort'] == 'initialized'
     # Handing the joint over in one switch is fine.
-    assert rig.cm.switch(['rear_wheel_effort'], ['left_rear_wheel_velocity_controller'], STRICT, 2.0)
+    assert rig.switch(['rear_wheel_effort'], ['left_rear_wheel_velocity_controller'], STRICT, 2.0)
     assert rig.states() == {'left_rear_wheel_velocity_controller': 'stopped', 'rear_wheel_effort': 'running'}
 
 
 def test_joint_state_controller_claims_nothing_so_no_conflict(rig):
     rig.params['jsc2'] = dict(PARAMS['joint_state_controller'])
     rig.load_all('joint_state_controller', 'jsc2', 'left_rear_wheel_velocity_controller')
-    assert rig.cm.switch(['joint_state_controller', 'jsc2', 'left_rear_wheel_velocity_controller'], [], STRICT, 0.0)
+    assert rig.switch(['joint_state_controller', 'jsc2', 'left_rear_wheel_velocity_controller'], [], STRICT, 0.0)
     assert rig.io.topics['/racebot/joint_states']
 
 
 def test_stopping_a_controller_zeroes_its_joints(rig):
     rig.load_all('left_rear_wheel_velocity_controller')
-    assert rig.cm.switch(['left_rear_wheel_velocity_controller'], [], STRICT, 0.0)
+    assert rig.switch(['left_rear_wheel_velocity_controller'], [], STRICT, 0.0)
     rig.io.send('/racebot/left_rear_wheel_velocity_controller/command', 5.0)
     rig.cm.update(0.0, DT)
     assert rig.hw.handles['left_rear_wheel_joint'].command == 5.0
-    assert rig.cm.switch([], ['left_rear_wheel_velocity_controller'], STRICT, DT)
+    assert rig.switch([], ['left_rear_wheel_velocity_controller'], STRICT, DT)
     assert rig.hw.handles['left_rear_wheel_joint'].command == 0.0
+
+
+def test_a_switch_happens_at_the_next_update_with_its_time(rig):
+    # ros_control carries a switch out in the realtime loop, after that update's controllers ran
+    rig.load_all('rec_a', 'rec_b')
+    assert rig.switch(['rec_b'], [], STRICT, 0.0)
+    request = rig.cm.request_switch(['rec_a'], ['rec_b'], STRICT)
+    assert request is not None and not request.done.is_set()
+    assert rig.states() == {'rec_a': 'initialized', 'rec_b': 'running'}
+    rig.cm.update(0.25, DT)
+    assert request.done.is_set() and request.ok
+    assert rig.journal[-3:] == [('update', 'rec_b', 0.25), ('stop', 'rec_b', 0.25), ('start', 'rec_a', 0.25)]
+    assert rig.states() == {'rec_a': 'running', 'rec_b': 'stopped'}
+
+
+def test_one_switch_at_a_time(rig):
+    rig.load_all('rec_a', 'rec_b')
+    assert rig.cm.request_switch(['rec_a'], [], STRICT) is not None
+    assert rig.cm.request_switch(['rec_b'], [], STRICT) is None
+    assert 'still waiting for the simulation to update' in rig.log.errors[-1]
+
+
+def test_switch_waits_for_the_update_loop(rig):
+    rig.load_all('rec_a')
+    with rig.updating():
+        assert rig.cm.switch(['rec_a'], [], STRICT, timeout=0.0)  # 0: no bound on the wait
+    assert rig.states() == {'rec_a': 'running'}
+
+
+@pytest.mark.parametrize('timeout', [-0.95, -1.5, float('nan')])
+def test_switch_timeout_bounds_the_wait_and_withdraws_the_switch(rig, timeout):
+    # controller_manager 0.20 waits timeout + 1 s of wall time (no bound for 0), then answers false
+    rig.load_all('rec_a')
+    begin = time.monotonic()
+    assert not rig.cm.switch(['rec_a'], [], STRICT, timeout=timeout)  # no update comes (paused)
+    assert time.monotonic() - begin < 1.0
+    assert 'did not update within the timeout' in rig.log.errors[-1]
+    rig.cm.update(1.0, DT)  # the simulation goes on: the withdrawn switch does not happen
+    assert rig.states() == {'rec_a': 'initialized'} and rig.cm.pending is None
+    assert rig.switch(['rec_a'], [], STRICT, 2.0)  # and the next one is accepted
+
+
+def test_switch_stops_waiting_on_shutdown(rig):
+    rig.load_all('rec_a')
+    assert not rig.cm.switch(['rec_a'], [], STRICT, timeout=0.0, keep_waiting=lambda: False)
+    request = rig.cm.request_switch(['rec_a'], [], STRICT)
+    rig.cm.shutdown()  # the model is deleted while a switch waits: its caller gets false
+    assert request.done.is_set() and not request.ok
 
 
 # -- list ---------------------------------------------------------------------------------------
 
 def test_list_with_claimed_resources(rig):
     rig.load_all('joint_state_controller', 'left_rear_wheel_velocity_controller', 'left_steering_hinge_position_controller')
-    assert rig.cm.switch(['joint_state_controller', 'left_steering_hinge_position_controller'], [], STRICT, 0.0)
-    assert rig.cm.switch([], ['left_steering_hinge_position_controller'], STRICT, 0.0)
+    assert rig.switch(['joint_state_controller', 'left_steering_hinge_position_controller'], [], STRICT, 0.0)
+    assert rig.switch([], ['left_steering_hinge_position_controller'], STRICT, 0.0)
     assert rig.cm.list() == [
         ('joint_state_controller', 'joint_state_controller/JointStateController', 'running', [(STATE, [])]),
         ('left_rear_wheel_velocity_controller', 'effort_controllers/JointVelocityController', 'initialized',
@@ -405,25 +526,25 @@ def test_list_with_claimed_resources(rig):
 # -- reload_controller_libraries ----------------------------------------------------------------
 
 def test_reload_libraries_with_nothing_loaded(rig):
-    assert rig.cm.reload_libraries(False, 0.0)
-    assert rig.cm.reload_libraries(True, 0.0)
+    assert rig.cm.reload_libraries(False)
+    assert rig.cm.reload_libraries(True)
 
 
 def test_reload_libraries_refused_while_controllers_are_loaded(rig):
     rig.load_all('rec_a', 'rec_b')
-    assert rig.cm.switch(['rec_a'], [], STRICT, 0.0)
-    assert not rig.cm.reload_libraries(False, 1.0)
+    assert rig.switch(['rec_a'], [], STRICT, 0.0)
+    assert not rig.cm.reload_libraries(False)
     assert 'force_kill' in rig.log.errors[-1]
     assert rig.states() == {'rec_a': 'running', 'rec_b': 'initialized'}
 
 
 def test_reload_libraries_force_kill_stops_and_unloads_everything(rig):
     rig.load_all('rec_a', 'rec_b', 'rec_c')
-    assert rig.cm.switch(['rec_a', 'rec_c'], [], STRICT, 0.0)
-    assert rig.cm.reload_libraries(True, 1.0)
+    assert rig.switch(['rec_a', 'rec_c'], [], STRICT, 0.0)
+    with rig.updating():  # the stop is carried out by an update
+        assert rig.cm.reload_libraries(True)
     assert rig.cm.list() == []
-    assert ('stop', 'rec_a', 1.0) in rig.journal and ('stop', 'rec_c', 1.0) in rig.journal
-    assert ('stop', 'rec_b', 1.0) not in rig.journal
+    assert [e[:2] for e in rig.events()[-2:]] == [('stop', 'rec_a'), ('stop', 'rec_c')]
     assert rig.cm.load('rec_a')
 
 
@@ -431,7 +552,7 @@ def test_reload_libraries_force_kill_stops_and_unloads_everything(rig):
 
 def test_update_runs_running_controllers_in_load_order(rig):
     rig.load_all('rec_b', 'rec_c', 'rec_a')
-    assert rig.cm.switch(['rec_a', 'rec_b'], [], STRICT, 0.0)
+    assert rig.switch(['rec_a', 'rec_b'], [], STRICT, 0.0)
     del rig.journal[:]
     rig.cm.update(0.5, DT)
     assert rig.journal == [('update', 'rec_b', 0.5), ('update', 'rec_a', 0.5)]
@@ -440,12 +561,12 @@ def test_update_runs_running_controllers_in_load_order(rig):
 def test_update_nothing_when_nothing_runs(rig):
     rig.load_all('rec_a')
     rig.cm.update(0.0, DT)
-    assert rig.journal == []
+    assert rig.events() == []
 
 
 def test_reset_controllers_stops_and_starts_running_ones(rig):
     rig.load_all('rec_a', 'rec_b')
-    assert rig.cm.switch(['rec_a'], [], STRICT, 0.0)
+    assert rig.switch(['rec_a'], [], STRICT, 0.0)
     del rig.journal[:]
     rig.cm.update(3.0, DT, reset_controllers=True)
     assert rig.journal == [('stop', 'rec_a', 3.0), ('start', 'rec_a', 3.0), ('update', 'rec_a', 3.0)]
@@ -455,7 +576,7 @@ def test_reset_controllers_position_controller_holds_new_position_and_pid_is_res
     name = 'left_steering_hinge_position_controller'
     joint = rig.hw.handles['left_steering_hinge_joint']
     rig.load_all(name)
-    assert rig.cm.switch([name], [], STRICT, 0.0)
+    assert rig.switch([name], [], STRICT, 0.0)
     controller = rig.cm.loaded[name].controller
     rig.io.send('/racebot/%s/command' % name, 0.3)
     t = 0.0
@@ -477,7 +598,7 @@ def test_reset_controllers_position_controller_holds_new_position_and_pid_is_res
 
 def test_shutdown_unloads_everything(rig):
     rig.load_all('joint_state_controller', 'left_rear_wheel_velocity_controller')
-    assert rig.cm.switch(['joint_state_controller'], [], STRICT, 0.0)
+    assert rig.switch(['joint_state_controller'], [], STRICT, 0.0)
     rig.cm.shutdown()
     assert rig.cm.list() == []
     assert all(t.unregistered for t in rig.io.topics.values())
@@ -513,7 +634,8 @@ def test_a_controller_raising_in_update_is_stopped_and_the_others_keep_running()
 
     cm = ControllerManager('/bot', hw, params.get, FakeIO(), log, types={'test/Broken': Broken, 'test/Counting': Counting})
     assert cm.load('broken') and cm.load('fine')
-    assert cm.switch(['broken', 'fine'], [], STRICT, 0.0)
+    assert cm.request_switch(['broken', 'fine'], [], STRICT)
+    cm.update(0.0, 0.001)
     cm.update(0.001, 0.001)
     cm.update(0.002, 0.001)
     states = {name: state for name, _, state, _ in cm.list()}

@@ -9,7 +9,7 @@ from racebot_sim_bridge.sensors.config import SensorConfigError, join_topic, plu
 @pytest.fixture(scope='module')
 def configs(racebot_xml):
     model = urdf_model.parse_urdf(racebot_xml)
-    return {c.kind: c for c in (sensor_config(s) for s in model.sensors)}
+    return {c.kind: c for c in (sensor_config(s, '/', 'racebot') for s in model.sensors)}  # spawn_model at the root
 
 
 def test_lidar(configs):

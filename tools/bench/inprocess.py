@@ -75,8 +75,9 @@ class Car(object):
         for name in common.CONTROLLERS:
             if not cm.load(name):
                 raise common.BenchError('could not load %s: %s' % (name, '; '.join(_Log.errors[-1:])))
-        if not cm.switch(list(common.CONTROLLERS), [], 2, self.sim.time):
+        if not cm.request_switch(list(common.CONTROLLERS), [], 2):
             raise common.BenchError('could not start the controllers')
+        self.sim.step()  # ros_control starts them at the next update
         self.controllers = {n: cm.loaded[n].controller for n in common.CONTROLLERS}
         self.geometry = CarGeometry()
 

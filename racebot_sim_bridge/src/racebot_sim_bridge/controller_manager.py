@@ -8,6 +8,7 @@ Every refusal is logged as an error saying what was wrong and what to do, and an
 """
 import collections
 import threading
+from time import monotonic
 
 from .controllers import CONTROLLER_TYPES, ControllerInitError
 from .hardware import cpp_name
@@ -16,6 +17,25 @@ BEST_EFFORT = 1
 STRICT = 2
 
 Entry = collections.namedtuple('Entry', 'controller type_name')
+
+
+class SwitchRequest(object):
+    """An accepted switch_controller call, waiting for the update loop (ros_control's realtime side)."""
+
+    def __init__(self, start, stop, start_asap, timeout):
+        self.start = start  # loaded controllers' names, as requested (BEST_EFFORT's unknown ones dropped)
+        self.stop = stop
+        self.start_asap = start_asap
+        self.timeout = timeout  # s; bounds the caller's wait (wait_for_switch)
+        self.ok = False
+        self.done = threading.Event()
+
+    def finish(self, ok):
+        self.ok = ok
+        self.done.set()
+
+    def cancel(self):
+        self.finish(False)
 
 
 class ControllerManager(object):
@@ -29,6 +49,7 @@ class ControllerManager(object):
         self.types = dict(types or CONTROLLER_TYPES)
         self.loaded = collections.OrderedDict()  # name -> Entry, in load order (= update order)
         self.state = {}  # name -> 'initialized' | 'running' | 'stopped'
+        self.pending = None  # the accepted SwitchRequest the next update carries out
         self.lock = threading.RLock()
 
     # -- the services' semantics ------------------------------------------------------------------
@@ -86,53 +107,132 @@ class ControllerManager(object):
             self.log.info("Unloaded '%s'" % name)
             return True
 
-    def switch(self, start, stop, strictness, time):
+    def request_switch(self, start, stop, strictness, start_asap=False, timeout=0.0):
+        """switch_controller's checks, as controller_manager 0.20 makes them; returns the accepted
+        SwitchRequest, which the next update() carries out, or None when refused (nothing changes).
+
+        Unknown names: STRICT refuses, BEST_EFFORT skips them. Then, per loaded controller: stopping
+        one that is not running, or starting one that runs (and is not also stopped), is refused
+        under STRICT and dropped from the check under BEST_EFFORT; a name left in both lists is
+        refused whatever the strictness. Last, no joint may be claimed by two controllers that would
+        run afterwards, whatever the interfaces (RobotHW::checkForConflict)."""
         with self.lock:
-            if strictness not in (BEST_EFFORT, STRICT):
+            if self.pending is not None:
+                self.log.error('Could not switch controllers: the previous switch is still waiting for the '
+                               'simulation to update (is it paused?); unpause it, or call again later')
+                return None
+            if strictness == 0:
                 self.log.warn('Controller Manager: To switch controllers you need to specify a strictness level of '
                               'controller_manager_msgs::SwitchController::STRICT (%d) or ::BEST_EFFORT (%d). '
                               'Defaulting to ::BEST_EFFORT.' % (STRICT, BEST_EFFORT))
                 strictness = BEST_EFFORT
-            start, stop = list(start), list(stop)
+            elif strictness not in (BEST_EFFORT, STRICT):  # ros_control treats these as BEST_EFFORT, silently
+                self.log.warn('Controller Manager: strictness %d is neither STRICT (%d) nor BEST_EFFORT (%d); '
+                              'it is treated as BEST_EFFORT' % (strictness, STRICT, BEST_EFFORT))
+            strict = strictness == STRICT
+            requested = {}
             for verb, names in (('stop', stop), ('start', start)):
-                for n in list(names):
-                    problem = None
-                    if n not in self.loaded:
-                        problem = ("Could not %s controller with name '%s' because no controller with this name "
-                                   "exists (loaded: %s)" % (verb, n, ', '.join(self.loaded) or 'none'))
-                    elif verb == 'stop' and self.state[n] != 'running' and n not in start:
-                        problem = "Could not stop controller '%s' since it is not running" % n
-                    elif verb == 'start' and self.state[n] == 'running' and n not in stop:
-                        problem = "Could not start controller '%s' since it is already running" % n
-                    if problem:
-                        if strictness == STRICT:
-                            self.log.error(problem + ' (STRICT switch refused; nothing was changed)')
-                            return False
-                        self.log.warn(problem + ' (BEST_EFFORT: skipped)')
-                        names.remove(n)
-            # Resource conflicts among the controllers that would run afterwards.
-            after = [n for n in self.loaded if (self.state[n] == 'running' and n not in stop) or n in start]
-            owners = {}
-            for n in after:
-                for iface, resources in self.loaded[n].controller.claimed_resources():
-                    for r in resources:
-                        owners.setdefault((iface, r), []).append(n)
-            conflicts = {k: v for k, v in owners.items() if len(v) > 1}
-            if conflicts:
-                for (iface, r), who in sorted(conflicts.items()):
-                    self.log.error('Resource conflict on [%s]. Controllers = [%s]; stop one of them in the same '
-                                   'switch' % (r, ', '.join(who)))
-                self.log.error('Could not switch controllers, due to resource conflict')
+                requested[verb] = []
+                for n in names:
+                    if n in self.loaded:
+                        requested[verb].append(n)
+                        continue
+                    problem = ("Could not %s controller with name '%s' because no controller with this name exists "
+                               "(loaded: %s)" % (verb, n, ', '.join(self.loaded) or 'none'))
+                    if strict:
+                        self.log.error(problem + '; STRICT switch refused; nothing was changed')
+                        return None
+                    self.log.warn(problem + ' (BEST_EFFORT: skipped)')
+            stop_names, start_names = requested['stop'], requested['start']
+            after = []  # the controllers that would run after the switch, in load order
+            for n in self.loaded:
+                running = self.state[n] == 'running'
+                in_stop, in_start = n in stop_names, n in start_names
+                if not running and in_stop:
+                    if strict:
+                        self.log.error("Could not stop controller '%s' since it is not running; STRICT switch "
+                                       "refused; nothing was changed" % n)
+                        return None
+                    self.log.warn("Controller '%s' is not running (BEST_EFFORT: not stopped)" % n)
+                    in_stop = False
+                if running and not in_stop and in_start:
+                    if strict:
+                        self.log.error("Controller '%s' is already running; STRICT switch refused; nothing was "
+                                       "changed" % n)
+                        return None
+                    self.log.warn("Controller '%s' is already running (BEST_EFFORT: %s)"
+                                  % (n, 'left running' if start_asap else 'restarted'))
+                    in_start = False
+                if in_stop and in_start:  # "Could no", sic: ros_control 0.20's words
+                    self.log.error("Could no start or stop controller '%s' because of conflicting switching command; "
+                                   "to restart it, stop it in one switch and start it in the next" % n)
+                    return None
+                if (running and not in_stop) or in_start:
+                    after.append(n)
+            if self._in_conflict(after):
+                self.log.error('Could not switch controllers, due to resource conflict; stop the controller that '
+                               'holds the joint in the same switch')
+                return None
+            self.pending = SwitchRequest(start_names, stop_names, bool(start_asap), timeout)
+            return self.pending
+
+    def _in_conflict(self, names):
+        """RobotHW::checkForConflict: a joint claimed by two of these controllers, through any interfaces."""
+        claims = {}
+        for n in names:
+            for _iface, resources in self.loaded[n].controller.claimed_resources():
+                for r in resources:
+                    claims.setdefault(r, []).append(n)
+        conflicts = sorted((r, who) for r, who in claims.items() if len(who) > 1)
+        for r, who in conflicts:
+            self.log.warn('Resource conflict on [%s].  Controllers = [%s, ]' % (r, ', '.join(who)))
+        return bool(conflicts)
+
+    def wait_for_switch(self, request, keep_waiting=lambda: True, clock=monotonic, poll=0.01):
+        """Waits, as switch_controller's caller waits, for the update loop to carry `request` out;
+        True once it has. Bounded in wall time as controller_manager 0.20 bounds it: forever when
+        the request's timeout is 0, else timeout + 1 s (so a negative timeout shortens it). On
+        giving up, or when keep_waiting() turns false (ROS shutting down), the switch is withdrawn:
+        it never happens, and the answer is False."""
+        begin = clock()
+        while not request.done.wait(poll):
+            elapsed = clock() - begin
+            if not keep_waiting() or not (elapsed < request.timeout + 1.0 or request.timeout == 0):
+                with self.lock:
+                    if request.done.is_set():
+                        break
+                    request.cancel()
+                    if self.pending is request:
+                        self.pending = None
+                if keep_waiting():
+                    self.log.error('Could not switch controllers: the simulation did not update within the '
+                                   'timeout (%g s + 1 s of wall time); is it paused? The switch was withdrawn'
+                                   % request.timeout)
                 return False
-            for n in stop:
-                if self.state[n] == 'running':
-                    self.loaded[n].controller.stopping(time)
-                    self._zero_claimed(n)
-                    self.state[n] = 'stopped'
-            for n in start:
-                self.loaded[n].controller.starting(time)
-                self.state[n] = 'running'
-            return True
+        return request.ok
+
+    def switch(self, start, stop, strictness, start_asap=False, timeout=0.0, keep_waiting=lambda: True):
+        """switch_controller: checks, then waits until an update has carried the switch out."""
+        request = self.request_switch(start, stop, strictness, start_asap, timeout)
+        return request is not None and self.wait_for_switch(request, keep_waiting)
+
+    def _carry_out(self, request, time):
+        """The accepted switch, at an update (ros_control's manageSwitch; DefaultRobotHWSim's joints are
+        always ready, so the switch completes within this update and `timeout` never aborts it)."""
+        for n in request.stop:
+            if n in self.loaded and self.state[n] == 'running':
+                self.loaded[n].controller.stopping(time)
+                self._zero_claimed(n)
+                self.state[n] = 'stopped'
+        for n in request.start:
+            if n not in self.loaded:
+                continue
+            if request.start_asap and self.state[n] == 'running':
+                continue  # start_asap starts what does not run yet; without it every name is (re)started
+            self.loaded[n].controller.starting(time)
+            self.state[n] = 'running'
+        request.finish(True)
+        self.pending = None
 
     def _zero_claimed(self, name):
         # A stopped controller's joints get no effort (ros_control leaves the last one in force,
@@ -147,23 +247,32 @@ class ControllerManager(object):
         with self.lock:
             return [(n, e.type_name, self.state[n], e.controller.claimed_resources()) for n, e in self.loaded.items()]
 
-    def reload_libraries(self, force_kill, time):
+    def reload_libraries(self, force_kill, keep_waiting=lambda: True):
+        """reload_controller_libraries: refused while controllers are loaded, unless force_kill: then
+        all are stopped (one BEST_EFFORT switch, carried out by the next update) and unloaded."""
         with self.lock:
-            if self.loaded and not force_kill:
-                self.log.error('Controller manager: Cannot reload controller libraries because there are still %d '
-                               'controllers loaded; unload them first, or call with force_kill: true'
-                               % len(self.loaded))
+            names = list(self.loaded)
+        if names and not force_kill:
+            self.log.error('Controller manager: Cannot reload controller libraries because there are still %d '
+                           'controllers running; unload them first, or call with force_kill: true' % len(names))
+            return False
+        if names:
+            if not self.switch([], names, BEST_EFFORT, keep_waiting=keep_waiting):
+                self.log.error('Controller manager: Cannot reload controller libraries because failed to stop '
+                               'running controllers')
                 return False
-            running = [n for n in self.loaded if self.state[n] == 'running']
-            if running:
-                self.switch([], running, BEST_EFFORT, time)
-            for n in reversed(list(self.loaded)):
-                self.unload(n)
-            return True
+            for n in names:
+                if not self.unload(n):
+                    self.log.error("Controller manager: Cannot reload controller libraries because failed to "
+                                   "unload controller '%s'" % n)
+                    return False
+        return True
 
     # -- the update loop ---------------------------------------------------------------------------
     def update(self, time, period, reset_controllers=False):
-        """ros_control's update: restart running controllers on a reset, then update them in order."""
+        """ros_control's update: restart running controllers when asked (reset_controllers: its
+        e-stop release; gazebo_ros_control never asks on a world reset), update them in load order,
+        then carry out an accepted switch."""
         with self.lock:
             if reset_controllers:
                 for n, e in self.loaded.items():
@@ -176,6 +285,8 @@ class ControllerManager(object):
                         e.controller.update(time, period)
                     except Exception as err:  # one broken controller must not stop the simulation
                         self._stop_failed(n, time, err)
+            if self.pending is not None:
+                self._carry_out(self.pending, time)
 
     def _stop_failed(self, name, time, err):
         self.log.error("Controller '%s' raised %s in its update (%s); it is stopped and its joints get no "
@@ -190,6 +301,9 @@ class ControllerManager(object):
 
     def shutdown(self):
         with self.lock:
+            if self.pending is not None:  # its caller stops waiting: the model is gone
+                self.pending.cancel()
+                self.pending = None
             for e in self.loaded.values():
                 e.controller.shutdown()
             self.loaded.clear()
@@ -197,32 +311,38 @@ class ControllerManager(object):
 
 
 class ControllerManagerServices(object):
-    """The six controller_manager services of one ControllerManager, served with rospy."""
+    """The six controller_manager services of one ControllerManager, served with rospy. As in
+    ros_control, one call is served at a time (its services lock): a switch_controller waiting for
+    the simulation to update holds the others back."""
 
-    def __init__(self, rospy, manager, now):
-        """now() -> current simulated time in seconds (for starting/stopping)."""
+    def __init__(self, rospy, manager):
         from controller_manager_msgs import srv
         from controller_manager_msgs.msg import ControllerState, HardwareInterfaceResources
         self.rospy = rospy
         self.manager = manager
-        self.now = now
+        self.lock = threading.Lock()
         self._state_cls, self._res_cls = ControllerState, HardwareInterfaceResources
+        running = lambda: not rospy.is_shutdown()
         base = manager.ns + '/controller_manager/'
+
+        def serve(name, cls, answer):
+            def handle(req):
+                with self.lock:
+                    return answer(req)
+            return rospy.Service(base + name, cls, handle)
         self.services = [
-            rospy.Service(base + 'load_controller', srv.LoadController,
-                          lambda r: srv.LoadControllerResponse(manager.load(r.name))),
-            rospy.Service(base + 'unload_controller', srv.UnloadController,
-                          lambda r: srv.UnloadControllerResponse(manager.unload(r.name))),
-            rospy.Service(base + 'switch_controller', srv.SwitchController,
-                          lambda r: srv.SwitchControllerResponse(
-                              manager.switch(r.start_controllers, r.stop_controllers, r.strictness, now()))),
-            rospy.Service(base + 'list_controllers', srv.ListControllers, self._list),
-            rospy.Service(base + 'list_controller_types', srv.ListControllerTypes,
-                          lambda r: srv.ListControllerTypesResponse(
-                              sorted(manager.types), ['controller_interface::ControllerBase'] * len(manager.types))),
-            rospy.Service(base + 'reload_controller_libraries', srv.ReloadControllerLibraries,
-                          lambda r: srv.ReloadControllerLibrariesResponse(
-                              manager.reload_libraries(r.force_kill, now()))),
+            serve('load_controller', srv.LoadController, lambda r: srv.LoadControllerResponse(manager.load(r.name))),
+            serve('unload_controller', srv.UnloadController,
+                  lambda r: srv.UnloadControllerResponse(manager.unload(r.name))),
+            serve('switch_controller', srv.SwitchController,
+                  lambda r: srv.SwitchControllerResponse(manager.switch(
+                      r.start_controllers, r.stop_controllers, r.strictness, r.start_asap, r.timeout, running))),
+            serve('list_controllers', srv.ListControllers, self._list),
+            serve('list_controller_types', srv.ListControllerTypes,
+                  lambda r: srv.ListControllerTypesResponse(
+                      sorted(manager.types), ['controller_interface::ControllerBase'] * len(manager.types))),
+            serve('reload_controller_libraries', srv.ReloadControllerLibraries,
+                  lambda r: srv.ReloadControllerLibrariesResponse(manager.reload_libraries(r.force_kill, running))),
         ]
 
     def _list(self, _req):

@@ -88,7 +88,7 @@ class GazeboServices(object):
         except SpawnError as err:
             return srv.SpawnModelResponse(False, self._err(str(err)))
         if robot.cm is not None:
-            self.cm_services[req.model_name] = ControllerManagerServices(self.rospy, robot.cm, lambda: self.sim.time)
+            self.cm_services[req.model_name] = ControllerManagerServices(self.rospy, robot.cm)
             self.rospy.loginfo('%s: controller manager ready under %s/controller_manager (control period %g s, '
                                'joints: %s)' % (req.model_name, robot.ns, robot.control_period,
                                                 ', '.join(robot.hw.names)))

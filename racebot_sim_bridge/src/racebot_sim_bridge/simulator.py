@@ -7,7 +7,7 @@ read joints, update the controller manager when a control period has elapsed, wr
 """
 import threading
 
-from . import physics, urdf_model
+from . import physics, plugin_namespace, urdf_model
 from .controller_manager import ControllerManager
 from .hardware import EFFORT, POSITION, VELOCITY, RobotHW
 
@@ -21,12 +21,14 @@ class SpawnError(ValueError):
 class Robot(object):
     """A spawned URDF model with its RobotHW and (if it declares the control plugin) controllers."""
 
-    def __init__(self, name, body, model, robot_ns, hardware_joints, control_period):
-        """hardware_joints: urdf_model.hardware_joints(model), or None without gazebo_ros_control."""
+    def __init__(self, name, body, model, robot_ns, hardware_joints, control_period, spawn_namespace=''):
+        """hardware_joints: urdf_model.hardware_joints(model), or None without gazebo_ros_control;
+        spawn_namespace: the spawn request's robot_namespace (plugins without their own use it)."""
         self.name = name
         self.body = body
         self.model = model
         self.ns = robot_ns
+        self.spawn_namespace = spawn_namespace
         self.control_period = control_period
         self.cm = None
         self.last_update = None
@@ -84,13 +86,13 @@ class Simulator(object):
         self.step_size = world_spec.physics.max_step_size
         self.world = physics.PhysicsWorld(self.step_size, world_spec.physics.gravity)  # DIRECT: see viewer.py
         self.rendering = False  # a window shows this world (set by the world server)
+        self.node_namespace = '/'  # the world server node's namespace: relative plugin namespaces resolve in it
         self.lock = threading.RLock()
         self.time = 0.0
         self.steps = 0
         self.paused = False
         self.robots = {}
         self.world_models = self.world.load_world(world_spec, warn=lambda m: self.log.warn('world: %s' % m))
-        self._reset_controllers = False
         self.timed_efforts = []  # [body, joint, effort, start, end] from /gazebo/apply_joint_effort
         # Extension points (sensors, odometry truth): on_spawn(robot) after a URDF robot is spawned,
         # on_delete(robot) before it goes, after_step(time) after every physics step; all under `lock`.
@@ -116,8 +118,9 @@ class Simulator(object):
             robot_ns = hw_joints = None
             period = self.step_size
             if plugin is not None:
-                robot_ns = robot_namespace or plugin.robot_namespace or name
-                robot_ns = '/' + robot_ns.strip('/') if robot_ns.strip('/') else ''
+                # gazebo_ros: the plugin's own robotNamespace wins, else the request's, else the model name
+                robot_ns = plugin_namespace.control_namespace(plugin.robot_namespace, robot_namespace, name,
+                                                              self.node_namespace).rstrip('/')
                 if plugin.control_period:
                     period = plugin.control_period
                     if period < self.step_size:
@@ -156,7 +159,7 @@ class Simulator(object):
             except physics.PhysicsError as err:
                 raise SpawnError('SpawnModel: Failure - %s' % err)
             try:
-                robot = Robot(name, body, model, robot_ns, hw_joints, period)
+                robot = Robot(name, body, model, robot_ns, hw_joints, period, robot_namespace)
             except SpawnError:
                 self.world.remove(name)
                 raise
@@ -195,12 +198,11 @@ class Simulator(object):
                 r.read(self.world)
                 if r.last_update is None or t - r.last_update >= r.control_period - 1e-9:
                     period = 0.0 if r.last_update is None else t - r.last_update
-                    r.cm.update(t, period if period > 0 else r.control_period, self._reset_controllers)
+                    r.cm.update(t, period if period > 0 else r.control_period)
                     r.last_update = t
                 r.write(self.world)
             if self.timed_efforts:
                 self._apply_timed_efforts(t)
-            self._reset_controllers = False
             self.world.step()
             self.steps += 1
             self.time = self.steps * self.step_size
@@ -222,23 +224,25 @@ class Simulator(object):
                 self.world.apply_joint_effort(body, joint, base + effort)
 
     def reset_simulation(self):
-        """Poses, velocities, joints, controllers' state and time back to the start."""
+        """reset_world, and time back to 0."""
         with self.lock:
             self.reset_world()
             self.steps = 0
             self.time = 0.0
-            for r in self.robots.values():
-                r.last_update = None
 
     def reset_world(self):
-        """Poses, velocities and joints back to the start; time goes on."""
+        """Poses, velocities and joints back to the start; time goes on. ros_control is left as it
+        was, as gazebo_ros_control leaves it: controllers keep running with their commands and
+        state, joint readings go on unwrapping from where they were, and only the plugin's last
+        update time goes back to 0 (its Reset()), so the next update comes at once after
+        reset_world, with the time since 0 as its period, and one control period after
+        reset_simulation."""
         with self.lock:
             for name, body in self.world.bodies.items():
                 if not body.static:
                     self.world.reset_to_spawn(body)
             for r in self.robots.values():
-                r.reset_joint_readings(self.world)
-            self._reset_controllers = True
+                r.last_update = 0.0
 
     # -- queries ------------------------------------------------------------------------------
     def model_names(self):

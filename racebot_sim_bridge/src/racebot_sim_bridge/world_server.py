@@ -151,6 +151,7 @@ class WorldServer(object):
             rospy.logwarn('command trace on (~command_trace): every controller command is logged to %s; '
                           'for measurements only' % trace_path)
         self.sim = Simulator(spec, io, RospyLog, self._get_param)
+        self.sim.node_namespace = rospy.get_namespace()  # plugins' relative robotNamespaces resolve here
         self.viewer = None
         if gui:
             try:

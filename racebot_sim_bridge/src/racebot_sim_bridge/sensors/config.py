@@ -9,17 +9,18 @@ Pure Python: no rospy, no pybullet. `sensor_config(spec)` reads a urdf_model.Sen
 | gazebo_ros_openni_kinect, gazebo_ros_depth_camera | depth | cameraName/{imageTopicName, cameraInfoTopicName, depthImageTopicName, depthImageCameraInfoTopicName, pointCloudTopicName} |
 | gazebo_ros_imu_sensor                          | imu    | topicName                                     |
 
-Relative topic names resolve in the plugin's robotNamespace (the root namespace when it has
-none); absolute ones stay. Frame ids are the plugin's frameName without a leading slash (tf2
-rejects one). The update rate is the sensor's <update_rate>, throttled further by the plugin's
-own rate where the plugin throttles (gazebo_ros_camera's updateRate, gazebo_ros_imu_sensor's
-updateRateHZ); 0 means every world update, as in Gazebo.
-
-One deliberate difference: gazebo_ros_imu_sensor without <robotNamespace> publishes under
-/<model name>/; the racebot's contract (its URDF comment and issue) is the root-namespace
-/imu, so every plugin here uses the root namespace when it names none.
+Relative topic names resolve in the plugin's namespace as Gazebo sets it: its own <robotNamespace>,
+else the spawn request's robot_namespace, else each plugin's default (../plugin_namespace.py has
+the rules); absolute ones stay. So the racebot's IMU (topicName imu, no robotNamespace) publishes
+/imu when spawn_model runs at the root (it sends '/'), and /<model>/imu for a spawn request with an
+empty robot_namespace, as gazebo_ros_imu_sensor does. Frame ids are the plugin's frameName without
+a leading slash (tf2 rejects one). The update rate is the sensor's <update_rate>, throttled further
+by the plugin's own rate where the plugin throttles (gazebo_ros_camera's updateRate,
+gazebo_ros_imu_sensor's updateRateHZ); 0 means every world update, as in Gazebo.
 """
 from dataclasses import dataclass, field
+
+from ..plugin_namespace import sensor_namespace
 
 KINDS = {
     'gazebo_ros_laser': 'laser',
@@ -84,10 +85,12 @@ def _number(params, key, default, warnings, what):
         return default
 
 
-def sensor_config(spec):
+def sensor_config(spec, spawn_namespace='', model_name='', node_namespace='/'):
     """The SensorConfig of a urdf_model.SensorSpec, or None when none of its plugins publishes to
     ROS (Gazebo would run such a sensor for nobody). Raises SensorConfigError for a plugin that
-    does not fit its sensor (e.g. a camera plugin in a ray sensor)."""
+    does not fit its sensor (e.g. a camera plugin in a ray sensor). spawn_namespace: the spawn
+    request's robot_namespace; model_name: the spawned model's name; node_namespace: the world
+    server's."""
     plugin, kind = None, None
     for p in spec.plugins:
         kind = plugin_kind(p.filename)
@@ -106,7 +109,10 @@ def sensor_config(spec):
         raise SensorConfigError('%s: the sensor has no <ray> block' % what)
     params = plugin.params
     warnings = []
-    ns = (params.get('robotNamespace') or '').strip()
+    own_ns = params.get('robotNamespace')
+
+    def namespace(camera_name=''):
+        return sensor_namespace(kind, own_ns, spawn_namespace, model_name, camera_name, node_namespace)
     frame = (params.get('frameName') or '').strip().lstrip('/')
     if not frame:
         frame = spec.reference
@@ -114,9 +120,15 @@ def sensor_config(spec):
     rate = spec.update_rate
     config = SensorConfig(spec.name, kind, spec.reference, frame, rate, warnings=warnings)
     if kind == 'laser':
-        config.topics['scan'] = join_topic(ns, params.get('topicName') or 'scan')
+        topic = params.get('topicName')
+        if topic == '':
+            return None  # gazebo_ros_laser advertises nothing for an empty <topicName>
+        if topic is None:
+            topic = '/world'  # gazebo_ros_laser's default, odd as it is
+            warnings.append('%s has no <topicName>; publishing on /world as gazebo_ros_laser does' % what)
+        config.topics['scan'] = join_topic(namespace(), topic)
     elif kind == 'imu':
-        config.topics['imu'] = join_topic(ns, params.get('topicName') or 'imu_data')
+        config.topics['imu'] = join_topic(namespace(), params.get('topicName') or 'imu_data')
         throttle = _number(params, 'updateRateHZ', 1.0, warnings, what)
         config.rate = _throttled(rate, throttle)
         config.params['gaussian_noise'] = _number(params, 'gaussianNoise', 0.0, warnings, what)
@@ -127,23 +139,22 @@ def sensor_config(spec):
             config.params['rpy_offset'] = (0.0, 0.0, 0.0)
             warnings.append('%s: <rpyOffset> %r is not three numbers; using 0 0 0' % (what, params.get('rpyOffset')))
     else:
-        camera_name = (params.get('cameraName') or '').strip()
+        ns = namespace((params.get('cameraName') or '').strip())
         config.params['baseline'] = _number(params, 'hackBaseline', 0.0, warnings, what)
         config.params['distortion'] = [_number(params, k, 0.0, warnings, what) for k in
                                        ('distortionK1', 'distortionK2', 'distortionT1', 'distortionT2',
                                         'distortionK3')]
         if kind == 'camera':
             config.rate = _throttled(rate, _number(params, 'updateRate', 0.0, warnings, what))
-            config.topics['image'] = join_topic(ns, camera_name, params.get('imageTopicName') or 'image_raw')
-            config.topics['info'] = join_topic(ns, camera_name, params.get('cameraInfoTopicName') or 'camera_info')
+            config.topics['image'] = join_topic(ns, params.get('imageTopicName') or 'image_raw')
+            config.topics['info'] = join_topic(ns, params.get('cameraInfoTopicName') or 'camera_info')
         else:
-            config.topics['image'] = join_topic(ns, camera_name, params.get('imageTopicName') or 'ir/image_raw')
-            config.topics['info'] = join_topic(ns, camera_name, params.get('cameraInfoTopicName') or 'ir/camera_info')
-            config.topics['depth'] = join_topic(ns, camera_name,
-                                                params.get('depthImageTopicName') or 'depth/image_raw')
-            config.topics['depth_info'] = join_topic(ns, camera_name, params.get('depthImageCameraInfoTopicName')
+            config.topics['image'] = join_topic(ns, params.get('imageTopicName') or 'ir/image_raw')
+            config.topics['info'] = join_topic(ns, params.get('cameraInfoTopicName') or 'ir/camera_info')
+            config.topics['depth'] = join_topic(ns, params.get('depthImageTopicName') or 'depth/image_raw')
+            config.topics['depth_info'] = join_topic(ns, params.get('depthImageCameraInfoTopicName')
                                                      or 'depth/camera_info')
-            config.topics['points'] = join_topic(ns, camera_name, params.get('pointCloudTopicName') or 'points')
+            config.topics['points'] = join_topic(ns, params.get('pointCloudTopicName') or 'points')
             config.params['cutoff'] = _number(params, 'pointCloudCutoff', 0.4, warnings, what)
             config.params['cutoff_max'] = _number(params, 'pointCloudCutoffMax', 5.0, warnings, what)
         for key in ('focalLength', 'Cx', 'Cy', 'CxPrime'):

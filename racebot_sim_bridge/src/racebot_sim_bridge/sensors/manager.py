@@ -98,7 +98,7 @@ class SensorManager(object):
         created = []
         for spec in robot.model.sensors:
             try:
-                config = sensor_config(spec)
+                config = sensor_config(spec, robot.spawn_namespace, robot.name, self.sim.node_namespace)
             except SensorConfigError as err:
                 self.rospy.logwarn('%s: %s; not simulated' % (robot.name, err))
                 continue
