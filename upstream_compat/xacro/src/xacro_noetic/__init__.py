@@ -13,8 +13,9 @@ import xacro
 
 from . import cli, engine, messages, symbols, yaml_loading
 
-_REPLACED = ('eval_text', 'grab_property', 'grab_macro', 'parse_macro_arg', 'process_include',
-             'resolve_macro', 'handle_macro_call', 'eval_all', 'process_doc', 'print_location')
+_REPLACED = ('check_attrs', 'eval_text', 'grab_property', 'grab_macro', 'parse_macro_arg',
+             'process_include', 'resolve_macro', 'handle_macro_call', 'eval_all', 'process_doc',
+             'print_location')
 
 
 def _evaluate_with_globals(text):

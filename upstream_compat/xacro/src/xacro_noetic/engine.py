@@ -2,7 +2,7 @@
 
 install() (in __init__) puts these functions in the place of 1.13.3's own, so the pinned module's
 helpers that stay in use (parse, process_file, get_include_files, eval_extension, eval_default_arg,
-replace_node, check_attrs, ...) call ours. What differs from 1.13.3, by upstream release:
+replace_node, reqd_attrs, ...) call ours. What differs from 1.13.3, by upstream release:
 
 * only `xacro:`-prefixed tags are xacro's (1.14.0); `<property>`, `<include>`, ... are plain XML;
 * `xmlns:xacro` and every `xacro:*` attribute leave the output; `xacro:targetNamespace` on the
@@ -21,7 +21,8 @@ replace_node, check_attrs, ...) call ours. What differs from 1.13.3, by upstream
 * `<!-- xacro:eval-comments -->` turns on `${...}` evaluation in the comments that follow, until
   a tag, non-blank text, the end of the element or `<!-- xacro:eval-comments:off -->` (1.14.13);
 * `<xacro:arg default=...>` stores text (1.14.15);
-* error locations name the macro calls being expanded (1.14.10).
+* error locations name the macro calls being expanded (1.14.10), and a tag's unknown attributes
+  are reported with the location (1.14.3).
 """
 import os
 import re
@@ -55,6 +56,19 @@ def print_location():
     for filename in reversed(xacro.filestack or []):
         print(label, filename if filename is not None else 'string', file=sys.stderr)
         label = 'included from:'
+
+
+def check_attrs(tag, required, optional):
+    """The values of tag's required and optional attributes; an attribute that is neither is
+    reported with the location (1.14.3), then ignored."""
+    values = xacro.reqd_attrs(tag, required) + xacro.opt_attrs(tag, optional)
+    unknown = [a for a in tag.attributes.keys()
+               if a not in required + optional and not a.startswith('xmlns:')]
+    if unknown:
+        messages.warning('%s: unknown attribute(s): %s' % (tag.nodeName, ', '.join(unknown)))
+        if xacro.verbosity > 0:
+            print_location()
+    return values
 
 
 class Scope(xacro.Table):
@@ -171,7 +185,7 @@ def _boolean_attribute(text, default, properties):
 
 def grab_property(elt, table):
     xacro.remove_previous_comments(elt)
-    name, value, default, remove, scope, lazy_eval = xacro.check_attrs(
+    name, value, default, remove, scope, lazy_eval = check_attrs(
         elt, ['name'], ['value', 'default', 'remove', 'scope', 'lazy_eval'])
     name = str(eval_text(name, table))
     if not xacro.is_valid_name(name):
@@ -219,7 +233,7 @@ def grab_property(elt, table):
 
 
 def process_include(elt, macros, properties):
-    filename_spec, namespace, optional = xacro.check_attrs(elt, ['filename'], ['ns', 'optional'])
+    filename_spec, namespace, optional = check_attrs(elt, ['filename'], ['ns', 'optional'])
     if namespace:
         namespace = eval_text(namespace, properties)
         macros[namespace] = ns_macros = MacroScope()
@@ -271,7 +285,7 @@ def parse_macro_arg(spec):
 
 def grab_macro(elt, macros):
     xacro.remove_previous_comments(elt)
-    name, params = xacro.check_attrs(elt, ['name'], ['params'])
+    name, params = check_attrs(elt, ['name'], ['params'])
     if name == 'call':
         raise xacro.XacroException("Invalid use of macro name 'call'")
     if '.' in name:
@@ -368,7 +382,7 @@ def handle_macro_call(node, macros, properties):
 
 
 def _insert_block(node, macros, properties):
-    name, = xacro.check_attrs(node, ['name'], [])
+    name, = check_attrs(node, ['name'], [])
     if '**' + name in properties:
         block, content_only = properties['**' + name], True
     elif '*' + name in properties:
@@ -381,7 +395,7 @@ def _insert_block(node, macros, properties):
 
 
 def _declare_arg(node, properties):
-    name, default = xacro.check_attrs(node, ['name', 'default'], [])
+    name, default = check_attrs(node, ['name', 'default'], [])
     args = xacro.substitution_args_context['arg']
     if name not in args:
         args[name] = str(eval_text(default, properties))
@@ -391,7 +405,7 @@ def _declare_arg(node, properties):
 
 def _conditional(node, macros, properties):
     xacro.remove_previous_comments(node)
-    condition, = xacro.check_attrs(node, ['value'], [])
+    condition, = check_attrs(node, ['value'], [])
     keep = xacro.get_boolean_value(eval_text(condition, properties), condition)
     if node.tagName == 'xacro:unless':
         keep = not keep
