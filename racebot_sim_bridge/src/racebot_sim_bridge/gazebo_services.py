@@ -1,38 +1,70 @@
 """gazebo_ros's ROS API over a Simulator: the /gazebo services and the model/link state topics.
 
 Names, request and response fields, and status messages follow gazebo_ros_api_plugin, so scripts
-written against Gazebo read the same answers. Poses are those of each model's root link frame in
-the world (Gazebo's model pose); link names are scoped `model::link`, fixed-joint children merged
-into their parent as Gazebo merges them.
+written against Gazebo read the same answers. Poses are those of each model's frame in the world
+(Gazebo's model pose); link names are scoped `model::link`, fixed-joint children merged into their
+parent as Gazebo merges them. Names of models, links and reference frames are found as Gazebo's
+World::EntityByName finds them (frames.resolve); '', 'world', 'map' and '/map' are the world.
+Where upstream has no check (non-finite numbers, an empty model name) the answer is ours and says
+what to change.
 """
 import math
 
 from gazebo_msgs import srv
-from gazebo_msgs.msg import LinkState, LinkStates, ModelStates, ODEPhysics
+from gazebo_msgs.msg import LinkState, LinkStates, ModelState, ModelStates, ODEPhysics
 from geometry_msgs.msg import Point, Pose, Quaternion, Twist, Vector3
 from std_srvs.srv import Empty, EmptyResponse
 
+from . import frames, spawn_xml, urdf_model
 from .controller_manager import ControllerManagerServices
 from .simulator import SpawnError
+from .world_entities import WorldEntities
+
+# gazebo_ros_api_plugin's status messages, word for word.
+SPAWN_OK = 'SpawnModel: Successfully spawned entity'
+SPAWN_INVALID_URDF = 'SpawnModel: Failure - entity format is invalid.'
+SPAWN_NOT_SDF_OR_URDF = ('GazeboRosApiPlugin SpawnModel Failure: input model_xml not SDF or URDF, or cannot be '
+                         'converted to Gazebo compatible format.')
+SPAWN_EXISTS = 'SpawnModel: Failure - entity already exists.'
+SPAWN_NO_FRAME = 'SpawnModel: reference reference_frame not found, did you forget to scope the link by model name?'
+SPAWN_NOT_LOADED = ('SpawnModel: Entity pushed to spawn queue, but spawn service timed out waiting for entity to '
+                    'appear in simulation under the name %s')
 
 
-def to_pose(p):
-    return Pose(position=Point(*p.position), orientation=Quaternion(*p.orientation))
+def _pose_msg(pose):
+    """geometry_msgs/Pose of a (position, quaternion xyzw) pair."""
+    return Pose(position=Point(*pose[0]), orientation=Quaternion(*pose[1]))
 
 
-def to_twist(t):
-    return Twist(linear=Vector3(*t.linear), angular=Vector3(*t.angular))
+def _twist_msg(twist):
+    """geometry_msgs/Twist of a (linear, angular) pair."""
+    return Twist(linear=Vector3(*twist[0]), angular=Vector3(*twist[1]))
+
+
+def _six(transform):
+    """(x, y, z, roll, pitch, yaw) of a (position, quaternion) pair: an SDF <pose>."""
+    from .sdf_world import quaternion_to_rpy
+    return tuple(transform[0]) + tuple(quaternion_to_rpy(transform[1]))
 
 
 def _finite(*values):
     return all(math.isfinite(v) for v in values)
 
 
-def _normalised(q):
-    n = math.sqrt(sum(c * c for c in q))
-    if not math.isfinite(n) or n < 1e-9:
+def _pose_in(msg):
+    """(position, unit quaternion) of a geometry_msgs/Pose, a zero quaternion read as the identity
+    (as ignition's Normalize makes it); None if a number is not finite."""
+    p, q = msg.position, msg.orientation
+    orientation = frames.normalised((q.x, q.y, q.z, q.w))
+    if orientation is None or not _finite(p.x, p.y, p.z):
         return None
-    return tuple(c / n for c in q)
+    return (p.x, p.y, p.z), orientation
+
+
+def _twist_in(msg):
+    """(linear, angular) of a geometry_msgs/Twist; None if a number is not finite."""
+    lin, ang = (msg.linear.x, msg.linear.y, msg.linear.z), (msg.angular.x, msg.angular.y, msg.angular.z)
+    return (lin, ang) if _finite(*lin + ang) else None
 
 
 class GazeboServices(object):
@@ -41,6 +73,8 @@ class GazeboServices(object):
         self.sim = sim
         self.ns = ns.rstrip('/')
         self.cm_services = {}
+        self.entities = WorldEntities(sim.world)
+        self.model_state_reads = {}  # model name -> get_model_state calls: the response's header.seq, as upstream
         self.model_states_pub = rospy.Publisher(self.ns + '/model_states', ModelStates, queue_size=1)
         self.link_states_pub = rospy.Publisher(self.ns + '/link_states', LinkStates, queue_size=1)
         s = lambda name, cls, cb: rospy.Service('%s/%s' % (self.ns, name), cls, cb)
@@ -53,12 +87,20 @@ class GazeboServices(object):
             s('get_world_properties', srv.GetWorldProperties, self.get_world_properties),
             s('get_physics_properties', srv.GetPhysicsProperties, self.get_physics_properties),
             s('get_link_state', srv.GetLinkState, self.get_link_state),
+            s('set_link_state', srv.SetLinkState, self.set_link_state),
             s('set_model_configuration', srv.SetModelConfiguration, self.set_model_configuration),
             s('apply_joint_effort', srv.ApplyJointEffort, self.apply_joint_effort),
             s('pause_physics', Empty, self.pause_physics),
             s('unpause_physics', Empty, self.unpause_physics),
             s('reset_simulation', Empty, self.reset_simulation),
             s('reset_world', Empty, self.reset_world),
+        ]
+        # the topic forms of set_model_state / set_link_state: the same handlers, answers only logged
+        self.subscribers = [
+            rospy.Subscriber(self.ns + '/set_model_state', ModelState,
+                             lambda m: self.set_model_state(srv.SetModelStateRequest(model_state=m)), queue_size=10),
+            rospy.Subscriber(self.ns + '/set_link_state', LinkState,
+                             lambda m: self.set_link_state(srv.SetLinkStateRequest(link_state=m)), queue_size=10),
         ]
 
     def _err(self, msg):
@@ -67,57 +109,89 @@ class GazeboServices(object):
 
     # -- spawn / delete ---------------------------------------------------------------------------
     def spawn_urdf_model(self, req):
-        p, q = req.initial_pose.position, req.initial_pose.orientation
-        orientation = _normalised((q.x, q.y, q.z, q.w)) if (q.x, q.y, q.z, q.w) != (0, 0, 0, 0) else (0, 0, 0, 1)
-        if not _finite(p.x, p.y, p.z) or orientation is None:
+        if not spawn_xml.is_urdf(req.model_xml):
+            # upstream also fails the call itself (returns false); rospy cannot send a response with that
+            self.rospy.logerr('%s The model_xml must be a URDF document (root element <robot>); for SDF call '
+                              'spawn_sdf_model' % SPAWN_INVALID_URDF)
+            return srv.SpawnModelResponse(False, SPAWN_INVALID_URDF)
+        return self._spawn(req)
+
+    def spawn_sdf_model(self, req):
+        return self._spawn(req)
+
+    def _spawn(self, req):
+        """spawnSDFModel's order: reference frame, format, name in use, then the spawn itself."""
+        name = req.model_name
+        pose = _pose_in(req.initial_pose)
+        if pose is None:
             return srv.SpawnModelResponse(False, self._err(
-                'SpawnModel: Failure - initial pose of %s is not finite or its quaternion is zero' % req.model_name))
-        if req.reference_frame not in ('', 'world', 'map', '/map'):
-            ref = self.sim.body(req.reference_frame.split('::')[0])
-            if ref is None:
-                return srv.SpawnModelResponse(False, self._err(
-                    'SpawnModel: Failure - reference frame %s not found; use "world" or an existing model'
-                    % req.reference_frame))
-            import pybullet as pb
-            rp = ref.frame_pose()
-            pos, orientation = pb.multiplyTransforms(rp.position, rp.orientation, (p.x, p.y, p.z), orientation)
-        else:
-            pos = (p.x, p.y, p.z)
+                'SpawnModel: Failure - initial_pose of %s is not finite; give finite numbers' % name))
+        with self.sim.lock:
+            frame = self._frame_pose(req.reference_frame)
+            if frame is False:
+                return srv.SpawnModelResponse(False, SPAWN_NO_FRAME)
+            if frame is not None:
+                pose = frames.in_world(frame, pose)
+            if spawn_xml.is_sdf(req.model_xml):
+                spawn = self._spawn_sdf
+            elif spawn_xml.is_urdf(req.model_xml):
+                spawn = self._spawn_urdf
+            else:
+                self.rospy.logerr('GazeboRosApiPlugin SpawnModel Failure: input xml format not recognized')
+                return srv.SpawnModelResponse(False, SPAWN_NOT_SDF_OR_URDF)
+            if name and name in self.sim.world.bodies:
+                self.rospy.logerr('SpawnModel: Failure - model name %s already exist. Delete it first (rosservice '
+                                  'call %s/delete_model %s) or spawn with another -model name' % (name, self.ns, name))
+                return srv.SpawnModelResponse(False, SPAWN_EXISTS)
+            return spawn(req, pose)
+
+    def _spawn_urdf(self, req, pose):
+        name = req.model_name
         try:
-            robot = self.sim.spawn_urdf(req.model_name, req.model_xml, req.robot_namespace, pos, orientation)
+            urdf_model.parse_urdf(req.model_xml)
+        except urdf_model.UrdfError as err:
+            # Gazebo cannot load it and the service waits out its 10 s; the reason is in the server's log
+            self.rospy.logerr('SpawnModel: the URDF of %s is not valid: %s' % (name, err))
+            return srv.SpawnModelResponse(False, SPAWN_NOT_LOADED % name)
+        try:
+            robot = self.sim.spawn_urdf(name, req.model_xml, req.robot_namespace, pose[0], pose[1])
         except SpawnError as err:
             return srv.SpawnModelResponse(False, self._err(str(err)))
         if robot.cm is not None:
-            self.cm_services[req.model_name] = ControllerManagerServices(self.rospy, robot.cm)
+            self.cm_services[name] = ControllerManagerServices(self.rospy, robot.cm)
             self.rospy.loginfo('%s: controller manager ready under %s/controller_manager (control period %g s, '
-                               'joints: %s)' % (req.model_name, robot.ns, robot.control_period,
-                                                ', '.join(robot.hw.names)))
-        return srv.SpawnModelResponse(True, 'SpawnModel: Successfully spawned entity')
+                               'joints: %s)' % (name, robot.ns, robot.control_period, ', '.join(robot.hw.names)))
+        return srv.SpawnModelResponse(True, SPAWN_OK)
 
-    def spawn_sdf_model(self, req):
+    def _spawn_sdf(self, req, pose):
         from . import sdf_world
+        from .physics import PhysicsError
+        xml = spawn_xml.add_robot_namespace(req.model_xml, req.robot_namespace)
         try:
             world = sdf_world.parse_world('<sdf version="1.6"><world name="spawn">%s</world></sdf>'
-                                          % _strip_sdf_root(req.model_xml), source='spawn_sdf_model request')
+                                          % _strip_sdf_root(xml), source='spawn_sdf_model request')
         except (sdf_world.WorldError, ValueError) as err:
-            return srv.SpawnModelResponse(False, self._err('SpawnModel: Failure - the SDF is not valid: %s' % err))
+            self.rospy.logerr('SpawnModel: the SDF of %s is not valid: %s' % (req.model_name, err))
+            return srv.SpawnModelResponse(False, SPAWN_NOT_LOADED % req.model_name)
         for w in world.warnings:
             self.rospy.logwarn('spawn_sdf_model: %s' % w)
         if len(world.models) != 1:
-            return srv.SpawnModelResponse(False, self._err(
-                'SpawnModel: Failure - expected one <model> with supported geometry, found %d' % len(world.models)))
+            self.rospy.logerr('SpawnModel: the SDF of %s must hold one <model> with supported geometry, found %d'
+                              % (req.model_name, len(world.models)))
+            return srv.SpawnModelResponse(False, SPAWN_NOT_LOADED % req.model_name)
         model = world.models[0]
         model.name = req.model_name or model.name
-        p = req.initial_pose.position
-        q = req.initial_pose.orientation
-        model.pose = _compose_pose_rpy((p.x, p.y, p.z), (q.x, q.y, q.z, q.w), model.pose)
-        from .physics import PhysicsError
-        with self.sim.lock:
-            try:
-                self.sim.world.add_sdf_model(model)
-            except PhysicsError as err:
-                return srv.SpawnModelResponse(False, self._err('SpawnModel: Failure - %s' % err))
-        return srv.SpawnModelResponse(True, 'SpawnModel: Successfully spawned entity')
+        if model.name in self.sim.world.bodies:
+            self.rospy.logerr('SpawnModel: Failure - model name %s already exist.' % model.name)
+            return srv.SpawnModelResponse(False, SPAWN_EXISTS)
+        # the request's pose, then the model's own <pose> in it (updateSDFAttributes)
+        model.pose = _six(frames.in_world(pose, sdf_world.as_transform(model.pose)))
+        try:
+            self.sim.world.add_sdf_model(model)
+        except PhysicsError as err:
+            self.rospy.logerr('SpawnModel: %s' % err)
+            return srv.SpawnModelResponse(False, SPAWN_NOT_LOADED % model.name)
+        return srv.SpawnModelResponse(True, SPAWN_OK)
 
     def delete_model(self, req):
         try:
@@ -131,46 +205,70 @@ class GazeboServices(object):
         return srv.DeleteModelResponse(True, 'DeleteModel: successfully deleted model')
 
     # -- state ----------------------------------------------------------------------------------
+    def _frame_pose(self, name):
+        """World pose of the entity (model or link) called `name`; None for the world's names; False
+        when nothing has that name. Caller holds the lock."""
+        return self._frame_state(name)[0]
+
+    def _frame_state(self, name):
+        entity = self.entities.resolve(name)
+        if entity is not None:
+            return self.entities.state(entity)
+        return (None, None) if frames.is_world_frame(name) else (False, None)
+
+    def _model(self, name):
+        """The Body of the model called `name` (World::ModelByName: a link's name is no model)."""
+        entity = self.entities.resolve(name)
+        return self.sim.world.bodies[entity.model] if entity is not None and entity.link is None else None
+
     def get_model_state(self, req):
         res = srv.GetModelStateResponse()
         with self.sim.lock:
-            body = self.sim.body(req.model_name)
+            body = self._model(req.model_name)
             if body is None:
+                self.rospy.logerr('GetModelState: model [%s] does not exist' % req.model_name)
                 res.success, res.status_message = False, 'GetModelState: model does not exist'
                 return res
-            pose, twist = body.frame_pose(), body.twist()
-            if req.relative_entity_name not in ('', 'world', 'map', '/map'):
-                ref = self.sim.body(req.relative_entity_name.split('::')[0])
-                if ref is None:
-                    res.success = False
-                    res.status_message = 'GetModelState: reference relative_entity_name not found, did you forget ' \
-                                         'to scope the body by model name?'
-                    return res
-                pose, twist = _relative(pose, twist, ref.frame_pose(), ref.twist())
+            seq = self.model_state_reads[req.model_name] = self.model_state_reads.get(req.model_name, 0) + 1
+            res.header.seq = seq
             res.header.stamp = self.rospy.Time.from_sec(self.sim.time)
             res.header.frame_id = req.relative_entity_name
-        res.pose, res.twist = to_pose(pose), to_twist(twist)
+            pose, twist = self.entities.model_state(body)
+            frame, frame_twist = self._frame_state(req.relative_entity_name)
+            if frame is False:
+                res.success = False
+                res.status_message = 'GetModelState: reference relative_entity_name not found, did you forget ' \
+                                     'to scope the body by model name?'
+                return res
+            if frame is not None:
+                pose = frames.relative_to(frame, pose)
+                twist = frames.twist_seen_from(frame, frame_twist, twist)
+        res.pose, res.twist = _pose_msg(pose), _twist_msg(twist)
         res.success, res.status_message = True, 'GetModelState: got properties'
         return res
 
     def set_model_state(self, req):
         st = req.model_state
-        p, q = st.pose.position, st.pose.orientation
-        orn = _normalised((q.x, q.y, q.z, q.w))
-        lin, ang = st.twist.linear, st.twist.angular
-        if orn is None or not _finite(p.x, p.y, p.z, lin.x, lin.y, lin.z, ang.x, ang.y, ang.z):
-            return srv.SetModelStateResponse(False, self._err(
-                'SetModelState: pose or twist of %s is not finite, or its quaternion is zero' % st.model_name))
         with self.sim.lock:
-            body = self.sim.body(st.model_name)
+            body = self._model(st.model_name)
             if body is None:
+                self.rospy.logerr('Updating ModelState: model [%s] does not exist' % st.model_name)
+                return srv.SetModelStateResponse(False, 'SetModelState: model does not exist')
+            frame = self._frame_pose(st.reference_frame)
+            if frame is False:
+                self.rospy.logerr('Updating ModelState: for model[%s], specified reference frame entity [%s] does '
+                                  'not exist' % (st.model_name, st.reference_frame))
+                return srv.SetModelStateResponse(False, 'SetModelState: specified reference frame entity does not '
+                                                        'exist')
+            pose, twist = _pose_in(st.pose), _twist_in(st.twist)
+            if pose is None or twist is None:
                 return srv.SetModelStateResponse(False, self._err(
-                    'Updating ModelState: model [%s] does not exist' % st.model_name))
-            if body.static:
-                return srv.SetModelStateResponse(False, self._err(
-                    'SetModelState: model [%s] is static and cannot be moved here' % st.model_name))
-            com = body.com_pose_for_frame((p.x, p.y, p.z), orn)
-            self.sim.world.set_pose(body, com.position, com.orientation, (lin.x, lin.y, lin.z), (ang.x, ang.y, ang.z))
+                    'SetModelState: Failure - the %s of model [%s] is not finite; give finite numbers'
+                    % ('pose' if pose is None else 'twist', st.model_name)))
+            if frame is not None:
+                pose = frames.in_world(frame, pose)
+                twist = frames.set_model_twist(frame, twist)
+            self.entities.set_model_state(body, pose, twist)
         return srv.SetModelStateResponse(True, 'SetModelState: set model state done')
 
     def get_world_properties(self, _req):
@@ -194,58 +292,81 @@ class GazeboServices(object):
         res.success, res.status_message = True, 'GetPhysicsProperties: got properties'
         return res
 
-    def _find_link(self, scoped):
-        model, _, link = scoped.rpartition('::')
-        with self.sim.lock:
-            if model:
-                body = self.sim.body(model)
-                return (body, link) if body is not None and link in body.link_index else (None, None)
-            for body in self.sim.world.bodies.values():
-                if link in body.link_index:
-                    return body, link
-        return None, None
-
     def get_link_state(self, req):
         res = srv.GetLinkStateResponse()
-        body, link = self._find_link(req.link_name)
-        if body is None:
-            res.success = False
-            res.status_message = 'GetLinkState: link not found'
-            return res
         with self.sim.lock:
-            pose, twist = self.sim.world.link_state(body, link)
-            if req.reference_frame not in ('', 'world', 'map', '/map'):
-                rbody, rlink = self._find_link(req.reference_frame)
-                if rbody is None:
-                    res.success = False
-                    res.status_message = 'GetLinkState: reference frame not found, did you forget to scope the link ' \
-                                         'by model name?'
-                    return res
-                rpose, rtwist = self.sim.world.link_state(rbody, rlink)
-                pose, twist = _relative(pose, twist, rpose, rtwist)
-        res.link_state = LinkState(link_name=req.link_name, pose=to_pose(pose), twist=to_twist(twist),
+            link = self.entities.find_link(req.link_name)
+            if link is None:
+                res.success = False
+                res.status_message = 'GetLinkState: link not found, did you forget to scope the link by model name?'
+                return res
+            pose, twist = self.entities.state(link)
+            frame, frame_twist = self._frame_state(req.reference_frame)
+            if frame is False:
+                res.success = False
+                res.status_message = 'GetLinkState: reference reference_frame not found, did you forget to scope ' \
+                                     'the link by model name?'
+                return res
+            if frame is not None:
+                pose = frames.relative_to(frame, pose)
+                twist = frames.twist_seen_from(frame, frame_twist, twist)
+        res.link_state = LinkState(link_name=req.link_name, pose=_pose_msg(pose), twist=_twist_msg(twist),
                                    reference_frame=req.reference_frame)
         res.success, res.status_message = True, 'GetLinkState: got state'
         return res
 
-    def set_model_configuration(self, req):
-        if len(req.joint_names) != len(req.joint_positions):
-            return srv.SetModelConfigurationResponse(False, self._err(
-                'SetModelConfiguration: joint_names and joint_positions have different lengths (%d, %d)'
-                % (len(req.joint_names), len(req.joint_positions))))
+    def set_link_state(self, req):
+        st = req.link_state
         with self.sim.lock:
-            body = self.sim.body(req.model_name)
+            link = self.entities.find_link(st.link_name)
+            if link is None:
+                self.rospy.logerr('Updating LinkState: link [%s] does not exist' % st.link_name)
+                return srv.SetLinkStateResponse(False, 'SetLinkState: link does not exist')
+            # Gazebo 8+ takes only a link as the reference here (a model's name is refused)
+            frame = self.entities.find_link(st.reference_frame)
+            if frame is None and not frames.is_world_frame(st.reference_frame):
+                self.rospy.logerr('Updating LinkState: reference_frame is not a valid entity name')
+                return srv.SetLinkStateResponse(False, 'SetLinkState: failed')
+            pose, twist = _pose_in(st.pose), _twist_in(st.twist)
+            if pose is None or twist is None:
+                return srv.SetLinkStateResponse(False, self._err(
+                    'SetLinkState: Failure - the %s of link [%s] is not finite; give finite numbers'
+                    % ('pose' if pose is None else 'twist', st.link_name)))
+            if frame is not None:
+                frame_pose, frame_twist = self.entities.state(frame)
+                pose = frames.in_world(frame_pose, pose)
+                twist = frames.set_link_twist(frame_twist, twist)
+            self.entities.set_link_state(self.sim.world.bodies[link.model], link.link, pose, twist)
+        return srv.SetLinkStateResponse(True, 'SetLinkState: success')
+
+    def set_model_configuration(self, req):
+        with self.sim.lock:
+            body = self._model(req.model_name)
             if body is None:
+                self.rospy.logerr('SetModelConfiguration: model [%s] does not exist' % req.model_name)
+                return srv.SetModelConfigurationResponse(False, 'SetModelConfiguration: model does not exist')
+            if len(req.joint_names) != len(req.joint_positions):
+                return srv.SetModelConfigurationResponse(
+                    False, 'SetModelConfiguration: joint name and position list have different lengths')
+            if not _finite(*req.joint_positions):
                 return srv.SetModelConfigurationResponse(False, self._err(
-                    'SetModelConfiguration: model [%s] does not exist' % req.model_name))
-            unknown = [j for j in req.joint_names if j not in body.joints]
-            if unknown or not _finite(*req.joint_positions):
-                return srv.SetModelConfigurationResponse(False, self._err(
-                    'SetModelConfiguration: %s of model [%s] (movable joints: %s)' % (
-                        'unknown joints %s' % unknown if unknown else 'positions must be finite', req.model_name,
-                        ', '.join(sorted(body.joints)))))
-            for j, pos in zip(req.joint_names, req.joint_positions):
-                self.sim.world.set_joint_position(body, j, pos)
+                    'SetModelConfiguration: Failure - joint positions of model [%s] must be finite, got %s'
+                    % (req.model_name, list(req.joint_positions))))
+            # Gazebo's JointController: each joint of the model takes its plain or scoped name's
+            # position; names that are no joint of the model are passed over.
+            wanted = dict(zip(req.joint_names, req.joint_positions))
+            used = set()
+            for joint in body.joints:
+                for key in (joint, '%s::%s' % (req.model_name, joint)):
+                    if key in wanted:
+                        self.sim.world.set_joint_position(body, joint, wanted[key])
+                        used.add(key)
+                        break
+            unknown = [n for n in wanted if n not in used]
+            if unknown:
+                self.rospy.logwarn('SetModelConfiguration: %s not movable joints of model [%s]; ignored, as Gazebo '
+                                   'does (its movable joints: %s)' % (unknown, req.model_name,
+                                                                     ', '.join(body.joints) or 'none'))
             robot = self.sim.robots.get(req.model_name)
             if robot is not None:
                 robot.reset_joint_readings(self.sim.world)
@@ -295,15 +416,16 @@ class GazeboServices(object):
             models, links = ModelStates(), LinkStates()
             for name, body in self.sim.world.bodies.items():
                 if want_models:
+                    pose, twist = self.entities.model_state(body)
                     models.name.append(name)
-                    models.pose.append(to_pose(body.frame_pose()))
-                    models.twist.append(to_twist(body.twist()))
+                    models.pose.append(_pose_msg(pose))
+                    models.twist.append(_twist_msg(twist))
                 if want_links:
-                    for link in body.link_names():
-                        pose, twist = self.sim.world.link_state(body, link)
+                    for link in self.entities.link_names(body):
+                        pose, twist = self.entities.link_state(body, link)
                         links.name.append('%s::%s' % (name, link))
-                        links.pose.append(to_pose(pose))
-                        links.twist.append(to_twist(twist))
+                        links.pose.append(_pose_msg(pose))
+                        links.twist.append(_twist_msg(twist))
         if want_models:
             self.model_states_pub.publish(models)
         if want_links:
@@ -312,37 +434,20 @@ class GazeboServices(object):
     def shutdown(self):
         for s in self.services:
             s.shutdown()
+        for sub in self.subscribers:
+            sub.unregister()
         for c in self.cm_services.values():
             c.shutdown()
 
 
-def _relative(pose, twist, ref_pose, ref_twist):
-    """pose and twist expressed in the frame of a reference pose (twist as a difference, rotated)."""
-    import pybullet as pb
-    inv_p, inv_o = pb.invertTransform(ref_pose.position, ref_pose.orientation)
-    p, o = pb.multiplyTransforms(inv_p, inv_o, pose.position, pose.orientation)
-    rot = pb.getMatrixFromQuaternion(inv_o)
-
-    def rotate(v):
-        return tuple(rot[3 * i] * v[0] + rot[3 * i + 1] * v[1] + rot[3 * i + 2] * v[2] for i in range(3))
-    lin = rotate([a - b for a, b in zip(twist.linear, ref_twist.linear)])
-    ang = rotate([a - b for a, b in zip(twist.angular, ref_twist.angular)])
-    from .physics import Pose as P, Twist as T
-    return P(tuple(p), tuple(o)), T(lin, ang)
-
-
 def _strip_sdf_root(xml):
-    """The <model> element(s) of an SDF document given to spawn_sdf_model."""
+    """The <model> element(s) of an SDF document given to spawn_sdf_model; without one, the first
+    <include> of its <world> (spawn_model -database sends <world><include><uri>model://NAME</uri>...),
+    as gazebo_ros's updateSDFAttributes reads it."""
     import xml.etree.ElementTree as ET
     root = ET.fromstring(xml)
     models = [root] if root.tag == 'model' else root.findall('model')
+    if not models and root.find('world') is not None:
+        models = root.find('world').findall('include')[:1]
     return ''.join(ET.tostring(m, encoding='unicode') for m in models)
 
-
-def _compose_pose_rpy(position, quat, rel):
-    """A spawn pose (xyz + quaternion) composed with a model's own SDF pose (x, y, z, r, p, y)."""
-    import pybullet as pb
-    q = _normalised(quat) or (0, 0, 0, 1)
-    p, o = pb.multiplyTransforms(position, q, rel[:3], pb.getQuaternionFromEuler(rel[3:]))
-    r = pb.getEulerFromQuaternion(o)
-    return tuple(p) + tuple(r)

@@ -372,6 +372,17 @@ class PhysicsWorld(object):
                             physicsClientId=self.client)
         return Pose(tuple(s[4]), tuple(s[5])), Twist(tuple(s[6]), tuple(s[7]))
 
+    def base_state(self, body_id):
+        """World pose and twist of one PyBullet body's base, by id (an SDF model's extra link body)."""
+        pos, orn = pb.getBasePositionAndOrientation(body_id, physicsClientId=self.client)
+        lin, ang = pb.getBaseVelocity(body_id, physicsClientId=self.client)
+        return Pose(tuple(pos), tuple(orn)), Twist(tuple(lin), tuple(ang))
+
+    def set_base_state(self, body_id, position, orientation, linear=(0, 0, 0), angular=(0, 0, 0)):
+        """Puts one PyBullet body's base (by id) at a pose with a twist."""
+        pb.resetBasePositionAndOrientation(body_id, position, orientation, physicsClientId=self.client)
+        pb.resetBaseVelocity(body_id, linear, angular, physicsClientId=self.client)
+
     def apply_joint_effort(self, body, joint_name, effort):
         joint = body.joints[joint_name]
         pb.setJointMotorControl2(body.id, joint.index, pb.TORQUE_CONTROL, force=effort,
