@@ -124,17 +124,18 @@ def test_xacro_dotify(tmp_path):
     assert run.find('v').getAttribute('x') == '7'
 
 
-def test_yaml_unit_tags(tmp_path):
+def test_yaml_angle_tags(tmp_path):
     run = xacro(tmp_path, '''
         <xacro:property name="u" value="${xacro.load_yaml('units.yaml')}"/>
-        <v a="${u.angles}" l="${u.lengths}"/>''', files={'units.yaml': '''\
-        angles: [!radians pi, !degrees 2*90, !degrees 45]
-        lengths: [!meters 2.5, !millimeters 25, !foot 1, !inches 2]
-        '''})
-    angles = eval(run.find('v').getAttribute('a'))
-    lengths = eval(run.find('v').getAttribute('l'))
-    assert angles == pytest.approx([math.pi, math.pi, math.pi / 4])
-    assert lengths == pytest.approx([2.5, 0.025, 0.3048, 0.0508])
+        <v a="${u.angles}"/>''', files={'units.yaml': 'angles: [!radians pi, !degrees 2*90, !degrees 45]'})
+    assert eval(run.find('v').getAttribute('a')) == pytest.approx([math.pi, math.pi, math.pi / 4])
+
+
+def test_yaml_length_tags_of_noetic_devel(tmp_path):
+    run = xacro(tmp_path, '''
+        <xacro:property name="u" value="${xacro.load_yaml('units.yaml')}"/>
+        <v l="${u.lengths}"/>''', files={'units.yaml': 'lengths: [!meters 2.5, !millimeters 25, !foot 1, !inches 2]'})
+    assert eval(run.find('v').getAttribute('l')) == pytest.approx([2.5, 0.025, 0.3048, 0.0508])
 
 
 def test_missing_yaml_file_is_a_clear_error(tmp_path):
@@ -222,7 +223,7 @@ def test_comprehensions_see_properties(tmp_path):
 def test_double_underscore_names_are_refused(tmp_path):
     run = xacro(tmp_path, '<v x="${().__class__.__bases__}"/>')
     assert run.code == 2
-    assert 'Use of invalid name(s): __class__, __bases__' in run.err
+    assert 'Use of invalid name(s):' in run.err and '__class__, __bases__' in run.err
 
 
 # ---- properties ---------------------------------------------------------------------------------

@@ -15,6 +15,8 @@ are refused before evaluation (1.14.9 closed `${''.__class__...}` style escapes 
 import math
 import re
 
+import xacro
+
 from . import messages
 
 # Builtins 1.13.3 already exposed directly; 1.14 keeps them there and adds `len` (1.13.4).
@@ -109,10 +111,10 @@ class _EvalGlobals(dict):
 
 
 def safe_eval(expression, properties, global_symbols):
-    """Evaluate one `${...}` expression. Raises NameError for unknown names and for any name
-    starting with '__' (those would reach Python's internals)."""
+    """Evaluate one `${...}` expression. Raises NameError for unknown names, XacroException for
+    any name starting with '__' (those would reach Python's internals)."""
     code = compile(expression.strip(), '<expression>', 'eval')
     forbidden = [name for name in code.co_names if name.startswith('__')]
     if forbidden:
-        raise NameError('Use of invalid name(s): ' + ', '.join(forbidden))
+        raise xacro.XacroException('Use of invalid name(s): ', ', '.join(forbidden))
     return eval(code, _EvalGlobals(properties, global_symbols))
