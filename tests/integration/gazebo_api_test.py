@@ -68,7 +68,7 @@ class GazeboApiTest(unittest.TestCase):
                  'get_link_state': srv.GetLinkState, 'set_link_state': srv.SetLinkState,
                  'set_model_configuration': srv.SetModelConfiguration, 'delete_model': srv.DeleteModel,
                  'get_world_properties': srv.GetWorldProperties, 'pause_physics': Empty,
-                 'unpause_physics': Empty}
+                 'unpause_physics': Empty, 'reset_world': Empty}
         for name, cls_ in names.items():
             if name != 'set_link_state':  # advertised before set_model_configuration; its tests fail without it
                 rospy.wait_for_service('/gazebo/' + name, timeout=WALL_TIMEOUT)
@@ -208,6 +208,21 @@ class GazeboApiTest(unittest.TestCase):
         self.assertTrue(res.success, res.status_message)
         self.addCleanup(self.delete_model, 'ctl')
         rospy.wait_for_service('/sdf_ns/controller_manager/list_controllers', timeout=WALL_TIMEOUT)
+
+    def test_set_model_state_moves_every_link_of_a_static_sdf_model_and_reset_world_puts_it_back(self):
+        shelf = ('<sdf version="1.6"><model name="shelf"><static>true</static>' + ''.join(
+            '<link name="%s"><pose>0 0 %g 0 0 0</pose><collision name="c"><geometry><box><size>0.2 0.2 0.2</size>'
+            '</box></geometry></collision></link>' % (name, z) for name, z in (('base', 0.1), ('top', 1.0))) +
+            '</model></sdf>')
+        self.assertTrue(self.spawn_sdf_model('shelf', shelf, '', pose(0, 3, 0), '').success)
+        self.addCleanup(self.delete_model, 'shelf')
+        res = self.set_model_state(ModelState('shelf', pose(0, 4, 0, YAW_90), Twist(), ''))
+        self.assertTrue(res.success, res.status_message)  # Gazebo moves static models too
+        self.assert_pose(self.model('shelf').pose, (0, 4, 0), yaw=math.pi / 2)
+        self.assert_pose(self.link('shelf::top').pose, (0, 4, 1), yaw=math.pi / 2)
+        self.reset_world()
+        self.assert_pose(self.model('shelf').pose, (0, 3, 0), yaw=0.0)
+        self.assert_pose(self.link('shelf::top').pose, (0, 3, 1), yaw=0.0)
 
     # -- set_link_state ---------------------------------------------------------------------------------
     def test_set_link_state_of_an_sdf_link(self):

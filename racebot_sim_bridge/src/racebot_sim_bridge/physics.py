@@ -394,6 +394,9 @@ class PhysicsWorld(object):
     def reset_to_spawn(self, body):
         pos, orn = body.spawn_pose
         self.set_pose(body, pos, orn)
+        for link, extra in getattr(body, 'extra_bodies', []):  # an SDF model's other links, as spawned
+            pos, orn = body.source[1].world_pose_of(link)
+            self.set_base_state(extra, pos, orn)
         for joint in body.joints.values():
             pb.resetJointState(body.id, joint.index, body.initial_joint_positions.get(joint.name, 0.0), 0.0,
                                physicsClientId=self.client)

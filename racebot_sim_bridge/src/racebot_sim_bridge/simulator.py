@@ -238,9 +238,8 @@ class Simulator(object):
         reset_world, with the time since 0 as its period, and one control period after
         reset_simulation."""
         with self.lock:
-            for name, body in self.world.bodies.items():
-                if not body.static:
-                    self.world.reset_to_spawn(body)
+            for body in self.world.bodies.values():  # static models too: set_model_state moves them
+                self.world.reset_to_spawn(body)
             for r in self.robots.values():
                 r.last_update = 0.0
 
