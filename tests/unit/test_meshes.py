@@ -202,6 +202,24 @@ def test_urdf_colours_gazebo_material_wins_then_urdf_then_mesh_and_a_missing_mes
     assert urdf_assets.resolve_assets(resolved, urdf_model.parse_urdf(resolved)) == resolved  # idempotent
 
 
+
+def test_urdf_attribute_style_gazebo_material_and_a_model_uri_with_a_path(isolated, monkeypatch):
+    """<material value="Gazebo/Red"/> (the old attribute style) colours the link as <material>Gazebo/Red</material>
+    does; a URDF mesh at model://PKG/models/NAME/... resolves under the model folder holding PKG/."""
+    mesh_fixtures.write_mesh(mesh_fixtures.box((1, 1, 1)),
+                             str(isolated / 'share' / 'track_pkg' / 'models' / 'track' / 'meshes' / 'wall.stl'))
+    monkeypatch.setenv('GAZEBO_MODEL_PATH', str(isolated / 'share'))
+    xml = ('<robot name="r"><link name="a"><visual><geometry><box size="1 1 1"/></geometry></visual>'
+           '<collision><geometry><mesh filename="model://track_pkg/models/track/meshes/wall.stl"/></geometry>'
+           '</collision></link><gazebo reference="a"><material value="Gazebo/Red"/></gazebo></robot>')
+    model = urdf_model.parse_urdf(xml)
+    warnings = []
+    urdf_assets.resolve_assets(xml, model, warnings.append)
+    assert warnings == []
+    assert model.links['a'].visuals[0].rgba == (1.0, 0.0, 0.0, 1.0)
+    assert model.links['a'].collisions[0].filename.startswith(str(isolated / 'cache'))
+
+
 # -- SDF ------------------------------------------------------------------------------------------------
 WALL_MODEL = '''<model name="wall"><static>true</static><pose>9 9 9 0 0 0</pose><link name="link">
   <collision name="c"><geometry><mesh><uri>model://wall/meshes/wall.stl</uri><scale>2 1 1</scale></mesh></geometry>
