@@ -22,7 +22,8 @@ XACRO_NS = 'xmlns:xacro="http://www.ros.org/wiki/xacro"'
 
 def _environment():
     env = dict(os.environ)
-    env['ROS_PACKAGE_PATH'] = os.pathsep.join([str(REPO)] + ([env['ROS_PACKAGE_PATH']] if env.get('ROS_PACKAGE_PATH') else []))
+    paths = [str(REPO)] + ([env['ROS_PACKAGE_PATH']] if env.get('ROS_PACKAGE_PATH') else [])
+    env['ROS_PACKAGE_PATH'] = os.pathsep.join(paths)
     env['PATH'] = os.pathsep.join([os.path.dirname(sys.executable), env.get('PATH', '')])
     return env
 
@@ -134,7 +135,8 @@ def test_yaml_angle_tags(tmp_path):
 def test_yaml_length_tags_of_noetic_devel(tmp_path):
     run = xacro(tmp_path, '''
         <xacro:property name="u" value="${xacro.load_yaml('units.yaml')}"/>
-        <v l="${u.lengths}"/>''', files={'units.yaml': 'lengths: [!meters 2.5, !millimeters 25, !foot 1, !inches 2]'})
+        <v l="${u.lengths}"/>''',
+                files={'units.yaml': 'lengths: [!meters 2.5, !millimeters 25, !foot 1, !inches 2]'})
     assert eval(run.find('v').getAttribute('l')) == pytest.approx([2.5, 0.025, 0.3048, 0.0508])
 
 
@@ -184,7 +186,9 @@ def test_xacro_messages_print_and_evaluate_to_nothing(tmp_path):
 def test_xacro_fatal_stops_with_exit_code_2(tmp_path):
     run = xacro(tmp_path, '''
         <xacro:macro name="wheel" params="radius">
-          <xacro:if value="${radius &lt;= 0}">${xacro.fatal('wheel radius must be positive, got', radius)}</xacro:if>
+          <xacro:if value="${radius &lt;= 0}">
+            ${xacro.fatal('wheel radius must be positive, got', radius)}
+          </xacro:if>
         </xacro:macro>
         <xacro:wheel radius="-1"/>''')
     assert run.code == 2
@@ -328,8 +332,8 @@ def test_macro_defaults_with_spaces_expressions_and_args(tmp_path):
         </xacro:macro>
         <xacro:m last="x"/>''')
     v = run.find('v')
-    assert (v.getAttribute('xyz'), v.getAttribute('size'), v.getAttribute('side'), v.getAttribute('last')) == \
-        ('1 2 3', '4', 'left', 'x')
+    values = [v.getAttribute(name) for name in ('xyz', 'size', 'side', 'last')]
+    assert values == ['1 2 3', '4', 'left', 'x']
 
 
 def test_macro_defined_in_a_macro_is_local(tmp_path):
@@ -354,7 +358,8 @@ def test_xml_namespaces_of_a_macro_body_move_up(tmp_path):
 # ---- document -----------------------------------------------------------------------------------
 
 def test_xacro_namespace_and_attributes_leave_the_output(tmp_path):
-    run = xacro(tmp_path, '<v xacro:note="x" y="1"/>', root_attrs='xacro:targetNamespace="http://example.org/robot"')
+    run = xacro(tmp_path, '<v xacro:note="x" y="1"/>',
+                root_attrs='xacro:targetNamespace="http://example.org/robot"')
     assert 'xmlns:xacro' not in run.out and 'xacro:' not in run.out
     assert run.root.getAttribute('xmlns') == 'http://example.org/robot'
     assert run.find('v').getAttribute('y') == '1'
@@ -390,7 +395,8 @@ def test_unclosed_expression_is_an_error(tmp_path):
 def test_command_line_of_1_14(tmp_path):
     run = xacro(tmp_path, '<v/>', '--inorder')
     assert run.code == 0
-    assert 'xacro: in-order processing became default in ROS Melodic. You can drop the option.' in run.err.splitlines()
+    assert ('xacro: in-order processing became default in ROS Melodic. You can drop the option.'
+            in run.err.splitlines())
     run = xacro(tmp_path, '<v/>', '--legacy')
     assert run.code == 2
     assert 'no such option: --legacy' in run.err

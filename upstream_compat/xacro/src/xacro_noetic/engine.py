@@ -76,9 +76,10 @@ class Scope(xacro.Table):
 
     @staticmethod
     def _eval_literal(value):
-        quoted = len(value) >= 2 and value[0] == value[-1] == "'" if isinstance(value, str) else False
-        if isinstance(value, str) and '_' in value and not quoted:
-            return value  # '1_000' is a name or text here, not Python's number literal 1000
+        if isinstance(value, str) and '_' in value:
+            quoted = len(value) >= 2 and value[0] == value[-1] == "'"
+            if not quoted:
+                return value  # '1_000' is text here, not Python's number literal 1000
         return xacro.Table._eval_literal(value)
 
     def _resolve_(self, key):
