@@ -97,6 +97,15 @@ def test_a_preserved_fixed_joint_keeps_its_link_and_lumps_below_it():
     assert float(root.find('link').find('inertial').find('mass').get('value')) == 2.0
 
 
+def test_a_preserved_link_below_a_lumped_one_hangs_on_the_link_that_is_kept():
+    root = lumped('<gazebo reference="tip_joint"><preserveFixedJoint>true</preserveFixedJoint></gazebo>')
+    assert [l.get('name') for l in root.findall('link')] == ['base', 'tip', 'wheel']
+    tip_joint = root.find("joint[@name='tip_joint']")
+    assert tip_joint.find('parent').get('link') == 'base'
+    xyz, rpy = origin(tip_joint)
+    assert xyz == pytest.approx([0.2, 0.2, 0.3]) and rpy == pytest.approx([0, 0, math.pi / 2])
+
+
 @pytest.mark.parametrize('flag', [
     '<gazebo reference="arm_joint"><preserveFixedJoint value="1"/></gazebo>',
     '<gazebo reference="arm_joint"><disableFixedJointLumping>yes</disableFixedJointLumping></gazebo>'])
