@@ -41,6 +41,7 @@ JointInfo = namedtuple('JointInfo', 'index name type lower upper max_effort max_
 JointState = namedtuple('JointState', 'position velocity')
 Pose = namedtuple('Pose', 'position orientation')  # xyz, quaternion xyzw
 Twist = namedtuple('Twist', 'linear angular')
+LinkDynamics = namedtuple('LinkDynamics', 'mass inertia_diagonal inertial_position inertial_orientation')
 
 JOINT_TYPES = {pb.JOINT_REVOLUTE: 'revolute', pb.JOINT_PRISMATIC: 'prismatic',
                pb.JOINT_FIXED: 'fixed', pb.JOINT_SPHERICAL: 'spherical', pb.JOINT_PLANAR: 'planar'}
@@ -387,6 +388,55 @@ class PhysicsWorld(object):
         joint = body.joints[joint_name]
         pb.setJointMotorControl2(body.id, joint.index, pb.TORQUE_CONTROL, force=effort,
                                  physicsClientId=self.client)
+
+    # -- dynamics and external forces (gazebo_ros's properties and force services) ----------------
+    # A link is addressed (PyBullet body id, link index): an SDF model's extra link is a body of its own.
+    def link_dynamics(self, body_id, index):
+        """LinkDynamics of a link: mass, inertia diagonal, inertial frame in the link frame."""
+        d = pb.getDynamicsInfo(body_id, index, physicsClientId=self.client)
+        return LinkDynamics(d[0], tuple(d[2]), tuple(d[3]), tuple(d[4]))
+
+    def set_link_mass(self, body_id, index, mass, inertia_diagonal):
+        # Two calls: PyBullet recomputes the inertia from the collision shapes when the mass changes.
+        pb.changeDynamics(body_id, index, mass=mass, physicsClientId=self.client)
+        pb.changeDynamics(body_id, index, localInertiaDiagonal=list(inertia_diagonal), physicsClientId=self.client)
+
+    def com_position(self, body_id, index):
+        """World position of a link's centre of mass."""
+        if index < 0:
+            return tuple(pb.getBasePositionAndOrientation(body_id, physicsClientId=self.client)[0])
+        return tuple(pb.getLinkState(body_id, index, computeForwardKinematics=1, physicsClientId=self.client)[0])
+
+    def apply_wrench(self, body_id, index, force, torque):
+        """A world-frame force at the link's centre of mass and a world-frame torque, for one step."""
+        if any(force):
+            pb.applyExternalForce(body_id, index, list(force), self.com_position(body_id, index), pb.WORLD_FRAME,
+                                  physicsClientId=self.client)
+        if any(torque):
+            pb.applyExternalTorque(body_id, index, list(torque), pb.WORLD_FRAME, physicsClientId=self.client)
+
+    def set_joint_dynamics(self, body, joint_name, damping=None, lower=None, upper=None):
+        """A joint's viscous damping and position limits (None: unchanged)."""
+        joint = body.joints[joint_name]
+        if damping is not None:
+            pb.changeDynamics(body.id, joint.index, jointDamping=damping, physicsClientId=self.client)
+        if lower is not None or upper is not None:
+            pb.changeDynamics(body.id, joint.index, jointLowerLimit=joint.lower if lower is None else lower,
+                              jointUpperLimit=joint.upper if upper is None else upper, physicsClientId=self.client)
+            body.joints[joint_name] = joint._replace(lower=joint.lower if lower is None else lower,
+                                                     upper=joint.upper if upper is None else upper)
+
+    def set_gravity(self, gravity):
+        self.gravity = tuple(gravity)
+        pb.setGravity(*self.gravity, physicsClientId=self.client)
+
+    def set_step_size(self, step_size):
+        self.step_size = step_size
+        pb.setTimeStep(step_size, physicsClientId=self.client)
+
+    def set_solver(self, **params):
+        """Constraint solver parameters by PyBullet's names (numSolverIterations, erp, globalCFM)."""
+        pb.setPhysicsEngineParameter(physicsClientId=self.client, **params)
 
     def step(self):
         pb.stepSimulation(physicsClientId=self.client)

@@ -30,7 +30,7 @@ import xml.etree.ElementTree as ET
 from dataclasses import dataclass, field
 
 __all__ = [
-    'WorldError', 'World', 'Physics', 'Model', 'Link', 'Collision', 'Visual', 'Shape',
+    'WorldError', 'World', 'Physics', 'Light', 'sun_light', 'Model', 'Link', 'Collision', 'Visual', 'Shape',
     'parse_world', 'load_world', 'compose', 'inverse', 'rpy_to_quaternion',
     'quaternion_to_rpy', 'quaternion_multiply', 'rotate', 'as_transform',
     'GAZEBO_MATERIALS', 'EMPTY_WORLD_SDF', 'ZERO_POSE',
@@ -227,10 +227,32 @@ class Model:
 
 
 @dataclass
+class Light:
+    """A world <light>, SDF 1.6's defaults. ``pose`` is a 6-tuple in the world; colours are rgba;
+    ``attenuation``: (range, constant, linear, quadratic). Nothing is lit by it here: it is world
+    state that gazebo_ros's light services read, change and delete."""
+    name: str
+    type: str = 'point'
+    cast_shadows: bool = False
+    pose: tuple = ZERO_POSE
+    diffuse: tuple = (1.0, 1.0, 1.0, 1.0)
+    specular: tuple = (0.1, 0.1, 0.1, 1.0)
+    attenuation: tuple = (10.0, 1.0, 1.0, 0.0)
+    direction: tuple = (0.0, 0.0, -1.0)
+
+
+def sun_light(name='sun', pose=None):
+    """Gazebo's model://sun: one directional light (its model.sdf's values)."""
+    return Light(name, 'directional', True, pose or (0.0, 0.0, 10.0, 0.0, 0.0, 0.0), (0.8, 0.8, 0.8, 1.0),
+                 (0.2, 0.2, 0.2, 1.0), (1000.0, 0.9, 0.01, 0.001), (-0.5, 0.1, -0.9))
+
+
+@dataclass
 class World:
     name: str = 'default'
     physics: Physics = field(default_factory=Physics)
     models: list = field(default_factory=list)
+    lights: list = field(default_factory=list)
     warnings: list = field(default_factory=list)
     source: str = '<string>'
 
@@ -585,7 +607,7 @@ class _WorldReader:
         uri = (elem.findtext('uri') or '').strip()
         target = uri.rstrip('/')
         if target == 'model://sun':
-            return None  # a light: nothing to simulate
+            return None  # a light, not a model: world() reads it with light_of_include
         if target == 'model://ground_plane':
             return self.ground_plane(elem)
         where = 'include %s' % _quote(uri or '(no uri)')
@@ -671,6 +693,42 @@ class _WorldReader:
                     collisions=[Collision('collision', ZERO_POSE, plane(), 100.0, 50.0)],
                     visuals=[Visual('visual', ZERO_POSE, plane(), GAZEBO_MATERIALS['Gazebo/Grey'])])
         return Model(name, pose=pose, static=static, links=[link])
+
+    def light(self, elem):
+        """A world <light>, or None (one warning) when a value is unusable."""
+        name = (elem.get('name') or '').strip()
+        where = 'light %s' % _quote(name)
+        if not name:
+            self.warn('world', '<light> without a name; skipped (give it name="...")')
+            return None
+        try:
+            att = elem.find('attenuation')
+            default = Light(name)
+            attenuation = default.attenuation if att is None else tuple(
+                _child_float(att, tag, value, 'attenuation ' + tag)
+                for tag, value in zip(('range', 'constant', 'linear', 'quadratic'), default.attenuation))
+            colour = lambda tag, value: _floats(elem.findtext(tag), 4, tag) if elem.find(tag) is not None else value
+            return Light(name, (elem.get('type') or 'point').strip(),
+                         _child_bool(elem, 'cast_shadows', default.cast_shadows, 'cast_shadows'),
+                         self.pose(elem, where), colour('diffuse', default.diffuse),
+                         colour('specular', default.specular), attenuation,
+                         _floats(elem.findtext('direction'), 3, 'direction') if elem.find('direction') is not None
+                         else default.direction)
+        except _Skip as err:
+            self.warn(where, '%s; skipped' % err)
+            return None
+
+    def light_of_include(self, elem):
+        """The sun of an <include> of model://sun (its <name> and <pose> win), else None."""
+        if (elem.findtext('uri') or '').strip().rstrip('/') != 'model://sun':
+            return None
+        name = (elem.findtext('name') or '').strip() or 'sun'
+        try:
+            pose = self.pose(elem, 'include %s' % _quote(name)) if elem.find('pose') is not None else None
+        except _Skip as err:
+            self.warn('include %s' % _quote(name), '%s; skipped' % err)
+            return None
+        return sun_light(name, pose)
 
     def physics(self, world_elem):
         physics = Physics()
@@ -767,6 +825,13 @@ class _WorldReader:
                 model = self.model(child)
             elif child.tag == 'include':
                 model = self.include(child)
+                light = self.light_of_include(child)
+                if light is not None:
+                    world.lights.append(light)
+            elif child.tag == 'light':
+                light = self.light(child)
+                if light is not None:
+                    world.lights.append(light)
             elif child.tag in _WORLD_UNSUPPORTED:
                 self.warn('world', '<%s> %s: %s; skipped' % (
                     child.tag, _quote(child.get('name', '')), _WORLD_UNSUPPORTED[child.tag]))

@@ -90,15 +90,18 @@ class Simulator(object):
         self.lock = threading.RLock()
         self.time = 0.0
         self.steps = 0
+        self._epoch = (0, 0.0)  # (steps, time) when the step size last changed: time = t0 + (steps - s0) * step
         self.paused = False
         self.robots = {}
         self.world_models = self.world.load_world(world_spec, warn=lambda m: self.log.warn('world: %s' % m))
-        self.timed_efforts = []  # [body, joint, effort, start, end] from /gazebo/apply_joint_effort
         # Extension points (sensors, odometry truth): on_spawn(robot) after a URDF robot is spawned,
         # on_delete(robot) before it goes, after_step(time) after every physics step; all under `lock`.
+        # before_physics(time) runs after the robots' writes, just before the physics step, with the
+        # time the step ends at (Gazebo's sim time at WorldUpdateBegin): apply_body_wrench & co.
         self.on_spawn = []
         self.on_delete = []
         self.after_step = []
+        self.before_physics = []
 
     # -- spawning -------------------------------------------------------------------------------
     def spawn_urdf(self, name, xml, robot_namespace='', position=(0, 0, 0), orientation=(0, 0, 0, 1)):
@@ -201,27 +204,24 @@ class Simulator(object):
                     r.cm.update(t, period if period > 0 else r.control_period)
                     r.last_update = t
                 r.write(self.world)
-            if self.timed_efforts:
-                self._apply_timed_efforts(t)
+            for hook in self.before_physics:
+                hook(self._time_at(self.steps + 1))
             self.world.step()
             self.steps += 1
-            self.time = self.steps * self.step_size
+            self.time = self._time_at(self.steps)
             for hook in self.after_step:
                 hook(self.time)
 
-    def add_timed_effort(self, body, joint, effort, start, end):
-        with self.lock:
-            self.timed_efforts.append([body, joint, effort, start, end])
+    def _time_at(self, steps):
+        s0, t0 = self._epoch
+        return t0 + (steps - s0) * self.step_size
 
-    def _apply_timed_efforts(self, t):
-        """apply_joint_effort's efforts, added to what the joint's controller commands this step."""
-        self.timed_efforts = [e for e in self.timed_efforts if e[4] > t and e[0].name in self.world.bodies]
-        for body, joint, effort, start, end in self.timed_efforts:
-            if start <= t:
-                robot = self.robots.get(body.name)
-                h = robot.hw.handles.get(joint) if robot is not None and robot.hw is not None else None
-                base = h.effort if h is not None else 0.0
-                self.world.apply_joint_effort(body, joint, base + effort)
+    def set_step_size(self, step_size):
+        """A new physics step (set_physics_properties); time goes on from where it is."""
+        with self.lock:
+            self._epoch = (self.steps, self.time)
+            self.step_size = step_size
+            self.world.set_step_size(step_size)
 
     def reset_simulation(self):
         """reset_world, and time back to 0."""
@@ -229,6 +229,7 @@ class Simulator(object):
             self.reset_world()
             self.steps = 0
             self.time = 0.0
+            self._epoch = (0, 0.0)
 
     def reset_world(self):
         """Poses, velocities and joints back to the start; time goes on. ros_control is left as it
