@@ -279,6 +279,8 @@ class GazeboApiTest(unittest.TestCase):
         self.assertIn('twist of model [arm] is not finite', res.status_message)
         res = self.get_model_state('nobody', '')
         self.assertEqual((res.success, res.status_message), (False, 'GetModelState: model does not exist'))
+        res = self.delete_model('nobody')
+        self.assertEqual((res.success, res.status_message), (False, 'DeleteModel: model does not exist'))
         self.assert_pose(self.model('arm').pose, (0, 0, 1))
 
     def test_bad_spawn_requests(self):
