@@ -23,7 +23,16 @@ setup: debian venv build
 debian:
 	@tools/install_debian_packages.sh tools/debian-packages.txt
 
-venv: $(VENV)/.racebot-installed
+venv: $(VENV)/.racebot-installed $(VENV)/bin/.racebot-xacro
+
+# A bare `xacro` on PATH (the venv's bin/ comes first) must be the Noetic xacro that `$(find xacro)/xacro`
+# runs (upstream_compat/xacro), not the plain 1.13.3 console script pip installed: Noetic-era launch files
+# call `command="xacro ..."` with `${xacro.load_yaml(...)}` inside.
+$(VENV)/bin/.racebot-xacro: $(VENV)/.racebot-installed upstream_compat/xacro/xacro
+	@printf '#!%s\n# racebot: Noetic xacro, i.e. upstream_compat/xacro/xacro (written by make venv)\nimport runpy, sys\nsys.argv[0] = %s\nrunpy.run_path(sys.argv[0], run_name="__main__")\n' \
+	    '$(VENV)/bin/python3' "'$(ROOT)/upstream_compat/xacro/xacro'" > $(VENV)/bin/xacro
+	@chmod +x $(VENV)/bin/xacro
+	@touch $@
 
 $(VENV)/.racebot-installed: tools/requirements.txt
 	@test -x $(VENV)/bin/python3 || $(SYSTEM_PYTHON) -m venv --system-site-packages $(VENV)

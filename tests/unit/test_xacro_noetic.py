@@ -413,3 +413,17 @@ def test_racebot_description_expands_as_before(tmp_path):
     assert process.returncode == 0, process.stderr
     banner_end = process.stdout.index('<robot')
     assert process.stdout[banner_end:].strip() == before[before.index('<robot'):].strip()
+
+
+def test_bare_xacro_on_path_is_the_noetic_one(tmp_path):
+    """Noetic-era launch files also write `command="xacro ..."`: the `xacro` that PATH finds in a sourced
+    shell (the venv's bin/ comes first) must expand `xacro.` calls too, not only `$(find xacro)/xacro`."""
+    import shutil
+    bare = shutil.which('xacro', path=ENV['PATH'])
+    assert bare, 'no xacro on PATH: run make setup'
+    doc = tmp_path / 'robot.xacro'
+    doc.write_text('<robot name="r" %s><xacro:property name="n" value="${xacro.dotify(dict(a=3)).a}"/>'
+                   '<link name="l${n}"/></robot>' % XACRO_NS)
+    process = subprocess.run([bare, str(doc)], env=ENV, capture_output=True, text=True, timeout=60)
+    assert process.returncode == 0, '%s: %s' % (bare, process.stderr)
+    assert '<link name="l3"/>' in process.stdout
