@@ -11,12 +11,14 @@ what to change.
 import math
 
 from gazebo_msgs import srv
-from gazebo_msgs.msg import LinkState, LinkStates, ModelState, ModelStates, ODEPhysics
+from gazebo_msgs.msg import LinkState, LinkStates, ModelState, ModelStates
 from geometry_msgs.msg import Point, Pose, Quaternion, Twist, Vector3
 from std_srvs.srv import Empty, EmptyResponse
 
 from . import frames, spawn_xml, urdf_model
 from .controller_manager import ControllerManagerServices
+from .gazebo_forces import GazeboForces
+from .gazebo_properties import GazeboProperties
 from .simulator import SpawnError
 from .world_entities import WorldEntities
 
@@ -85,16 +87,17 @@ class GazeboServices(object):
             s('get_model_state', srv.GetModelState, self.get_model_state),
             s('set_model_state', srv.SetModelState, self.set_model_state),
             s('get_world_properties', srv.GetWorldProperties, self.get_world_properties),
-            s('get_physics_properties', srv.GetPhysicsProperties, self.get_physics_properties),
             s('get_link_state', srv.GetLinkState, self.get_link_state),
             s('set_link_state', srv.SetLinkState, self.set_link_state),
             s('set_model_configuration', srv.SetModelConfiguration, self.set_model_configuration),
-            s('apply_joint_effort', srv.ApplyJointEffort, self.apply_joint_effort),
             s('pause_physics', Empty, self.pause_physics),
             s('unpause_physics', Empty, self.unpause_physics),
             s('reset_simulation', Empty, self.reset_simulation),
             s('reset_world', Empty, self.reset_world),
         ]
+        # properties, physics settings and lights; wrenches and joint efforts: modules of their own
+        self.properties = GazeboProperties(rospy, sim, self.ns)
+        self.forces = GazeboForces(rospy, sim, self.ns)
         # the topic forms of set_model_state / set_link_state: the same handlers, answers only logged
         self.subscribers = [
             rospy.Subscriber(self.ns + '/set_model_state', ModelState,
@@ -197,8 +200,8 @@ class GazeboServices(object):
         try:
             self.sim.delete_model(req.model_name)
         except KeyError:
-            return srv.DeleteModelResponse(False, self._err(
-                'DeleteModel: model [%s] does not exist' % req.model_name))
+            self.rospy.logerr('DeleteModel: model [%s] does not exist' % req.model_name)
+            return srv.DeleteModelResponse(False, 'DeleteModel: model does not exist')
         cms = self.cm_services.pop(req.model_name, None)
         if cms is not None:
             cms.shutdown()
@@ -277,19 +280,6 @@ class GazeboServices(object):
         res.model_names = self.sim.model_names()
         res.rendering_enabled = bool(self.sim.rendering)
         res.success, res.status_message = True, 'GetWorldProperties: got properties'
-        return res
-
-    def get_physics_properties(self, _req):
-        ph = self.sim.spec.physics
-        res = srv.GetPhysicsPropertiesResponse()
-        res.time_step = self.sim.step_size
-        res.pause = self.sim.paused
-        res.max_update_rate = ph.real_time_update_rate
-        res.gravity = Vector3(*self.sim.world.gravity)
-        res.ode_config = ODEPhysics(auto_disable_bodies=False, sor_pgs_precon_iters=0, sor_pgs_iters=50,
-                                    sor_pgs_w=1.3, sor_pgs_rms_error_tol=0.0, contact_surface_layer=0.001,
-                                    contact_max_correcting_vel=100.0, cfm=0.0, erp=0.2, max_contacts=20)
-        res.success, res.status_message = True, 'GetPhysicsProperties: got properties'
         return res
 
     def get_link_state(self, req):
@@ -372,22 +362,6 @@ class GazeboServices(object):
                 robot.reset_joint_readings(self.sim.world)
         return srv.SetModelConfigurationResponse(True, 'SetModelConfiguration: success')
 
-    def apply_joint_effort(self, req):
-        with self.sim.lock:
-            for body in self.sim.world.bodies.values():
-                if req.joint_name in body.joints:
-                    break
-            else:
-                return srv.ApplyJointEffortResponse(False, self._err(
-                    'ApplyJointEffort: joint [%s] not found' % req.joint_name))
-            if not math.isfinite(req.effort):
-                return srv.ApplyJointEffortResponse(False, self._err('ApplyJointEffort: effort must be finite'))
-            start = max(req.start_time.to_sec(), self.sim.time)
-            duration = req.duration.to_sec()
-            end = math.inf if duration < 0 else start + duration
-            self.sim.add_timed_effort(body, req.joint_name, req.effort, start, end)
-        return srv.ApplyJointEffortResponse(True, '')
-
     # -- physics control ------------------------------------------------------------------------
     def pause_physics(self, _req):
         self.sim.paused = True
@@ -434,6 +408,8 @@ class GazeboServices(object):
     def shutdown(self):
         for s in self.services:
             s.shutdown()
+        self.properties.shutdown()
+        self.forces.shutdown()
         for sub in self.subscribers:
             sub.unregister()
         for c in self.cm_services.values():
