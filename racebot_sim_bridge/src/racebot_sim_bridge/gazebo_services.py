@@ -76,7 +76,6 @@ class GazeboServices(object):
         self.ns = ns.rstrip('/')
         self.cm_services = {}
         self.entities = WorldEntities(sim.world)
-        self.model_state_reads = {}  # model name -> get_model_state calls: the response's header.seq, as upstream
         self.model_states_pub = rospy.Publisher(self.ns + '/model_states', ModelStates, queue_size=1)
         self.link_states_pub = rospy.Publisher(self.ns + '/link_states', LinkStates, queue_size=1)
         s = lambda name, cls, cb: rospy.Service('%s/%s' % (self.ns, name), cls, cb)
@@ -232,8 +231,7 @@ class GazeboServices(object):
                 self.rospy.logerr('GetModelState: model [%s] does not exist' % req.model_name)
                 res.success, res.status_message = False, 'GetModelState: model does not exist'
                 return res
-            seq = self.model_state_reads[req.model_name] = self.model_state_reads.get(req.model_name, 0) + 1
-            res.header.seq = seq
+            # header.seq: rospy numbers every response itself (upstream counts calls per model)
             res.header.stamp = self.rospy.Time.from_sec(self.sim.time)
             res.header.frame_id = req.relative_entity_name
             pose, twist = self.entities.model_state(body)
