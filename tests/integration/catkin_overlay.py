@@ -1,0 +1,82 @@
+"""A user's catkin workspace under /tmp, overlaying racebot's devel space, and roslaunch started in it from
+a shell, as a user starts it (helpers of the rostest nodes in this folder, not a test node itself)."""
+import os
+import shutil
+import signal
+import subprocess
+import tempfile
+
+BUILD_TIMEOUT = 240.0  # wall s for catkin_make of a few tiny packages on a busy 2-core machine
+STOP_TIMEOUT = 30.0    # wall s roslaunch gets to stop its nodes after SIGINT
+
+
+class Workspace(object):
+    """A catkin workspace in a fresh folder under /tmp: `src/` holds the given packages, `catkin_make`
+    builds it on top of whatever workspace the calling environment has sourced (racebot's devel)."""
+
+    def __init__(self, prefix):
+        self.root = tempfile.mkdtemp(prefix=prefix, dir='/tmp')
+        self.src = os.path.join(self.root, 'src')
+        os.mkdir(self.src)
+        self.setup = os.path.join(self.root, 'devel', 'setup.bash')
+
+    def link(self, package_dir):
+        """Puts an existing package folder into src/ as a link (catkin follows it)."""
+        os.symlink(package_dir, os.path.join(self.src, os.path.basename(package_dir)))
+
+    def write(self, relative, text, executable=False):
+        path = os.path.join(self.src, relative)
+        os.makedirs(os.path.dirname(path), exist_ok=True)
+        with open(path, 'w') as f:
+            f.write(text)
+        if executable:
+            os.chmod(path, 0o755)
+        return path
+
+    def build(self, env=None):
+        """catkin_make; AssertionError with the end of its output when it fails."""
+        log = os.path.join(self.root, 'catkin_make.log')
+        with open(log, 'w') as out:
+            code = subprocess.call(['catkin_make', '-C', self.root], stdout=out, stderr=subprocess.STDOUT,
+                                   env=env, timeout=BUILD_TIMEOUT)
+        if code != 0:
+            with open(log) as f:
+                raise AssertionError('catkin_make in %s failed (%d):\n%s' % (self.root, code, f.read()[-3000:]))
+        return self.setup
+
+    def remove(self):
+        shutil.rmtree(self.root, ignore_errors=True)
+
+
+class ShellCommand(object):
+    """`bash -c` (or `bash -lc`, a login shell) running `command` in a session of its own, output in a log
+    file; stop() ends it and every process it started, as Ctrl-C in that terminal would."""
+
+    def __init__(self, command, env, log_path, login=False):
+        self.log_path = log_path
+        self._log = open(log_path, 'w')
+        self.process = subprocess.Popen(['bash', '-lc' if login else '-c', command], env=env,
+                                        stdout=self._log, stderr=subprocess.STDOUT, start_new_session=True)
+
+    def output(self):
+        with open(self.log_path, errors='replace') as f:
+            return f.read()
+
+    def running(self):
+        return self.process.poll() is None
+
+    def stop(self):
+        """SIGINT to the whole group (roslaunch stops its nodes), SIGKILL what is left after STOP_TIMEOUT."""
+        if self.running():
+            os.killpg(self.process.pid, signal.SIGINT)
+            try:
+                self.process.wait(STOP_TIMEOUT)
+            except subprocess.TimeoutExpired:
+                pass
+        try:
+            os.killpg(self.process.pid, signal.SIGKILL)  # nodes that outlived roslaunch, if any
+        except ProcessLookupError:
+            pass
+        self.process.wait()
+        self._log.close()
+
