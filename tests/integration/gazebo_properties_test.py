@@ -70,7 +70,7 @@ class GazeboPropertiesTest(unittest.TestCase):
             set_link_properties=SetLinkProperties, set_joint_properties=SetJointProperties,
             get_physics_properties=GetPhysicsProperties, set_physics_properties=SetPhysicsProperties,
             get_light_properties=GetLightProperties, set_light_properties=SetLightProperties,
-            delete_light=DeleteLight, apply_body_wrench=ApplyBodyWrench, apply_joint_effort=ApplyJointEffort,
+            delete_light=DeleteLight, reset_world=Empty, apply_body_wrench=ApplyBodyWrench, apply_joint_effort=ApplyJointEffort,
             clear_body_wrenches=BodyRequest, clear_joint_forces=JointRequest)
         cls.srv = {}
         for name, cls_ in services.items():
@@ -133,6 +133,9 @@ class GazeboPropertiesTest(unittest.TestCase):
         self.assertEqual(list(res.geom_names), ['base_collision', 'base_fixed_joint_lump__plate_collision_1',
                                                 'arm_collision'])
         self.assertFalse(res.is_static)
+        ground = self.call('get_model_properties', 'ground_plane')  # an SDF model of the world file
+        self.assertEqual((list(ground.body_names), list(ground.geom_names), ground.is_static),
+                         (['link'], ['collision'], True))
         self.refused(self.call('get_model_properties', 'nope'), 'GetModelProperties: model does not exist')
 
     def test_02_link_properties_are_the_urdfs(self):
@@ -282,6 +285,10 @@ class GazeboPropertiesTest(unittest.TestCase):
         r2 = self.rate()
         self.assertGreater(r1 - start, 0.1)
         self.assertGreater(r2 - r1, 0.1)  # still pushing after 0.6 s
+        self.call('reset_world')  # as upstream, a reset leaves the job alone
+        after_reset = self.rate()
+        self.run_for(0.3)
+        self.assertGreater(self.rate() - after_reset, 0.1)
         self.call('clear_joint_forces', 'hinge')
         self.run_for(0.3)
         r3 = self.rate()
@@ -381,6 +388,10 @@ class GazeboPropertiesTest(unittest.TestCase):
         req['light_name'] = 'lamp'
         self.refused(self.call('set_light_properties', **req), 'setLightProperties: Requested light lamp not found!')
         self.refused(self.call('delete_light', 'lamp'), 'DeleteLight: Requested light lamp not found!')
+        req['light_name'] = 'sun'
+        req['attenuation_linear'] = float('nan')
+        self.assertFalse(self.call('set_light_properties', **req).success)
+        self.assertEqual(self.call('get_light_properties', 'sun').attenuation_linear, 0.1)
         res = self.call('delete_light', 'sun')
         self.assertEqual((res.success, res.status_message), (True, 'DeleteLight: sun successfully deleted'))
         self.refused(self.call('get_light_properties', 'sun'), 'getLightProperties: Requested light sun not found!')
