@@ -129,7 +129,8 @@ class RobustnessInputTest(unittest.TestCase):
         self.assertEqual(self.running(), set(CONTROLLERS))
 
     def settle(self):
-        """Back to the spawn pose (after a wild drive), controllers restarted as Gazebo does."""
+        """Back to the spawn pose (after a wild drive). As in Gazebo, the controllers keep running with
+        their last commands, so callers zero the commands first."""
         self.reset_world()
         self.sim.sim_sleep(0.3)
 
