@@ -15,7 +15,8 @@ import rostest
 
 import integration_common  # next to this file
 from gazebo_msgs.msg import ModelState, ODEJointProperties, PerformanceMetrics
-from gazebo_msgs.srv import (ApplyBodyWrench, ApplyJointEffort, BodyRequest, DeleteLight, GetJointProperties,
+from gazebo_msgs.srv import (ApplyBodyWrench, ApplyJointEffort, BodyRequest, DeleteLight, DeleteModel,
+                             GetJointProperties,
                              GetLightProperties, GetLinkProperties, GetModelProperties, GetModelState,
                              GetPhysicsProperties, JointRequest, SetJointProperties, SetLightProperties,
                              SetLinkProperties, SetModelConfiguration, SetModelState, SetPhysicsProperties,
@@ -64,7 +65,7 @@ class GazeboPropertiesTest(unittest.TestCase):
         cls.clock = None
         rospy.Subscriber('/clock', Clock, cls._on_clock, queue_size=1)
         services = dict(
-            spawn_urdf_model=SpawnModel, get_model_state=GetModelState, set_model_configuration=SetModelConfiguration, set_model_state=SetModelState,
+            spawn_urdf_model=SpawnModel, delete_model=DeleteModel, get_model_state=GetModelState, set_model_configuration=SetModelConfiguration, set_model_state=SetModelState,
             pause_physics=Empty, unpause_physics=Empty, get_model_properties=GetModelProperties,
             get_joint_properties=GetJointProperties, get_link_properties=GetLinkProperties,
             set_link_properties=SetLinkProperties, set_joint_properties=SetJointProperties,
@@ -149,6 +150,8 @@ class GazeboPropertiesTest(unittest.TestCase):
         base = self.call('get_link_properties', 'probe::base')
         self.assertAlmostEqual(base.mass, 2.3, places=9)  # the plate is lumped into it, as Gazebo does
         self.assertAlmostEqual(base.com.position.z, 2.0 * 0.05 / 2.3, places=6)
+        ground = self.call('get_link_properties', 'ground_plane::link')  # static: the SDF's inertial, as Gazebo
+        self.assertEqual((ground.success, ground.mass), (True, 1.0))
         self.refused(self.call('get_link_properties', 'probe::nope'),
                      'GetLinkProperties: link not found, did you forget to scope the link by model name?')
         self.refused(self.call('get_link_properties', 'probe'),  # a model is not a link
@@ -323,6 +326,14 @@ class GazeboPropertiesTest(unittest.TestCase):
             self.assertAlmostEqual(self.rate(), -0.5, delta=0.01)
         finally:
             self.assertTrue(self.call('set_joint_properties', 'hinge', ODEJointProperties(vel=[0.0], fmax=[0.0])).success)
+        # a model deleted and spawned again has its joint motor off, whatever the old one's was
+        self.assertTrue(self.call('set_joint_properties', 'hinge', ODEJointProperties(vel=[-0.5], fmax=[10.0])).success)
+        self.assertTrue(self.call('delete_model', 'probe').success)
+        self.assertTrue(self.call('spawn_urdf_model', 'probe', PROBE, '', pose(0, 0, HIGH), 'world').success)
+        self.place('probe', 0.0)
+        self.assertTrue(self.call('set_joint_properties', 'hinge', ODEJointProperties(vel=[0.3])).success)
+        self.run_for(0.2)
+        self.assertAlmostEqual(self.rate(), 0.0, delta=1e-3)  # vel without fmax: a motor without force
         self.refused(self.call('set_joint_properties', 'nope', ODEJointProperties()), 'SetJointProperties: joint not found')
         res = self.call('set_joint_properties', 'hinge', ODEJointProperties(loStop=[1.0], hiStop=[0.5]))
         self.assertFalse(res.success)

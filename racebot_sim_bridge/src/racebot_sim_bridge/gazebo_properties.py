@@ -96,7 +96,7 @@ class GazeboProperties(object):
                                          sor_pgs_w=1.3, sor_pgs_rms_error_tol=0.0, contact_surface_layer=0.001,
                                          contact_max_correcting_vel=100.0, cfm=0.0, erp=0.2, max_contacts=20)
         self.no_gravity = {}  # (model, link) -> Body whose link has gravity_mode false
-        self.motors = {}  # (model, joint) -> [vel, fmax]: ODE's joint motor as set_joint_properties left it
+        self.motors = {}  # (model, joint) -> (Body, vel, fmax): ODE's joint motor as set_joint_properties left it
         self._warned = set()
         self._lock = threading.Lock()
         self.entities = WorldEntities(sim.world)
@@ -192,10 +192,12 @@ class GazeboProperties(object):
             world.set_joint_dynamics(body, joint, damping=first.get('damping'), lower=first.get('loStop'),
                                      upper=first.get('hiStop'))
             if 'fmax' in first or 'vel' in first:
-                motor = self.motors.setdefault((body.name, joint), [0.0, 0.0])
-                motor[0] = first.get('vel', motor[0])
-                motor[1] = first.get('fmax', motor[1])
-                world.drive_velocities(body, [info.index], [motor[0]], [motor[1]])
+                owner, vel, fmax = self.motors.get((body.name, joint), (body, 0.0, 0.0))
+                if owner is not body:  # the model was deleted and spawned again: its motor starts off
+                    vel, fmax = 0.0, 0.0
+                vel, fmax = first.get('vel', vel), first.get('fmax', fmax)
+                self.motors[(body.name, joint)] = (body, vel, fmax)
+                world.drive_velocities(body, [info.index], [vel], [fmax])
         for what in ([('axes beyond the first (%s): the joints here have one' % ', '.join(extra))] if extra else []) + \
                 ([('%s: ODE parameters with no PyBullet counterpart' % ', '.join(ignored))] if ignored else []):
             if what not in self._warned:
@@ -223,10 +225,17 @@ class GazeboProperties(object):
                 return res
             d = self.sim.world.link_dynamics(*link_address(body, link))
             res.gravity_mode = (body.name, link) not in self.no_gravity
-        res.mass = d.mass
-        res.ixx, res.ixy, res.ixz, res.iyy, res.iyz, res.izz = tensor_from_principal(d.inertia_diagonal,
-                                                                                     d.inertial_orientation)
-        res.com.position.x, res.com.position.y, res.com.position.z = d.inertial_position
+            spec = body.source[1].link(link) if body.static and body.source[0] == 'sdf' else None
+        if spec is not None:  # PyBullet holds a static body with mass 0; Gazebo reports the SDF's inertial
+            res.mass = spec.mass
+            if spec.inertia is not None:
+                res.ixx, res.ixy, res.ixz, res.iyy, res.iyz, res.izz = spec.inertia
+            res.com.position.x, res.com.position.y, res.com.position.z = spec.inertial_pose[:3]
+        else:
+            res.mass = d.mass
+            res.ixx, res.ixy, res.ixz, res.iyy, res.iyz, res.izz = tensor_from_principal(d.inertia_diagonal,
+                                                                                         d.inertial_orientation)
+            res.com.position.x, res.com.position.y, res.com.position.z = d.inertial_position
         res.com.orientation.w = 1.0  # as upstream: the tensor is given in the link's axes
         res.success, res.status_message = True, 'GetLinkProperties: got properties'
         return res
