@@ -1,17 +1,20 @@
 #!/usr/bin/env python3
-"""The PyBullet window (our gzclient) of `racebot.launch gui:=true`, in a private Xvfb.
+"""The window (`rosrun gazebo_ros gzclient`, and `rosrun gazebo_ros gazebo`) in a private Xvfb.
 
-The test starts Xvfb (its screen kept in a file: -fbdir) and then the real racebot.launch with
-gui:=true on rostest's master, and checks what a user of `make run` relies on:
-- the window opens in a process of its own, a child of the simulator, niced below it, and
-  /gazebo/get_world_properties says rendering is enabled;
-- it shows the simulation: the screen stays still while the car stands, and changes when the car
-  is moved (the camera follows it);
-- closing the window leaves the simulation running: /clock goes on, the services answer,
-  rendering_enabled turns false, and the simulator says on /rosout that the window closed and the
-  simulation goes on without it. PyBullet's window does not take part in WM_DELETE_WINDOW (it sets
-  no WM_PROTOCOLS), so a window manager's close button kills its X connection (XKillClient), which
-  is what `xdotool windowkill` does here; Xlib then ends the window's process.
+viewer.test starts the world server (racebot.launch gui:=false: no window of its own); this node
+starts Xvfb (its screen kept in a file: -fbdir) and the windows, and checks what a Gazebo user
+relies on:
+- gzclient attaches to the running world server: a node /gazebo_gui in a process of its own, niced
+  below the server; the server says a window attached and get_world_properties says rendering;
+- it shows the simulation: the car at the centre, the screen still while the car stands, changing
+  when the car is moved (the camera follows it);
+- closing the window ends gzclient (exit 0) and leaves the simulation running: /clock goes on, the
+  services answer, rendering_enabled turns false, the server says the window closed. PyBullet's
+  window does not take part in WM_DELETE_WINDOW (it sets no WM_PROTOCOLS), so a window manager's
+  close button kills its X connection (XKillClient), which is what `xdotool windowkill` does here;
+- a second gzclient attaches again and shows the car;
+- when the world server goes, gzclient says so and ends (exit 0);
+- `gazebo` starts the world server and the window together; closing the window stops both.
 """
 import os
 import shutil
@@ -31,24 +34,13 @@ from rosgraph_msgs.msg import Log
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from keyboard_teleop_xvfb import screen_pixels, start_xvfb, stop_xvfb  # noqa: E402
-from robustness_common import ROOT, Rosout, SimProbe, node_pid, pid_alive, wait_for  # noqa: E402
-sys.path.insert(0, os.path.join(ROOT, 'tools'))
-from bench.common import child_pids  # noqa: E402
+from robustness_common import ROOT, Process, Rosout, SimProbe, node_pid, pid_alive, wait_for  # noqa: E402
 
-VIEWER_MODULE = 'racebot_sim_bridge.viewer_process'
 START_TIMEOUT = 120.0
 # Where the car is put (x, y, quaternion z, w): with the camera 1.5 m behind it, nothing in between.
 SPAWN_SPOT = (0.0, 0.0, 0.0, 1.0)              # where racebot.launch spawns it
 TURNED_SPOT = (0.3, 0.0, 0.2588190, 0.9659258)  # a little ahead, turned 30 degrees left
 SCREENS = os.path.join(ROOT, 'out', 'test-results', 'viewer-screens')  # what the window showed, for a reader
-
-
-def command_line(pid):
-    try:
-        with open('/proc/%d/cmdline' % pid, 'rb') as f:
-            return f.read().replace(b'\0', b' ').decode('utf-8', 'replace')
-    except OSError:
-        return ''
 
 
 def niceness(pid):
@@ -61,10 +53,7 @@ class ViewerTest(unittest.TestCase):
     def setUpClass(cls):
         cls.fbdir = tempfile.mkdtemp(prefix='racebot_viewer_fb_')
         cls.xvfb, cls.display = start_xvfb(fbdir=cls.fbdir, screen='1280x1024x24')  # PyBullet's window: 1024 x 768
-        env = dict(os.environ, DISPLAY=cls.display)
-        cls.launch_log = open(os.path.join(cls.fbdir, 'roslaunch.log'), 'w')
-        cls.launch = subprocess.Popen(['roslaunch', 'racebot_gazebo', 'racebot.launch', 'gui:=true', 'teleop:=false'],
-                                      env=env, stdout=cls.launch_log, stderr=subprocess.STDOUT)
+        cls.env = dict(os.environ, DISPLAY=cls.display)
         rospy.init_node('viewer_test', anonymous=True)
         cls.rosout = Rosout()
         cls.sim = SimProbe()
@@ -72,29 +61,45 @@ class ViewerTest(unittest.TestCase):
         rospy.wait_for_service('/gazebo/set_model_state', START_TIMEOUT)
         cls.set_model_state = rospy.ServiceProxy('/gazebo/set_model_state', SetModelState)
         wait_for(lambda: 'racebot' in cls.sim.world_properties().model_names, 'the car spawned', START_TIMEOUT)
-        cls.sim_pid = wait_for(lambda: node_pid('/gazebo'), "the simulator's process id", START_TIMEOUT)
-        cls.viewer_pid = wait_for(lambda: next((p for p in child_pids(cls.sim_pid) if VIEWER_MODULE in command_line(p)),
-                                               None), 'the window process, a child of the simulator', START_TIMEOUT)
+        cls.sim_pid = wait_for(lambda: node_pid('/gazebo'), "the world server's process id", START_TIMEOUT)
+        cls.processes = []
 
     @classmethod
     def tearDownClass(cls):
-        if cls.launch.poll() is None:
-            cls.launch.send_signal(signal.SIGINT)
-            try:
-                cls.launch.wait(60)
-            except subprocess.TimeoutExpired:
-                cls.launch.kill()
-                cls.launch.wait()
-        cls.launch_log.close()
+        for process in cls.processes:
+            process.stop()
         stop_xvfb(cls.xvfb)
         shutil.rmtree(cls.fbdir, ignore_errors=True)
 
+    def start(self, executable, *args):
+        process = Process(['rosrun', 'gazebo_ros', executable] + list(args), env=self.env)
+        self.processes.append(process)
+        return process
+
     def xdotool(self, *args):
-        return subprocess.run(['xdotool'] + list(args), env=dict(os.environ, DISPLAY=self.display),
+        return subprocess.run(['xdotool'] + list(args), env=self.env,
                               stdout=subprocess.PIPE, stderr=subprocess.PIPE, universal_newlines=True, timeout=20)
 
     def window_ids(self):
         return self.xdotool('search', '--name', 'Bullet Physics').stdout.split()
+
+    def wait_window(self):
+        ViewerTest.centre = None  # a new window: look its place up again
+        return wait_for(self.window_ids, 'a "Bullet Physics" window on %s' % self.display, START_TIMEOUT)
+
+    def close_window(self):
+        """What a window manager's close button does to PyBullet's window (see the module doc)."""
+        windows = self.window_ids()
+        self.assertEqual(len(windows), 1, 'expected one window, found %s' % windows)
+        result = self.xdotool('windowkill', windows[0])
+        self.assertEqual(result.returncode, 0, result.stderr)
+
+    def attached(self, since):
+        """The world server's 'a window attached' message since `since`, and rendering_enabled true."""
+        message = self.rosout.find('a window attached: /gazebo_gui', node='/gazebo', since=since,
+                                   timeout=START_TIMEOUT)
+        wait_for(lambda: self.sim.world_properties().rendering_enabled, 'rendering_enabled to turn true', 10.0)
+        return message
 
     @staticmethod
     def screen(name):
@@ -108,7 +113,7 @@ class ViewerTest(unittest.TestCase):
         return pixels
 
     def window_centre(self):
-        """(x, y) on the screen of the window's centre; looked up once (nothing moves the window)."""
+        """(x, y) on the screen of the window's centre; looked up once per window (nothing moves it)."""
         if getattr(ViewerTest, 'centre', None) is None:
             out = self.xdotool('getwindowgeometry', '--shell', self.window_ids()[0]).stdout
             geometry = dict(line.split('=', 1) for line in out.split())
@@ -117,11 +122,18 @@ class ViewerTest(unittest.TestCase):
         return ViewerTest.centre
 
     def car_at_centre(self, screen):
-        """Share of car-blue pixels in the window's central box, where the following camera keeps the car."""
+        """Share of car pixels in the window's central box, where the following camera keeps the car: the
+        car is strongly coloured (its chassis orange), the room around it grey and beige."""
         cx, cy = self.window_centre()
         box = screen[cy - 20:cy + 30, cx - 25:cx + 25].astype(np.int16)
-        blue = (box[:, :, 2] > box[:, :, 0] + 60) & (box[:, :, 2] > box[:, :, 1] + 60)
-        return float(blue.mean())
+        coloured = box.max(axis=2) - box.min(axis=2) > 80
+        return float(coloured.mean())
+
+    def wait_car_at_centre(self, what):
+        start = time.time()
+        wait_for(lambda: self.car_at_centre(screen_pixels(self.fbdir)) > 0.15,
+                 'the window to show the car at its centre (%s)' % what, START_TIMEOUT, period=0.2)
+        print('%s: the window showed the car %.1f s after asked' % (what, time.time() - start))
 
     def still_screen(self):
         """(screen,) if it did not change in a second (less than 2 %), else None."""
@@ -132,28 +144,28 @@ class ViewerTest(unittest.TestCase):
     def changed_share(self, a, b):
         return float((np.abs(a.astype(np.int16) - b) > 8).any(axis=2).mean())
 
-    def test_1_the_window_is_a_niced_process_of_its_own(self):
-        self.assertNotEqual(self.viewer_pid, self.sim_pid)
-        wait_for(self.window_ids, 'a "Bullet Physics" window on %s' % self.display, START_TIMEOUT)
-        self.assertEqual(niceness(self.viewer_pid), niceness(self.sim_pid) + 10,
-                         'the window should run niced 10 below the simulator')
-        self.assertTrue(self.sim.world_properties().rendering_enabled)
-
     def place_car(self, x, y, qz, qw):
         state = ModelState(model_name='racebot', reference_frame='world')
         state.pose.position.x, state.pose.position.y, state.pose.position.z = x, y, 0.1
         state.pose.orientation.z, state.pose.orientation.w = qz, qw
         self.assertTrue(self.set_model_state(state).success)
 
+    def test_1_gzclient_attaches_to_the_running_world_server_in_a_niced_process(self):
+        self.assertFalse(self.sim.world_properties().rendering_enabled, 'no window is attached yet')
+        mark = self.rosout.mark()
+        ViewerTest.first = self.start('gzclient')
+        self.wait_window()
+        self.attached(mark)
+        pid = wait_for(lambda: node_pid('/gazebo_gui'), 'the node /gazebo_gui', START_TIMEOUT)
+        self.assertEqual(pid, self.first.proc.pid, 'the window should be gzclient itself')
+        self.assertNotEqual(pid, self.sim_pid)
+        self.assertEqual(niceness(pid), niceness(self.sim_pid) + 10, 'the window should run niced 10 below the server')
+
     def test_2_the_window_shows_the_simulation(self):
-        wait_for(self.window_ids, 'a "Bullet Physics" window', START_TIMEOUT)
         self.place_car(*SPAWN_SPOT)
-        start = time.time()
-        wait_for(lambda: self.car_at_centre(screen_pixels(self.fbdir)) > 0.15,
-                 'the window to show the car (blue) at its centre', START_TIMEOUT, period=0.2)
-        print('the window showed the car %.1f s after it was placed' % (time.time() - start))
+        self.wait_car_at_centre('first window')
         still, = wait_for(self.still_screen, 'the screen to stay still once the car stands on its wheels '
-                         '(less than 2 % of it changing in a second)', 60.0, period=0.2)
+                          '(less than 2 % of it changing in a second)', 60.0, period=0.2)
         self.place_car(*TURNED_SPOT)
         wait_for(lambda: self.changed_share(still, screen_pixels(self.fbdir)) > 0.2,
                  'the window to show the car moved (more than 20 % of the screen changed)', 30.0, period=0.2)
@@ -161,20 +173,50 @@ class ViewerTest(unittest.TestCase):
         self.assertGreater(self.car_at_centre(self.screen('3-car-moved')), 0.15,
                            'the camera followed the car but the car is not there')
 
-    def test_3_closing_the_window_leaves_the_simulation_running(self):
-        windows = wait_for(self.window_ids, 'a "Bullet Physics" window', START_TIMEOUT)
+    def test_3_closing_the_window_ends_gzclient_and_leaves_the_simulation_running(self):
         mark = self.rosout.mark()
-        result = self.xdotool('windowkill', windows[0])
-        self.assertEqual(result.returncode, 0, result.stderr)
-        wait_for(lambda: not pid_alive(self.viewer_pid), 'the window process to exit', 30.0)
+        self.close_window()
+        self.assertEqual(self.first.wait_exit(30.0), 0, 'gzclient should end with 0 when its window is closed:\n'
+                         + self.first.text[-2000:])
+        self.assertIn('the window was closed', self.first.text)
         wait_for(lambda: not self.window_ids(), 'the window to disappear', 10.0)
-        warning = self.rosout.find('window closed', level=Log.WARN, node='/gazebo', since=mark)
-        self.assertIn('goes on without a window', warning.msg)
-        self.assertTrue(pid_alive(self.sim_pid), 'the simulator died with its window')
+        warning = self.rosout.find('window /gazebo_gui', 'closed', level=Log.WARN, node='/gazebo', since=mark)
+        self.assertIn('goes on without it', warning.msg)
+        self.assertTrue(pid_alive(self.sim_pid), 'the world server died with its window')
         self.sim.assert_serving(self, sim_seconds=1.0)
         self.sim.assert_state_finite(self)
         self.assertFalse(self.sim.world_properties().rendering_enabled)
-        self.assertIsNone(self.launch.poll(), 'roslaunch ended with the window')
+
+    def test_4_a_second_gzclient_attaches_again(self):
+        mark = self.rosout.mark()
+        ViewerTest.second = self.start('gzclient')
+        self.wait_window()
+        self.attached(mark)
+        self.place_car(*SPAWN_SPOT)
+        self.wait_car_at_centre('second window')
+
+    def test_5_gzclient_ends_when_the_world_server_goes(self):
+        result = subprocess.run(['rosnode', 'kill', '/gazebo'], stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
+                                universal_newlines=True, timeout=30)
+        self.assertEqual(result.returncode, 0, result.stdout)
+        self.assertEqual(self.second.wait_exit(30.0), 0, self.second.text[-2000:])
+        self.assertIn('the world server /gazebo said: it shuts down. Closing the window', self.second.text)
+        wait_for(lambda: not pid_alive(self.sim_pid), 'the world server to exit', 30.0)
+
+    def test_6_gazebo_starts_the_world_server_and_the_window_and_closing_it_stops_both(self):
+        mark = self.rosout.mark()
+        clock_before = self.sim.clock
+        gazebo = self.start('gazebo', 'worlds/empty.world')
+        wait_for(lambda: self.sim.clock is not None and self.sim.clock != clock_before and self.sim.clock > 1.0,
+                 "the new world server's /clock past 1 s", START_TIMEOUT)
+        self.wait_window()
+        self.attached(mark)
+        self.assertEqual(self.sim.world_properties().model_names, ['ground_plane'])
+        self.close_window()
+        self.assertEqual(gazebo.wait_exit(60.0), 0, gazebo.text[-3000:])
+        self.assertIn('the window closed: stopping the world server', gazebo.text)
+        wait_for(lambda: node_pid('/gazebo') is None and node_pid('/gazebo_gui') is None,
+                 'both nodes to be gone', 30.0)
 
 
 if __name__ == '__main__':

@@ -15,7 +15,7 @@ import time
 
 from .child_process import die_with_parent
 
-SERVER_MAIN = 'import sys; from racebot_sim_bridge.world_server import main; sys.exit(main())'
+SERVER_MAIN = 'import sys; from %s import main; sys.exit(main())'  # % the world server's module
 CLIENT_MAIN = 'from racebot_sim_bridge.gzclient import main; main()'
 SERVER_NAME = 'gazebo'              # the world server's node name unless remapped
 CLIENT_NAME = 'gazebo_gui'
@@ -79,7 +79,8 @@ def _stop_when_done(server):
     return server.returncode
 
 
-def main(argv=None):
+def main(argv=None, server_module='racebot_sim_bridge.world_server'):
+    """server_module: whose main() is the world server (gazebo_ros's gzserver: gazebo_ros.server)."""
     from .viewer_process import display_problem
     server_args, client_args = split_args(list(sys.argv if argv is None else argv)[1:])
     children = []
@@ -91,7 +92,7 @@ def main(argv=None):
     signal.signal(signal.SIGINT, forward)
     signal.signal(signal.SIGTERM, forward)
 
-    server = _start(SERVER_MAIN, server_args)
+    server = _start(SERVER_MAIN % server_module, server_args)
     children.append(server)
     problem = display_problem()
     if problem is not None:

@@ -134,7 +134,6 @@ class Gzclient(object):
         if conn is None:
             return 0
         watch = viewer_process.XConnectionWatch()
-        quiet_c_stdout()
         try:
             window = viewer_process.Window()
         except PhysicsError as err:
@@ -162,7 +161,7 @@ class Gzclient(object):
             os._exit(0)
         window.close()
         if how == viewer_process.STOPPED:
-            rospy.loginfo('the world server %s stopped (%s): closing the window' % (self.namespace, why))
+            rospy.loginfo('the world server %s said: %s. Closing the window' % (self.namespace, why))
             return 0
         rospy.logerr('lost the world server %s: %s. Closing the window' % (self.namespace, why))
         return 1
@@ -180,6 +179,7 @@ def main(argv=None):
         print(USAGE if opts['help'] else VERSION)
         sys.exit(0)
     signal.signal(signal.SIGTERM, _interrupt)  # roslaunch's escalation: end as on Ctrl-C
+    quiet_c_stdout()  # before rospy's log handler takes sys.stdout
     try:
         rospy.init_node(NODE_NAME, disable_rostime=True, disable_signals=True,
                         log_level=rospy.DEBUG if opts['verbose'] else rospy.INFO)

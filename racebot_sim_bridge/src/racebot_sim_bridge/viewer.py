@@ -201,7 +201,7 @@ class AttachedWindows(object):
         else:
             self.log.warn('dropped a connection to the window socket: %s' % link.gone)
 
-    def close(self, why='the world server shut down'):
+    def close(self, why='it shuts down'):
         """Stops accepting, tells every window why it closes, removes the socket."""
         self._closing.set()
         self._thread.join(2 * ACCEPT_POLL + 1.0)
