@@ -1,8 +1,11 @@
-"""The world server node (our gzserver + gazebo_ros + gzclient): `rosrun racebot_sim_bridge world_server WORLD`.
+"""The world server node (our gzserver + gazebo_ros; windows attach to it: gzclient.py): `rosrun racebot_sim_bridge world_server WORLD`.
 
 Command line (as gzserver's, via empty_world.launch): `[-u] [--verbose] [-e ENGINE] [other gzserver
 options, ignored] WORLD_FILE`. `-u` starts paused. Private parameters:
-  ~gui (bool, false)             PyBullet's window, the camera following the first robot (needs a display)
+  ~gzclient_address (set here)   the Unix socket windows attach through (viewer.AttachedWindows):
+                                 `rosrun gazebo_ros gzclient` reads it; removed at shutdown
+  ~gui (bool)                    no longer opens a window: the window is gzclient, a node of its own
+                                 (empty_world.launch's gazebo_gui); true is said once in the log
   ~pub_clock_frequency (Hz, 0)   if > 0, /clock at most this often in sim time (gazebo_ros's
                                  /gazebo/pub_clock_frequency); 0 = every world update, as Gazebo
   ~enable_ros_network (bool, true)  false: no services or state topics, only /clock (gazebo_ros's)
@@ -35,7 +38,7 @@ from .gazebo_services import GazeboServices
 from .physics import PhysicsError
 from .sensors import SensorManager
 from .simulator import Simulator
-from .viewer import SYNC_PERIOD as VIEWER_SYNC_PERIOD, Viewer
+from .viewer import SYNC_PERIOD as VIEWER_SYNC_PERIOD, AttachedWindows
 
 PAUSED_CLOCK_PERIOD = 0.2  # wall seconds between /clock repeats while paused (late joiners get the time)
 # As fast as possible, /clock at every update (10,000+ a second) costs the world server and every
@@ -131,19 +134,16 @@ def resolve_world(name):
     return name  # load_world reports it missing, with the path
 
 
-def display_available():
-    return bool(os.environ.get('DISPLAY'))
-
-
 class WorldServer(object):
     def __init__(self, world_path, paused, gui):
         spec = sdf_world.load_world(world_path)
         for w in spec.warnings:
             rospy.logwarn('%s: %s' % (os.path.basename(world_path), w))
         ph = spec.physics
-        if gui and not display_available():
-            rospy.logwarn('gui:=true but there is no display (DISPLAY is unset): running headless')
-            gui = False
+        if gui:
+            rospy.logwarn('~gui:=true: the world server has no window of its own; the window is gzclient '
+                          '(gazebo_ros empty_world.launch gui:=true starts it as gazebo_gui, or '
+                          '`rosrun gazebo_ros gzclient`), which attaches to this server')
         io = RosIO(rospy)
         trace_path = rospy.get_param('~command_trace', '')
         if trace_path:
@@ -152,14 +152,9 @@ class WorldServer(object):
                           'for measurements only' % trace_path)
         self.sim = Simulator(spec, io, RospyLog, self._get_param)
         self.sim.node_namespace = rospy.get_namespace()  # plugins' relative robotNamespaces resolve here
-        self.viewer = None
-        if gui:
-            try:
-                self.viewer = Viewer(self.sim.world)
-                rospy.loginfo('PyBullet window open (our gzclient, process %d)' % self.viewer.pid)
-            except PhysicsError as err:
-                rospy.logwarn('could not open the PyBullet window (%s): running headless' % err)
-        self.sim.rendering = self.viewer is not None
+        self.windows = AttachedWindows(self.sim.world, RospyLog)  # gzclient attaches here
+        rospy.set_param('~gzclient_address', self.windows.address)
+        self.sim.rendering = False
         self.sim.paused = paused
         self.update_rate = ph.real_time_update_rate
         self.clock_period = self._rate_param('~pub_clock_frequency', 0.0)
@@ -236,6 +231,11 @@ class WorldServer(object):
         last_paused_clock = 0.0
         last_view = 0.0
         while not rospy.is_shutdown():
+            if time.perf_counter() - last_view >= VIEWER_SYNC_PERIOD:  # paused or not: windows attach, bodies move
+                last_view = time.perf_counter()
+                with self.sim.lock:
+                    self.windows.sync()
+                    self.sim.rendering = self.windows.count > 0
             if self.sim.paused:
                 now = time.perf_counter()
                 # at once if the latest update's time was held back (fast mode), then now and then
@@ -255,15 +255,6 @@ class WorldServer(object):
                 self.last_states = self.sim.time
                 if self.services is not None:
                     self.services.publish_states()
-            if self.viewer is not None and time.perf_counter() - last_view >= VIEWER_SYNC_PERIOD:
-                last_view = time.perf_counter()
-                with self.sim.lock:
-                    shown = self.viewer.sync()
-                if not shown:
-                    rospy.logwarn('%s: the simulation goes on without a window; restart the launch to see '
-                                  'it again' % self.viewer.gone)
-                    self.viewer = None
-                    self.sim.rendering = False
             if self.update_rate > 0:
                 ahead = wall_start + steps_since / self.update_rate - time.perf_counter()
                 if ahead > PACING_SLACK:  # sleep until this update's wall time: Gazebo's one update per period
@@ -275,8 +266,12 @@ class WorldServer(object):
         if self.services is not None:
             self.services.shutdown()
         self.sensors.close()  # the render worker stops with us
-        if self.viewer is not None:
-            self.viewer.close()
+        self.windows.close()  # each window is told, and closes
+        try:
+            if rospy.get_param('~gzclient_address', None) == self.windows.address:  # not a successor's
+                rospy.delete_param('~gzclient_address')
+        except Exception:  # noqa: BLE001 (the master may be gone first; a stale address is harmless)
+            pass
         self.sim.close()
 
 
