@@ -23,6 +23,7 @@ from gazebo_msgs.srv import (ApplyBodyWrench, ApplyJointEffort, BodyRequest, Del
                              SpawnModel)
 from geometry_msgs.msg import Point, Pose, Quaternion, Wrench, Vector3
 from rosgraph_msgs.msg import Clock
+from sensor_msgs.msg import Imu
 from std_srvs.srv import Empty
 
 WALL_TIMEOUT = 60.0
@@ -50,6 +51,14 @@ PROBE = """<robot name="probe">
 PUCK = """<robot name="puck"><link name="body">
   <inertial><mass value="1.5"/><inertia ixx="0.01" iyy="0.01" izz="0.01" ixy="0" ixz="0" iyz="0"/></inertial>
   <collision><geometry><box size="0.2 0.2 0.2"/></geometry></collision></link></robot>"""
+
+IMU_PROBE = """<robot name="imu_probe"><link name="body">
+  <inertial><mass value="1.0"/><inertia ixx="0.01" iyy="0.01" izz="0.01" ixy="0" ixz="0" iyz="0"/></inertial>
+  <collision><geometry><box size="0.1 0.1 0.1"/></geometry></collision></link>
+  <gazebo reference="body"><sensor name="imu_sensor" type="imu"><always_on>true</always_on>
+    <update_rate>50</update_rate>
+    <plugin name="imu_plugin" filename="libgazebo_ros_imu_sensor.so"><topicName>/probe_imu</topicName>
+      <updateRateHZ>50.0</updateRateHZ><frameName>body</frameName></plugin></sensor></gazebo></robot>"""
 
 HIGH = 60.0  # m: where the bodies are put before each measurement (no ground within a few seconds)
 
@@ -410,6 +419,26 @@ class GazeboPropertiesTest(unittest.TestCase):
     def test_19_the_world_still_runs(self):
         before = self.run_for(0.0)
         self.assertGreater(self.run_for(0.1), before)
+
+    def test_20_performance_metrics_name_the_sensors_and_their_rates(self):
+        self.assertTrue(self.call('spawn_urdf_model', 'imu_probe', IMU_PROBE, '', pose(10, 0, HIGH), 'world').success)
+        imu = integration_common.Latest('/probe_imu', Imu)  # a sensor measures while it is read
+        metrics = integration_common.Latest('/gazebo/performance_metrics', PerformanceMetrics)
+        name = 'default::imu_probe::body::imu_sensor'  # world::model::link::sensor, as Gazebo scopes it
+        self.call('unpause_physics')
+        try:
+            msg = wait_for(lambda: metrics.msg if metrics.msg is not None and
+                           any(s.name == name for s in metrics.msg.sensors) else None, 'the IMU in the metrics')
+            seen = metrics.count
+            msg = wait_for(lambda: metrics.msg if metrics.count >= seen + 1 else None, 'one more message')
+        finally:
+            self.call('pause_physics')
+            imu.sub.unregister()
+            metrics.sub.unregister()
+        (sensor,) = [s for s in msg.sensors if s.name == name]
+        self.assertAlmostEqual(sensor.sim_update_rate, 50.0, delta=5.0)
+        self.assertGreater(sensor.real_update_rate, 0.0)
+        self.assertEqual(sensor.fps, -1.0)  # not a camera
 
 
 if __name__ == '__main__':
