@@ -35,6 +35,7 @@ from rosgraph_msgs.msg import Clock
 from . import sdf_world
 from .controllers import CommandTrace, RosIO
 from .gazebo_services import GazeboServices
+from .performance_metrics import PerformanceMetricsPublisher
 from .physics import PhysicsError
 from .sensors import SensorManager
 from .simulator import Simulator
@@ -167,9 +168,10 @@ class WorldServer(object):
         self.sensors = SensorManager(rospy, self.sim)  # before the services: every spawn gets its sensors
         # gazebo_ros advertises in its node's namespace (a node `gazebo` in ns /sim serves /sim/gazebo/...)
         # and, with ~enable_ros_network false, nothing but /clock.
-        self.services = None
+        self.services = self.metrics = None
         if rospy.get_param('~enable_ros_network', True):
             self.services = GazeboServices(rospy, self.sim, rospy.get_name())
+            self.metrics = PerformanceMetricsPublisher(rospy, self.sim, self.sensors, self.services.ns)
         else:
             rospy.loginfo('ROS gazebo topics/services are disabled (~enable_ros_network is false)')
         self.clock_msg = Clock()
@@ -255,6 +257,9 @@ class WorldServer(object):
                 self.last_states = self.sim.time
                 if self.services is not None:
                     self.services.publish_states()
+            if self.update_rate != self.sim.spec.physics.real_time_update_rate:  # set_physics_properties
+                self.update_rate = self.sim.spec.physics.real_time_update_rate
+                wall_start, steps_since = time.perf_counter(), 0
             if self.update_rate > 0:
                 ahead = wall_start + steps_since / self.update_rate - time.perf_counter()
                 if ahead > PACING_SLACK:  # sleep until this update's wall time: Gazebo's one update per period
@@ -265,6 +270,7 @@ class WorldServer(object):
     def shutdown(self):
         if self.services is not None:
             self.services.shutdown()
+            self.metrics.shutdown()
         self.sensors.close()  # the render worker stops with us
         self.windows.close()  # each window is told, and closes
         try:
