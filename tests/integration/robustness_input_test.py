@@ -221,9 +221,15 @@ class RobustnessInputTest(unittest.TestCase):
         self.assert_survived()
 
     # -- robot_description -----------------------------------------------------------------------
-    def variant(self, strip_transmissions=False, strip_plugin=False, bad_joint=False):
-        """The racebot URDF without its sensors, altered as asked."""
+    def variant(self, strip_transmissions=False, strip_plugin=False, bad_joint=False, own_namespace=True):
+        """The racebot URDF without its sensors, altered as asked. own_namespace=False drops the control
+        plugin's <robotNamespace>/racebot</robotNamespace>: a plugin's own namespace wins over spawn's
+        -robot_namespace, as in Gazebo, so only then does -robot_namespace place the controller manager."""
         root = ET.fromstring(self.robot_description)
+        if not own_namespace:
+            for plugin in root.findall('gazebo/plugin'):
+                for ns in plugin.findall('robotNamespace'):
+                    plugin.remove(ns)
         for gz in list(root.findall('gazebo')):
             if gz.find('sensor') is not None or (strip_plugin and gz.find('plugin') is not None):
                 root.remove(gz)
@@ -272,7 +278,7 @@ class RobustnessInputTest(unittest.TestCase):
 
     def test_13_urdf_without_transmissions_spawns_with_an_empty_controller_manager(self):
         # gazebo_ros_control loads with no transmissions: a controller manager with no joints.
-        rospy.set_param('/notrans_description', self.variant(strip_transmissions=True))
+        rospy.set_param('/notrans_description', self.variant(strip_transmissions=True, own_namespace=False))
         mark = self.rosout.mark()
         code, text = self.spawn_cli('-urdf', '-model', 'notrans', '-param', '/notrans_description',
                                     '-robot_namespace', '/notrans', '-y', '3', '-timeout', '30')
