@@ -233,6 +233,18 @@ class GazeboPropertiesTest(unittest.TestCase):
         self.assertFalse(self.physics_request(max_update_rate=-1.0).success)
         self.assertEqual(self.call('get_physics_properties').time_step, 0.001)  # nothing changed
 
+    def test_07b_ode_config_is_kept(self):
+        ode = self.call('get_physics_properties').ode_config
+        self.assertEqual(ode.sor_pgs_iters, 50)
+        ode.sor_pgs_iters, ode.erp = 30, 0.3
+        self.assertTrue(self.physics_request(ode_config=ode).success)
+        try:
+            now = self.call('get_physics_properties').ode_config
+            self.assertEqual((now.sor_pgs_iters, now.erp), (30, 0.3))
+        finally:
+            ode.sor_pgs_iters, ode.erp = 50, 0.2
+            self.assertTrue(self.physics_request(ode_config=ode).success)
+
     # -- forces ---------------------------------------------------------------------------------------
     def wrench(self, body, force, reference_frame='', point=(0, 0, 0), duration=-1.0, torque=(0, 0, 0)):
         return self.call('apply_body_wrench', body_name=body, reference_frame=reference_frame,
