@@ -7,7 +7,6 @@ it measures itself: it pauses the world, reads the state (stamped), unpauses for
 again and reads again. Bad requests must be answered with success false and gazebo_ros's message.
 """
 import functools
-import math
 import unittest
 
 import rospy
