@@ -6,6 +6,7 @@ judged in simulated time, so a slow shared machine changes only how long the tes
 """
 import functools
 import math
+import re
 import time
 import unittest
 
@@ -178,7 +179,10 @@ class SimBridgeTest(unittest.TestCase):
         spawn = rospy.ServiceProxy('/gazebo/spawn_urdf_model', SpawnModel)
         pose = Pose()
         pose.position.y, pose.orientation.w = 1.0, 1.0
-        res = spawn('racebot2', rospy.get_param('/robot_description'), '/racebot2', pose, 'world')
+        # As in Gazebo, the plugin's own <robotNamespace>/racebot</robotNamespace> would win over the request's
+        # robot_namespace (and clash with the first robot): a second robot's description leaves it out.
+        xml = re.sub(r'<robotNamespace>\s*/racebot\s*</robotNamespace>', '', rospy.get_param('/robot_description'))
+        res = spawn('racebot2', xml, '/racebot2', pose, 'world')
         self.assertTrue(res.success, res.status_message)
         rospy.wait_for_service('/racebot2/controller_manager/load_controller', timeout=WALL_TIMEOUT)
         rospy.set_param('/racebot2/joint_state_controller',
