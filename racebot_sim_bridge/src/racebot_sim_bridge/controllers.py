@@ -182,11 +182,10 @@ class _CommandController(Controller):
         self.joint = self._joint_param()
         self.command = 0.0
         self._init_extra()  # everything that can fail comes before the subscription
-        on_command = self._on_command
-        trace = getattr(io, 'command_trace', None)
-        if trace is not None:  # measurements only (make bench); see CommandTrace
-            on_command = trace.wrap(self)
-        self._sub(self.topic('command'), Float64, on_command)
+        # The I/O's CommandObserver (make bench's CommandTrace), told where a command is taken and
+        # where an update applies it; None (the default) costs one test per update.
+        self.observer = getattr(io, 'command_trace', None)
+        self._sub(self.topic('command'), Float64, self._on_command)
 
     def _init_extra(self):
         pass
@@ -205,6 +204,8 @@ class _CommandController(Controller):
                                   % (self.param_ns, value, self.topic('command'), self.setpoint, self.joint.name, bounds,
                                      'the hardware saturates it to' if kept == value else 'clamped to', reaches))
         self.command = kept  # a float assignment is atomic: the update loop reads the latest
+        if self.observer is not None:
+            self.observer.command_taken(self, value, kept)
 
     def limit_command(self, value):
         """(command to keep, None, value) for a command within the joint's URDF limit for what it
@@ -237,7 +238,10 @@ class _ForwardController(_CommandController):
         self.command = self.joint.position if self.interface == POSITION else 0.0
 
     def update(self, time, period):
-        self.joint.command = self.command
+        cmd = self.command
+        self.joint.command = cmd
+        if self.observer is not None:
+            self.observer.command_applied(self, cmd)
 
 
 class EffortForwardController(_ForwardController):
@@ -301,6 +305,8 @@ class JointVelocityController(_PidController):
         effort = self.pid.compute(error, period)
         self.joint.command = effort
         self._publish_state(time, period, cmd, self.joint.velocity, 0.0, error, effort)
+        if self.observer is not None:
+            self.observer.command_applied(self, cmd)
 
 
 class JointPositionController(_PidController):
@@ -331,11 +337,14 @@ class JointPositionController(_PidController):
         return target - j.position
 
     def update(self, time, period):
-        target = self.clamp(self.command)
+        cmd = self.command
+        target = self.clamp(cmd)
         error = self.position_error(target)
         out = self.pid.compute(error, period)
         self.joint.command = self._output(out)
         self._publish_state(time, period, target, self.joint.position, self.joint.velocity, error, out)
+        if self.observer is not None:
+            self.observer.command_applied(self, cmd)
 
     def _output(self, out):
         return out
@@ -352,13 +361,25 @@ CONTROLLER_TYPES = {c.type_name: c for c in (
     VelocityForwardController, VelocityJointPositionController, PositionForwardController)}
 
 
-class CommandTrace(object):
+class CommandObserver(object):
+    """What a command controller tells an observer of its command path (the I/O object's
+    `command_trace`): `command_taken` on the subscriber's thread once a command is in force
+    (`received` as published, `kept` after clamping; ignored non-finite commands are not told), and
+    `command_applied` on the physics thread after each update, with the command that update used."""
+
+    def command_taken(self, controller, received, kept):
+        pass
+
+    def command_applied(self, controller, command):
+        pass
+
+
+class CommandTrace(CommandObserver):
     """Opt-in record of the command path, for measurements (make bench): for every command a
-    controller receives, a line `arrived <wall time> <controller> <value>` when its callback runs,
-    and `applied <wall time> <controller> <value>` at the first update that uses it (a command
-    overtaken by a newer one before any update is never applied). Wall time is time.monotonic()
-    (CLOCK_MONOTONIC, comparable across processes on one machine). Controllers built with an I/O
-    object without a `command_trace` take the untraced path, which this class leaves untouched."""
+    controller takes, a line `arrived <wall time> <controller> <value>`, and `applied <wall time>
+    <controller> <value>` after the first update that uses it (a command overtaken by a newer one
+    before any update is never applied). Wall time is time.monotonic() (CLOCK_MONOTONIC, comparable
+    across processes on one machine)."""
 
     def __init__(self, path, clock=None):
         import threading
@@ -366,30 +387,26 @@ class CommandTrace(object):
         self.clock = clock or time.monotonic
         self._file = open(path, 'a', buffering=1)  # line-buffered: a reader sees whole lines
         self._lock = threading.Lock()
+        self._unapplied = {}  # controller -> the last command taken, until an update uses it
 
     def record(self, event, controller, value, when):
         with self._lock:
             self._file.write('%s %.9f %s %r\n' % (event, when, controller, value))
 
-    def wrap(self, controller):
-        """Traces one controller: replaces its update on the instance and returns the command
-        callback to subscribe."""
-        on_command, update = controller._on_command, controller.update
-        arrived = []  # values received since the last update
-        name = controller.param_ns
+    def command_taken(self, controller, received, kept):
+        when = self.clock()
+        with self._lock:
+            self._unapplied[controller] = kept
+        self.record('arrived', controller.param_ns, received, when)
 
-        def traced_on_command(msg):
-            self.record('arrived', name, msg.data, self.clock())
-            on_command(msg)
-            arrived.append(msg.data)
-
-        def traced_update(time, period):
-            update(time, period)
-            if arrived:
-                del arrived[:]
-                self.record('applied', name, controller.command, self.clock())
-        controller.update = traced_update
-        return traced_on_command
+    def command_applied(self, controller, command):
+        # Compared with the value, not a flag: an update that read the command just before a new
+        # one was taken applied the old one, and the new one is still to be applied.
+        with self._lock:
+            if controller not in self._unapplied or self._unapplied[controller] != command:
+                return
+            del self._unapplied[controller]
+        self.record('applied', controller.param_ns, command, self.clock())
 
     def close(self):
         self._file.close()
@@ -397,7 +414,7 @@ class CommandTrace(object):
 
 class RosIO(object):
     """Publishers and subscribers through rospy (the simulator's real I/O)."""
-    command_trace = None  # a CommandTrace to record the command path (measurements only)
+    command_trace = None  # a CommandObserver (CommandTrace) of the command path: measurements only
 
     def __init__(self, rospy):
         self.rospy = rospy
