@@ -5,6 +5,11 @@ update) and knows no ROS; `ControllerManagerServices` serves it under
 `<robotNamespace>/controller_manager/` with controller_manager_msgs, as ros_control does. The
 simulator's node is not named `<ns>/controller_manager`: the tutorial's spawner takes that name.
 Every refusal is logged as an error saying what was wrong and what to do, and answered ok=false.
+
+A switch is controller_manager 0.20's: checked when asked (request_switch), carried out by the
+next update() in the simulation loop, its caller waiting for that (wait_for_switch), so a
+switch_controller call while the world is paused waits for the unpause, or gives up after its
+timeout + 1 s of wall time.
 """
 import collections
 import threading
