@@ -7,7 +7,7 @@ import pytest
 from racebot_sim_bridge import sdf_world, urdf_model
 from racebot_sim_bridge.plugin_namespace import after_spawn, control_namespace, resolve, sensor_namespace
 from racebot_sim_bridge.sensors.config import sensor_config
-from racebot_sim_bridge.simulator import Simulator
+from racebot_sim_bridge.simulator import Simulator, SpawnError
 
 EMPTY_WORLD = '<sdf version="1.6"><world name="w"><physics type="ode"><max_step_size>0.001</max_step_size>' \
               '</physics></world></sdf>'
@@ -125,5 +125,18 @@ def test_spawned_robot_controller_manager_namespace(element, requested, expected
         robot = sim.spawn_urdf('bot', _robot(element), requested)
         assert robot.ns == expected_ns and robot.cm.ns == expected_ns
         assert robot.spawn_namespace == requested
+    finally:
+        sim.close()
+
+
+def test_two_robots_cannot_share_a_controller_manager_namespace():
+    sim = Simulator(sdf_world.parse_world(EMPTY_WORLD), None, _Log(), lambda path: None)
+    try:
+        sim.spawn_urdf('one', _robot(''), '/')
+        with pytest.raises(SpawnError) as err:
+            sim.spawn_urdf('two', _robot(''), '/')  # spawn_model at the root, no robotNamespace of its own
+        assert "robot namespace '/' is already used by model 'one'" in str(err.value)
+        assert 'another <robotNamespace>' in str(err.value) and 'another -robot_namespace' in str(err.value)
+        assert sim.spawn_urdf('two', _robot(''), '/two').ns == '/two'
     finally:
         sim.close()

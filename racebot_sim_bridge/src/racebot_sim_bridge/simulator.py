@@ -154,8 +154,10 @@ class Simulator(object):
                 self.log.info("%s declares no %s plugin: no controller manager for it" % (name, CONTROL_PLUGIN))
             for r in self.robots.values():
                 if robot_ns is not None and r.ns == robot_ns:
-                    raise SpawnError("SpawnModel: Failure - robot namespace '%s' is already used by model '%s'; "
-                                     "spawn with another -robot_namespace" % (robot_ns, r.name))
+                    raise SpawnError("SpawnModel: Failure - robot namespace '%s' is already used by model '%s' (its "
+                                     "controller manager is there); give this model's gazebo_ros_control plugin "
+                                     "another <robotNamespace>, or, if it has none, spawn with another "
+                                     "-robot_namespace" % (robot_ns or '/', r.name))
             try:
                 body = self.world.spawn_urdf(name, model, xml, position, orientation,
                                              warn=lambda m: self.log.warn('%s: %s' % (name, m)))
