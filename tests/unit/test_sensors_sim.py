@@ -87,7 +87,7 @@ def make_world(racebot_xml, params=None, pose=(0.0, 0.0, 0.0)):
     fake = FakeRospy(dict({'~sensors/report_period': 0, '~sensors/render_budget': 1.0,
                            '~sensors/noise': False, '~sensors/render_worker': False}, **(params or {})))
     manager = SensorManager(fake, sim)
-    robot = sim.spawn_urdf('racebot', racebot_xml, '', pose)
+    robot = sim.spawn_urdf('racebot', racebot_xml, '/', pose)  # '/': spawn_model at the root
     frame = robot.body.com_pose_for_frame(pose, (0, 0, 0, 1))  # as spawn_urdf_model places it
     sim.world.set_pose(robot.body, frame.position, frame.orientation)
     return sim, fake, manager, robot
@@ -271,7 +271,7 @@ def test_a_sensor_on_a_missing_link_is_refused_with_a_warning(racebot_xml):
         assert len(model.sensors) == 4
         bad = racebot_xml.replace('<update_rate>40</update_rate>', '<update_rate>40</update_rate>').replace(
             '<min>0.1</min>', '<min>20</min>')  # range min above range max: not simulable
-        sim.spawn_urdf('racebot', bad, '', (0, 0, 0))
+        sim.spawn_urdf('racebot', bad, '/', (0, 0, 0))
         assert '/scan' not in fake.publishers and '/imu' in fake.publishers
         assert any(level == 'warn' and 'hokuyo_sensor' in msg for level, msg in fake.logs)
         assert manager.sensors['racebot']
