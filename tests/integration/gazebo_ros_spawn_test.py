@@ -174,6 +174,10 @@ class GazeboRosSpawnTest(unittest.TestCase):
     def models(self):
         return self.world_properties().model_names
 
+    def run_world(self):
+        rospy.ServiceProxy(GZ + '/unpause_physics', Empty)()
+        wait_for(lambda: not self.physics().pause, 'the world running')
+
     def sim_time(self):
         return self.clock_stamps[-1] if self.clock_stamps else 0.0
 
@@ -230,7 +234,7 @@ class GazeboRosSpawnTest(unittest.TestCase):
         rospy.wait_for_service('/team2/controller_manager/list_controllers', timeout=WALL_TIMEOUT)
 
     def test_20_wait_holds_the_spawn_until_the_model_exists(self):
-        self.assertFalse(self.physics().pause)  # model_states come with world updates
+        self.run_world()  # model_states come with world updates
         waiter = self.spawn('-sdf', '-file', self.files['box.sdf'], '-model', 'waiter', '-gazebo_namespace', GZ,
                             '-x', '4', '-wait', 'late_box')
         waiter.wait_output('Waiting for model late_box before proceeding.')
@@ -256,6 +260,7 @@ class GazeboRosSpawnTest(unittest.TestCase):
         self.assertNotIn('ghost', self.models())
 
     def test_40_package_to_model(self):
+        self.run_world()
         plain = self.spawn('-urdf', '-file', self.files['mesh.urdf'], '-model', 'meshbox0', '-gazebo_namespace', GZ,
                            '-y', '-3', '-z', '0.5')
         self.assertEqual(plain.wait_exit(), 0, plain.text)  # spawned without the mesh, which Gazebo leaves out too
