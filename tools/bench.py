@@ -1,12 +1,19 @@
 #!/usr/bin/env python3
 """make bench: racebot_sim_bridge against the physics ceiling (speed) and the kinematic model (fidelity).
 
-    tools/bench.py [--quick] [--out DIR]      (in a shell where devel/setup.bash is sourced)
+    tools/bench.py [--quick] [--save] [--only PARTS] [--out DIR]   (devel/setup.bash sourced)
 
-Prints the table (figure, ours, reference, target, met?) and writes under DIR (default out/bench):
-bench.json (every raw figure, the machine, its load), turning_circles.png, hinge_step.png,
-sensor_rates.png, logs/.
---quick runs every part briefly (under a minute) to show the bench works; its figures mean little.
+Prints the table (figure, ours, reference, target, met?), then each key figure beside the one kept
+in the repository (tools/bench/last_figures.json) with the change and a verdict (REGRESSION when
+worse beyond its tolerance and outside the kept spread), and writes under DIR (default out/bench):
+bench.json (every raw figure, the machine, its load, the comparison), turning_circles.png,
+hinge_step.png, sensor_rates.png (matplotlib), logs/.
+Speed ratios are the median of at least three side-by-side pairs, printed with their spread
+(min-max over the pairs).
+--save writes this run's key figures into tools/bench/last_figures.json (commit it): the new
+reference. Only when asked (see tools/bench/kept_figures.py for why); not with --quick.
+--quick runs every part briefly (under a minute) to show the bench works; its figures mean little
+and are shown beside the kept ones without a verdict.
 Exit status 0 when every part ran (whether or not each target is met), 1 when a part failed.
 
 The parts that need ROS run as child processes of this script (--scenario NAME), each with its own
@@ -25,7 +32,7 @@ import traceback
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 
-from bench import common  # noqa: E402  (tools/bench/, next to this script)
+from bench import common, kept_figures, stats  # noqa: E402  (tools/bench/, next to this script)
 
 FULL = {
     'speed': dict(rounds=5, window_s=5.0, warmup_s=2.0, profile_s=5, memory_sim_s=600.0, memory_timeout_s=900),
@@ -40,7 +47,7 @@ FULL = {
     'profile_steps': 5000,
 }
 QUICK = {
-    'speed': dict(rounds=2, window_s=1.0, warmup_s=0.5, profile_s=0, memory_sim_s=10.0, memory_timeout_s=120),
+    'speed': dict(rounds=3, window_s=0.7, warmup_s=0.5, profile_s=0, memory_sim_s=10.0, memory_timeout_s=120),
     'realtime': dict(settle_s=0.5, parts=1, part_s=3.0, commands=100, command_rate_hz=100.0),
     'sensors': dict(settle_s=3.0, window_s=3.0),
     'startup_runs': 0,
@@ -158,7 +165,7 @@ def part_sensors(cfg, out, results):
 
 def part_startup(cfg, out, results):
     runs = [run_scenario('startup', {'run': i}, out, timeout=300)['startup_s'] for i in range(cfg['startup_runs'])]
-    results['startup'] = {'cold_runs': runs, 'cold_s': common.median(runs)}
+    results['startup'] = {'cold_runs': runs, 'cold_s': stats.median(runs), 'spread': stats.spread(runs)}
 
 
 def part_fidelity(cfg, out, results):
@@ -220,17 +227,47 @@ def print_profiles(results):
     return lines
 
 
+def git_commit():
+    """The checkout's commit (with '+changes' when the tree differs from it), or None."""
+    try:
+        sha = subprocess.check_output(['git', 'rev-parse', '--short', 'HEAD'], cwd=common.REPO,
+                                      stderr=subprocess.DEVNULL).decode().strip()
+        dirty = subprocess.call(['git', 'diff', '--quiet', 'HEAD', '--', '.', ':!tools/bench/last_figures.json'],
+                                cwd=common.REPO, stderr=subprocess.DEVNULL) != 0
+    except (OSError, subprocess.CalledProcessError):
+        return None
+    return sha + ('+changes' if dirty else '')
+
+
+def save_figures(kept, figures, results, loads):
+    """--save: this run's key figures become the kept ones (figures not measured now stay)."""
+    meta = {'saved': results['started'], 'commit': git_commit(), 'machine': results['machine'],
+            'load_max': max(loads, default=None), 'quick': False}
+    kept_figures.save(kept_figures.merged(kept, figures, meta))
+    print('- saved %d figures to %s: commit it to make them the reference' % (
+        len(figures), os.path.relpath(kept_figures.KEPT_FILE)))
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument('--quick', action='store_true', help='every part, briefly (under a minute)')
     parser.add_argument('--out', default=os.path.join(common.REPO, 'out', 'bench'), help='output folder')
     parser.add_argument('--only', help='comma-separated parts: ' + ', '.join(n for n, _ in PARTS))
+    parser.add_argument('--save', action='store_true',
+                        help='keep this run\'s figures in %s (the reference the next run is compared with)'
+                        % os.path.relpath(kept_figures.KEPT_FILE, common.REPO))
     parser.add_argument('--scenario', help=argparse.SUPPRESS)
     parser.add_argument('--params', help=argparse.SUPPRESS)
     parser.add_argument('--result', help=argparse.SUPPRESS)
     args = parser.parse_args()
     if args.scenario:
         return child(args)
+    if args.save and args.quick:
+        parser.error('--save keeps a full run\'s figures as the reference; a --quick run\'s figures mean little. '
+                     'Run without --quick to save.')
+    if args.only and set(args.only.split(',')) - {n for n, _ in PARTS}:
+        parser.error('--only: unknown part(s) %s; the parts are %s' % (
+            ', '.join(sorted(set(args.only.split(',')) - {n for n, _ in PARTS})), ', '.join(n for n, _ in PARTS)))
     if 'ROS_PACKAGE_PATH' not in os.environ:
         sys.exit('racebot bench: source devel/setup.bash first (or use `make bench`)')
     cfg = QUICK if args.quick else FULL
@@ -263,6 +300,11 @@ def main():
     from bench import report
     rows = report.rows(results)
     results['table'] = rows
+    kept, kept_problem = kept_figures.load()
+    figures = kept_figures.key_figures(results)
+    compared = kept_figures.compare(figures, kept, quick=args.quick)
+    results['compared'] = {'kept_file': kept_figures.KEPT_FILE, 'kept_problem': kept_problem, 'rows': compared,
+                           'regressions': kept_figures.regressions(compared)}
     with open(os.path.join(out, 'bench.json'), 'w') as f:
         json.dump(results, f, indent=1)
     loads = [x['loadavg'][0] for x in results['load']]
@@ -282,6 +324,15 @@ def main():
         lines = print_profiles(results)
         if lines:
             print('\n'.join(lines))
+    print()
+    print(report.table(compared, header=kept_figures.HEADER))
+    for line in kept_figures.describe(kept, results['machine']) + ([kept_problem] if kept_problem else []):
+        print('- ' + line)
+    regressed = results['compared']['regressions']
+    if regressed:
+        print('- REGRESSION against the kept figures: %s' % '; '.join(regressed))
+    if args.save:
+        save_figures(kept, figures, results, loads)
     for name, err in results['errors'].items():
         print('\n%s failed:\n%s' % (name, err))
     print('\nraw figures: %s; plots: %s' % (os.path.relpath(os.path.join(out, 'bench.json')), ', '.join(

@@ -51,6 +51,19 @@ class BenchQuickTest(unittest.TestCase):
         self.assertGreater(sp['rss_end_bytes'], 10e6)
         self.assertGreaterEqual(sp['memory_sim_s'], 10.0)
 
+    def test_ratios_are_medians_of_pairs_shown_beside_the_kept_figures(self):
+        for part in (self.results['speed']['plain'], self.results['speed']['sensors']):
+            if 'spread' not in part:
+                continue  # sensors not available
+            ratio = part['spread']['ratio']
+            self.assertGreaterEqual(ratio['n'], 3, ratio)
+            self.assertTrue(ratio['min'] <= part['ratio'] == ratio['median'] <= ratio['max'], ratio)
+        compared = self.results['compared']
+        self.assertIn('bridge / ceiling, as fast as possible', [r[0] for r in compared['rows']])
+        self.assertTrue(all(r[4] in ('new figure', 'not judged (quick)', 'not measured this run')
+                            for r in compared['rows']), compared['rows'])  # a quick run is never judged
+        self.assertIn('| verdict', self.output)
+
     def test_real_time_and_command_path(self):
         rt = self.results['realtime']
         self.assertTrue(0.1 < rt['window']['rtf'] < 10.0, rt['window'])

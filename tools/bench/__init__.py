@@ -1,10 +1,13 @@
 """make bench: racebot_sim_bridge's speed against the physics ceiling, and its fidelity.
 
 tools/bench.py is the command; these modules are its parts:
-  common      paths, worlds, processes (/proc), launches on private masters, statistics
-  ceiling     bare PyBullet stepping of the racebot: the speed ceiling
-  inprocess   the simulator without ROS: hinge step response, deterministic runs
-  scenarios   the measurements that need ROS, each run in a child process with its own master
-  plot        PNG plots without matplotlib (zlib + a 5x7 font)
-  report      the table
+  common        paths, worlds, processes (/proc), launches on private masters
+  stats         medians, percentiles, the median of repeated pairs with its spread (min-max)
+  ceiling       bare PyBullet stepping of the racebot: the speed ceiling
+  inprocess     the simulator without ROS: hinge step response, deterministic runs
+  scenarios     the measurements that need ROS, each run in a child process with its own master
+  plot          PNG plots with matplotlib (Agg backend, no display)
+  report        the table of figures and targets
+  kept_figures  the figures kept in the repository (last_figures.json, written by --save) and
+                each new figure beside its kept one
 """

@@ -1,6 +1,5 @@
-"""What every part of the bench shares: paths, worlds, /proc readings, launches on private masters,
-statistics. No rospy at import time (the in-process parts run without it)."""
-import math
+"""What every part of the bench shares: paths, worlds, /proc readings, launches on private masters
+(statistics are in stats.py). No rospy at import time (the in-process parts run without it)."""
 import os
 import re
 import shutil
@@ -54,24 +53,6 @@ BRIDGE_LAUNCH = """<?xml version="1.0"?>
 
 class BenchError(RuntimeError):
     """A measurement could not be made; the message says which and why."""
-
-
-# -- statistics -----------------------------------------------------------------------------------
-def median(values):
-    values = sorted(v for v in values if v is not None)
-    if not values:
-        return None
-    n = len(values)
-    return values[n // 2] if n % 2 else 0.5 * (values[n // 2 - 1] + values[n // 2])
-
-
-def percentile(values, p):
-    """Nearest-rank percentile (p in 0..100) of a list; None for an empty one."""
-    values = sorted(values)
-    if not values:
-        return None
-    rank = max(1, int(math.ceil(p / 100.0 * len(values))))
-    return values[rank - 1]
 
 
 def loadavg():

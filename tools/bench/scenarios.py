@@ -16,7 +16,7 @@ import threading
 import time
 import xmlrpc.client
 
-from . import common
+from . import common, stats
 from .common import BenchError
 
 WORLD_SERVER = '/gazebo'
@@ -128,7 +128,10 @@ def speed(p, out):
 
 def _rounds(world, ceiling, pid, rounds, window, step):
     """Ceiling and bridge measured in turn (the other paused), `rounds` times: load that comes and
-    goes on a shared machine hits both alike."""
+    goes on a shared machine hits both alike. Each figure is the median over the pairs, with its
+    spread (min-max) in 'spread'."""
+    if rounds < stats.MIN_PAIRS:
+        raise BenchError('%d side-by-side rounds asked for; a ratio needs at least %d' % (rounds, stats.MIN_PAIRS))
     out = []
     for k in range(rounds):
         entry = {}
@@ -144,12 +147,11 @@ def _rounds(world, ceiling, pid, rounds, window, step):
         entry['ceiling_rtf'] = entry['ceiling_steps_per_s'] * step
         entry['ratio'] = entry['rtf'] / entry['ceiling_rtf']
         out.append(entry)
-    return {'rounds': out,
-            'ceiling_steps_per_s': common.median([r['ceiling_steps_per_s'] for r in out]),
-            'ceiling_rtf': common.median([r['ceiling_rtf'] for r in out]),
-            'bridge_rtf': common.median([r['rtf'] for r in out]),
-            'bridge_cpu': common.median([r['cpu'] for r in out]),
-            'ratio': common.median([r['ratio'] for r in out])}
+    spread = stats.of_pairs(out, ('ceiling_steps_per_s', 'ceiling_rtf', 'rtf', 'cpu', 'ratio'))
+    spread['bridge_rtf'], spread['bridge_cpu'] = spread.pop('rtf'), spread.pop('cpu')
+    result = {k: v['median'] for k, v in spread.items()}
+    result.update(rounds=out, spread=spread)
+    return result
 
 
 def sensor_topics():
@@ -271,7 +273,8 @@ def realtime(p, out):
         wall = sum(x['wall_s'] for x in parts)
         result['window'] = {'wall_s': wall, 'rtf': sum(x['sim_s'] for x in parts) / wall,
                             'cpu': sum(x['cpu'] * x['wall_s'] for x in parts) / wall,
-                            'parts_rtf': [round(x['rtf'], 4) for x in parts]}
+                            'parts_rtf': [round(x['rtf'], 4) for x in parts],
+                            'parts_cpu': [round(x['cpu'], 4) for x in parts]}
         result['latency'] = command_path(p['commands'], p['command_rate_hz'], trace_path)
         result['rss_end_bytes'] = common.rss_bytes(pid)
     finally:
@@ -399,14 +402,13 @@ def analyse_trace(trace_path, sent, expected):
     first = [(min(a[k] for a in arrived) - sent[k]) * 1e3 for k in both]
     spread = [(max(a[k] for a in arrived) - min(a[k] for a in arrived)) * 1e3 for k in both]
     to_update = [(max(a[k] for a in applied) - max(a[k] for a in arrived)) * 1e3 for k in both]
-    stats = lambda xs: {'p50': common.percentile(xs, 50), 'p99': common.percentile(xs, 99)}
+    p50_p99 = lambda xs: {'p50': stats.percentile(xs, 50), 'p99': stats.percentile(xs, 99)}
     return {'sent': len(sent), 'delivered': delivered, 'applied': len(to_applied),
-            'callback_ms': {'p50': common.percentile(to_callback, 50), 'p99': common.percentile(to_callback, 99),
-                            'max': max(to_callback) if to_callback else None},
-            'applied_ms': {'p50': common.percentile(to_applied, 50), 'p99': common.percentile(to_applied, 99),
-                           'max': max(to_applied) if to_applied else None},
-            'segments_ms': {'publish_to_first_callback': stats(first), 'first_to_fourth_wheel_callback': stats(spread),
-                            'last_callback_to_applied': stats(to_update)}}
+            'callback_ms': dict(p50_p99(to_callback), max=max(to_callback) if to_callback else None),
+            'applied_ms': dict(p50_p99(to_applied), max=max(to_applied) if to_applied else None),
+            'segments_ms': {'publish_to_first_callback': p50_p99(first),
+                            'first_to_fourth_wheel_callback': p50_p99(spread),
+                            'last_callback_to_applied': p50_p99(to_update)}}
 
 
 # -- start-up: cold, roslaunch starts the master ------------------------------------------------------
