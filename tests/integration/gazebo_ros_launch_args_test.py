@@ -4,11 +4,12 @@
 
 The test node runs `roslaunch` of a launch file including $(find gazebo_ros)/launch/empty_world.launch
 at the root namespace with enable_ros_network:=false, use_clock_frequency:=true pub_clock_frequency:=50,
-debug:=true, recording:=true, physics:=bullet and extra_gazebo_args:=--lockstep, and reads its output:
+debug:=true, recording:=true, physics:=bullet, extra_gazebo_args:=--lockstep and verbose:=true, and reads
+its output:
   enable_ros_network false: the gazebo node offers only /clock (and rospy's logger services), as
     gazebo_ros_api_plugin does (no /gazebo/* services or state topics);
   pub_clock_frequency 50: /clock every 0.02 s of sim time, not at every 1 ms update;
-  debug, recording, physics, an unknown gzserver option: each said once in the log;
+  debug, recording, physics, verbose, an unknown gzserver option: each said once in the log;
   world_name's default worlds/empty.world: gazebo_ros's, found through GAZEBO_RESOURCE_PATH.
 """
 import os
@@ -34,6 +35,7 @@ WORLD_LAUNCH = """<launch>
     <arg name="recording" value="true"/>
     <arg name="physics" value="bullet"/>
     <arg name="extra_gazebo_args" value="--lockstep"/>
+    <arg name="verbose" value="true"/>
   </include>
 </launch>
 """
@@ -82,6 +84,7 @@ class GazeboRosLaunchArgsTest(unittest.TestCase):
                      'recording:=true: there are no Gazebo state logs here',
                      '-e bullet (the physics engine is always PyBullet here)',
                      'gzserver option --lockstep has no meaning here',
+                     '--verbose (verbose:=true): this world server logs all it has to say',
                      'ROS gazebo topics/services are disabled'):
             self.assertEqual(text.count(says), 1, '%r said %d times in:\n%s' % (says, text.count(says), text[-3000:]))
 

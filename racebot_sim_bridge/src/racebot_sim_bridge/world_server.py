@@ -322,6 +322,9 @@ def main(argv=None, debugger=False):
     world, paused, verbose, ignored = parse_args(argv)
     for opt in ignored:
         rospy.loginfo('gzserver option %s has no meaning here; ignored' % opt)
+    if verbose:
+        rospy.loginfo('--verbose (verbose:=true): this world server logs all it has to say through ROS '
+                      'either way; there are no extra gzserver messages to show')
     path = resolve_world(world)
     try:
         server = WorldServer(path, paused, bool(rospy.get_param('~gui', False)))
