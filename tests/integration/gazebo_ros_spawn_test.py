@@ -13,11 +13,13 @@ here (a model for -database, a mesh for -package_to_model). Then, in order:
   -package_to_model: package:// meshes found as model:// (and not found without the flag);
   -robot_namespace: the caller's namespace by default, the option's when given (where the model's
    gazebo_ros_control serves its controller manager);
-  -b: the model is deleted when spawn_model is shut down.
+  -b: the model is deleted when spawn_model is shut down;
+  -stdin; a missing file or a folder given to -file: exit 1 with upstream's message.
 """
 import math
 import os
 import shutil
+import subprocess
 import tempfile
 import unittest
 
@@ -282,6 +284,23 @@ class GazeboRosSpawnTest(unittest.TestCase):
         self.assertEqual(p.stop(), 0, p.text)
         self.assertIn('Deleting model bonded', p.text)
         self.assertNotIn('bonded', self.models())
+
+    def test_60_stdin_and_unreadable_sources(self):
+        with open(self.files['box.sdf']) as f:
+            done = subprocess.run(['rosrun', 'gazebo_ros', 'spawn_model', '-sdf', '-stdin', '-model', 'piped',
+                                   '-gazebo_namespace', GZ, '-x', '6'], stdin=f, stdout=subprocess.PIPE,
+                                  stderr=subprocess.STDOUT, timeout=WALL_TIMEOUT, text=True)
+        self.assertEqual(done.returncode, 0, done.stdout)
+        self.assertIn('Loading model XML from stdin', done.stdout)
+        self.assertIn('piped', self.models())
+        missing = os.path.join(self.tmp, 'no_such.urdf')
+        p = self.spawn('-urdf', '-file', missing, '-model', 'ghost', '-gazebo_namespace', GZ)
+        self.assertEqual(p.wait_exit(), 1, p.text)
+        self.assertIn('Error: specified file %s does not exist' % missing, p.text)
+        p = self.spawn('-urdf', '-file', self.tmp, '-model', 'ghost', '-gazebo_namespace', GZ)
+        self.assertEqual(p.wait_exit(), 1, p.text)
+        self.assertIn('Error: specified file %s is not a file' % self.tmp, p.text)
+        self.assertNotIn('ghost', self.models())
 
 
 if __name__ == '__main__':
