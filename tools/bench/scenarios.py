@@ -4,7 +4,8 @@ the machine (tests on 11311) stays out of the way.
 
 The bench's node reads the simulator through services and /proc, and (except for fidelity) does
 not subscribe to /clock: with /use_sim_time set, rospy would subscribe it, and a /clock subscriber
-costs the simulator what we are measuring. Sim time comes from /gazebo/get_world_properties.
+costs the simulator what we are measuring. So the bench node starts before the launch sets
+/use_sim_time (init_node), and sim time comes from /gazebo/get_world_properties.
 """
 import json
 import math
@@ -28,16 +29,14 @@ COMMAND_TOPIC = '/ackermann_cmd_mux/output'
 
 # -- ROS helpers ----------------------------------------------------------------------------------
 def init_node(name, sim_time=False):
-    """rospy.init_node; with sim_time False the node keeps wall time and never subscribes to /clock."""
+    """rospy.init_node. With sim_time False the node keeps wall time and never subscribes to /clock:
+    rospy reads /use_sim_time once, in init_node, so the node must start before the launch sets it
+    (rospy has no public way to opt out afterwards)."""
     import rospy
-    import rospy.impl.simtime as simtime
-    real = simtime._is_use_simtime
-    if not sim_time:
-        simtime._is_use_simtime = lambda: False
-    try:
-        rospy.init_node(name, anonymous=True, disable_signals=True)
-    finally:
-        simtime._is_use_simtime = real
+    if not sim_time and rospy.get_param('/use_sim_time', False):
+        raise BenchError('/use_sim_time is already set: start the bench node (%s) before the launch, or it '
+                         'subscribes to /clock and costs the simulator what the bench measures' % name)
+    rospy.init_node(name, anonymous=True, disable_signals=True)
 
 
 def running_controllers():
@@ -94,12 +93,14 @@ def speed(p, out):
     from .ceiling import Ceiling
     port = p['port']
     world_file = common.fast_world(common.ROOM_WORLD, os.path.join(out, 'room_fast.world'))
-    launch = common.roslaunch([common.write_bridge_launch(out), 'world_name:=' + world_file], port,
-                              os.path.join(out, 'logs', 'speed_roslaunch.log'))
+    core = common.roscore(port, os.path.join(out, 'logs', 'speed_roscore.log'))
+    launch = None
     result = {'world': 'room_mini (real_time_update_rate 0)'}
     try:
+        init_node('racebot_bench_speed')  # before the launch sets /use_sim_time
+        launch = common.roslaunch([common.write_bridge_launch(out), 'world_name:=' + world_file], port,
+                                  os.path.join(out, 'logs', 'speed_roslaunch.log'))
         wait_controllers(launch)
-        init_node('racebot_bench_speed')
         pid = node_pid(WORLD_SERVER, port)
         result['rss_start_bytes'] = common.rss_bytes(pid)
         world = World()
@@ -122,7 +123,9 @@ def speed(p, out):
         result['memory_sim_s'] = world.time()
         result['rss_end_bytes'] = common.rss_bytes(pid)
     finally:
-        launch.stop()
+        if launch is not None:
+            launch.stop()
+        core.stop()
     return result
 
 
@@ -259,12 +262,12 @@ def realtime(p, out):
     try:
         rosgraph.Master('/racebot_bench', master_uri='http://localhost:%d' % port).setParam(
             WORLD_SERVER + '/command_trace', trace_path)
+        init_node('racebot_bench_realtime')  # before the launch sets /use_sim_time
         started = time.monotonic()
         launch = common.roslaunch(['racebot_gazebo', 'racebot.launch', 'gui:=false', 'teleop:=false'], port,
                                   os.path.join(out, 'logs', 'realtime_roslaunch.log'))
         wait_controllers(launch)
         result['startup_warm_s'] = time.monotonic() - started
-        init_node('racebot_bench_realtime')
         pid = node_pid(WORLD_SERVER, port)
         result['rss_start_bytes'] = common.rss_bytes(pid)
         world = World()
@@ -307,10 +310,10 @@ def sensors_realtime(p, out):
         for key, value in SENSOR_PATHS[path].items():
             master.setParam(WORLD_SERVER + '/sensors/' + key, value)
         master.setParam(WORLD_SERVER + '/sensors/report_period', 5.0)
+        init_node('racebot_bench_sensors_' + path)  # before the launch sets /use_sim_time
         launch = common.roslaunch(['racebot_gazebo', 'racebot.launch', 'gui:=false', 'teleop:=false'], port,
                                   os.path.join(out, 'logs', 'sensors_%s_roslaunch.log' % path))
         wait_controllers(launch)
-        init_node('racebot_bench_sensors_' + path)
         pid = node_pid(WORLD_SERVER, port)
         world = World()
         topics = sensor_topics()
