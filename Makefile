@@ -69,9 +69,11 @@ demo: setup
 	@$(IN_WS) $(VENV)/bin/python3 tools/demo.py
 
 # Speed against the physics ceiling and fidelity against the kinematic model: prints the table, writes
-# out/bench/ (bench.json, PNG plots). About 6 minutes; bench-quick runs every part briefly (< 1 min).
+# out/bench/ (bench.json, PNG plots), each key figure beside the one kept in tools/bench/last_figures.json.
+# About 6 minutes; bench-quick runs every part briefly (< 1 min). Keep this run's figures as the
+# reference (then commit the file): make bench ARGS=--save.
 bench: setup
-	@$(IN_WS) $(VENV)/bin/python3 tools/bench.py
+	@$(IN_WS) $(VENV)/bin/python3 tools/bench.py $(ARGS)
 
 bench-quick: setup
 	@$(IN_WS) $(VENV)/bin/python3 tools/bench.py --quick
