@@ -4,8 +4,9 @@
 viewer.test starts the world server (racebot.launch gui:=false: no window of its own); this node
 starts Xvfb (its screen kept in a file: -fbdir) and the windows, and checks what a Gazebo user
 relies on:
-- gzclient attaches to the running world server: a node /gazebo_gui in a process of its own, niced
-  below the server; the server says a window attached and get_world_properties says rendering;
+- gzclient attaches to the running world server: a node /gazebo_gui whose window is a process of its
+  own, both niced below the server; the server says a window attached and get_world_properties says
+  rendering;
 - it shows the simulation: the car at the centre, the screen still while the car stands, changing
   when the car is moved (the camera follows it);
 - closing the window ends gzclient (exit 0) and leaves the simulation running: /clock goes on, the
@@ -14,7 +15,8 @@ relies on:
   close button kills its X connection (XKillClient), which is what `xdotool windowkill` does here;
 - a second gzclient attaches again and shows the car;
 - when the world server goes, gzclient says so and ends (exit 0);
-- `gazebo` starts the world server and the window together; closing the window stops both.
+- `gazebo` starts the world server and the window together; closing the window stops both;
+- without a display gzclient says why and ends with 0.
 """
 import os
 import shutil
@@ -35,12 +37,24 @@ from rosgraph_msgs.msg import Log
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from keyboard_teleop_xvfb import screen_pixels, start_xvfb, stop_xvfb  # noqa: E402
 from robustness_common import ROOT, Process, Rosout, SimProbe, node_pid, pid_alive, wait_for  # noqa: E402
+sys.path.insert(0, os.path.join(ROOT, 'tools'))
+from bench.common import child_pids  # noqa: E402
+
+WINDOW_MODULE = 'racebot_sim_bridge.viewer_process'
 
 START_TIMEOUT = 120.0
 # Where the car is put (x, y, quaternion z, w): with the camera 1.5 m behind it, nothing in between.
 SPAWN_SPOT = (0.0, 0.0, 0.0, 1.0)              # where racebot.launch spawns it
 TURNED_SPOT = (0.3, 0.0, 0.2588190, 0.9659258)  # a little ahead, turned 30 degrees left
 SCREENS = os.path.join(ROOT, 'out', 'test-results', 'viewer-screens')  # what the window showed, for a reader
+
+
+def command_line(pid):
+    try:
+        with open('/proc/%d/cmdline' % pid, 'rb') as f:
+            return f.read().replace(b'\0', b' ').decode('utf-8', 'replace')
+    except OSError:
+        return ''
 
 
 def niceness(pid):
@@ -157,9 +171,12 @@ class ViewerTest(unittest.TestCase):
         self.wait_window()
         self.attached(mark)
         pid = wait_for(lambda: node_pid('/gazebo_gui'), 'the node /gazebo_gui', START_TIMEOUT)
-        self.assertEqual(pid, self.first.proc.pid, 'the window should be gzclient itself')
-        self.assertNotEqual(pid, self.sim_pid)
-        self.assertEqual(niceness(pid), niceness(self.sim_pid) + 10, 'the window should run niced 10 below the server')
+        self.assertEqual(pid, self.first.proc.pid, 'the node should be gzclient itself')
+        window = [p for p in child_pids(pid) if WINDOW_MODULE in command_line(p)]
+        self.assertEqual(len(window), 1, 'gzclient should have one window process, has %s' % window)
+        for process, what in ((pid, 'gzclient'), (window[0], 'its window')):
+            self.assertEqual(niceness(process), niceness(self.sim_pid) + 10,
+                             '%s should run niced 10 below the world server' % what)
 
     def test_2_the_window_shows_the_simulation(self):
         self.place_car(*SPAWN_SPOT)
@@ -200,7 +217,7 @@ class ViewerTest(unittest.TestCase):
                                 universal_newlines=True, timeout=30)
         self.assertEqual(result.returncode, 0, result.stdout)
         self.assertEqual(self.second.wait_exit(30.0), 0, self.second.text[-2000:])
-        self.assertIn('the world server /gazebo said: it shuts down. Closing the window', self.second.text)
+        self.assertIn('the world server /gazebo shut down: the window closes with it', self.second.text)
         wait_for(lambda: not pid_alive(self.sim_pid), 'the world server to exit', 30.0)
 
     def test_6_gazebo_starts_the_world_server_and_the_window_and_closing_it_stops_both(self):
@@ -217,6 +234,16 @@ class ViewerTest(unittest.TestCase):
         self.assertIn('the window closed: stopping the world server', gazebo.text)
         wait_for(lambda: node_pid('/gazebo') is None and node_pid('/gazebo_gui') is None,
                  'both nodes to be gone', 30.0)
+
+    def test_7_without_a_display_gzclient_says_why_and_ends(self):
+        env = dict(self.env)
+        del env['DISPLAY']
+        process = Process(['rosrun', 'gazebo_ros', 'gzclient'], env=env)
+        self.processes.append(process)
+        self.assertEqual(process.wait_exit(60.0), 0, process.text[-2000:])
+        process.reader.join(5)
+        self.assertIn('no window: there is no display (DISPLAY is unset)', process.text)
+        self.assertNotIn('Traceback', process.text)
 
 
 if __name__ == '__main__':

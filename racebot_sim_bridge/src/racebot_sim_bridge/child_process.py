@@ -1,4 +1,4 @@
-"""The simulator's helper processes (the render worker): how they start and die; `die_with_parent`
+"""Helper processes (the render worker, gzclient's window): how they start and die; `die_with_parent`
 for the processes the `gazebo` command starts (gazebo_command.py).
 
 No rospy here. A helper is `python -m racebot_sim_bridge.<module> FD`, a fresh interpreter (not a
@@ -17,13 +17,17 @@ from multiprocessing.connection import Connection
 PACKAGE_ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 
 
-def start(module, env=None):
-    """Starts `python -m <module> FD` -> (subprocess.Popen, Connection to it). `env`: variables to
-    add to this process's environment. Its stdout is discarded (PyBullet's plugins chatter there);
-    stderr is ours."""
-    parent, child = socket.socketpair()
-    # Blocking, whatever socket.setdefaulttimeout says (rospy sets one): Connection reads raw fds.
-    parent.setblocking(True)
+def start(module, env=None, args=(), connection=None):
+    """Starts `python -m <module> FD [args]` -> (subprocess.Popen, Connection to it). `env`: variables
+    to add to this process's environment. Its stdout is discarded (PyBullet's plugins chatter there);
+    stderr is ours. `connection`: a connected socket (gzclient's to the world server) to hand over as
+    FD instead of a new pair; this process's copy is closed and no Connection returned."""
+    if connection is None:
+        parent, child = socket.socketpair()
+        # Blocking, whatever socket.setdefaulttimeout says (rospy sets one): Connection reads raw fds.
+        parent.setblocking(True)
+    else:
+        parent, child = None, connection
     child.setblocking(True)
     full_env = dict(os.environ)
     full_env.update(env or {})
@@ -31,15 +35,16 @@ def start(module, env=None):
     full_env['PYTHONPATH'] = os.pathsep.join(
         [PACKAGE_ROOT] + [p for p in full_env.get('PYTHONPATH', '').split(os.pathsep) if p])
     try:
-        process = subprocess.Popen([sys.executable, '-m', module, str(child.fileno())],
+        process = subprocess.Popen([sys.executable, '-m', module, str(child.fileno())] + list(args),
                                    pass_fds=[child.fileno()], env=full_env, stdin=subprocess.DEVNULL,
                                    stdout=subprocess.DEVNULL, close_fds=True)
     except BaseException:
-        parent.close()
+        if parent is not None:
+            parent.close()
         raise
     finally:
         child.close()
-    return process, Connection(parent.detach())
+    return process, (Connection(parent.detach()) if parent is not None else None)
 
 
 def ask_to_stop(process, conn, wait=2.0, lock=None):

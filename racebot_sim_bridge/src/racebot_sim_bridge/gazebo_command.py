@@ -81,7 +81,7 @@ def _stop_when_done(server):
 
 def main(argv=None, server_module='racebot_sim_bridge.world_server'):
     """server_module: whose main() is the world server (gazebo_ros's gzserver: gazebo_ros.server)."""
-    from .viewer_process import display_problem
+    from .gzclient import display_problem
     server_args, client_args = split_args(list(sys.argv if argv is None else argv)[1:])
     children = []
 

@@ -2,10 +2,11 @@
 
 A node (default name gazebo_gui, as empty_world.launch names it) that finds the world server
 `gazebo` of its own namespace (the private parameter ~gazebo_namespace names another), waits until
-that server is up, attaches to it (viewer.AttachedWindows: the socket named by the server's
-parameter `gzclient_address`) and shows PyBullet's window of the world (viewer_process.Window),
-niced (NICENESS) so that physics and cameras come first. It only watches: closing it never stops
-the server, and any number of windows may be attached at once.
+that server is up, connects to it (viewer.AttachedWindows: the socket named by the server's
+parameter `gzclient_address`) and hands that connection to the window, PyBullet's GUI client in a
+process of its own (viewer_process, a fresh interpreter without rospy's threads), niced (NICENESS)
+with this node so that physics and cameras come first. The window's exit code says how it ended.
+It only watches: closing it never stops the server, and any number of windows may be attached.
 
 Command line: gzclient's own options are accepted: --verbose (debug logging), -g/--gui-plugin
 PLUGIN (Gazebo GUI plugins: none can load here, each named once in the log), -h/--help, -v/--version.
@@ -13,9 +14,11 @@ PLUGIN (Gazebo GUI plugins: none can load here, each named once in the log), -h/
 It ends:
   exit 0  the window was closed (or killed), Ctrl-C, the world server shut down, or there is no
           display (DISPLAY unset: said once; the world server runs on without a window);
-  exit 1  the X display cannot be opened, the window cannot open, or the world server was lost
+  exit 1  the X display cannot be opened, the window cannot open or crashed, or the world server was lost
           (its connection broke without a word: crashed or killed); each said in the log.
 """
+import ctypes
+import ctypes.util
 import os
 import signal
 import socket
@@ -23,10 +26,13 @@ import sys
 import time
 from multiprocessing.connection import Connection
 
+from . import child_process
+
 NODE_NAME = 'gazebo_gui'
 ADDRESS_PARAM = 'gzclient_address'  # the world server's private parameter naming its window socket
 NICENESS = 10
 WAIT_PERIOD = 0.5                   # s between looks for the world server
+WINDOW_MODULE = 'racebot_sim_bridge.viewer_process'
 VERSION = 'racebot gzclient (a window onto racebot_sim_bridge\'s PyBullet world server, for Gazebo 11 users)'
 USAGE = """usage: gzclient [--verbose] [-g PLUGIN]... [-h] [-v]   (ROS remaps as for any node)
   Shows the world of the running world server <namespace>/gazebo (~gazebo_namespace: another).
@@ -70,8 +76,8 @@ def address_param(namespace):
     return namespace.rstrip('/') + '/' + ADDRESS_PARAM
 
 
-def connect(address):
-    """A Connection to the world server's window socket, or None if nobody answers there."""
+def connect_socket(address):
+    """A socket connected to the world server's window socket, or None if nobody answers there."""
     sock = socket.socket(socket.AF_UNIX, socket.SOCK_STREAM)
     try:
         sock.setblocking(True)  # whatever socket.setdefaulttimeout says (rospy sets one)
@@ -79,18 +85,39 @@ def connect(address):
     except OSError:
         sock.close()
         return None
-    return Connection(sock.detach())
+    return sock
 
 
-def quiet_c_stdout():
-    """PyBullet's C code chatters on stdout (GL details, thread starts): file descriptor 1 goes to
-    /dev/null, and Python's sys.stdout (our log lines) keeps what it was."""
-    sys.stdout.flush()
-    kept = os.dup(1)
-    null = os.open(os.devnull, os.O_WRONLY)
-    os.dup2(null, 1)
-    os.close(null)
-    sys.stdout = os.fdopen(kept, 'w', buffering=1)
+def connect(address):
+    """connect_socket as a multiprocessing Connection (what the window speaks), or None."""
+    sock = connect_socket(address)
+    return Connection(sock.detach()) if sock is not None else None
+
+
+def _libx11():
+    try:
+        return ctypes.CDLL(ctypes.util.find_library('X11') or 'libX11.so.6')
+    except OSError:
+        return None
+
+
+def display_problem(display=None):
+    """None if an X display can be opened (DISPLAY, or `display`), else why not, in words."""
+    name = display if display is not None else os.environ.get('DISPLAY', '')
+    if not name:
+        return 'there is no display (DISPLAY is unset)'
+    x11 = _libx11()
+    if x11 is None:
+        return None  # no libX11 to ask: PyBullet will say
+    x11.XOpenDisplay.restype = ctypes.c_void_p
+    x11.XOpenDisplay.argtypes = [ctypes.c_char_p]
+    x11.XCloseDisplay.argtypes = [ctypes.c_void_p]
+    handle = x11.XOpenDisplay(name.encode())
+    if not handle:
+        return 'the X display %r cannot be opened (no X server there, or no permission: see xhost/XAUTHORITY)' % name
+    x11.XCloseDisplay(handle)
+    return None
+
 
 
 def _interrupt(*_):
@@ -106,7 +133,7 @@ class Gzclient(object):
 
     def wait_for_server(self):
         """Waits (as long as it takes: a launch starts us with the server, which loads its world
-        first) until the world server answers -> Connection, or None on shutdown."""
+        first) until the world server answers -> a connected socket, or None on shutdown."""
         rospy = self.rospy
         said = None
         while not rospy.is_shutdown():
@@ -114,9 +141,9 @@ class Gzclient(object):
                 address = rospy.get_param(self.param)
             except KeyError:
                 address, why = None, 'it has not set %s yet' % self.param
-            conn = connect(str(address)) if address else None
-            if conn is not None:
-                return conn
+            sock = connect_socket(str(address)) if address else None
+            if sock is not None:
+                return sock
             if address:
                 why = 'nobody answers at %s (%s): it has not started yet, or it was stopped' % (address, self.param)
             if why != said:
@@ -127,43 +154,36 @@ class Gzclient(object):
 
     def run(self):
         """-> exit code."""
-        from . import viewer_process
-        from .physics import PhysicsError
+        from .viewer_process import EXIT_CLOSED, EXIT_CRASHED, EXIT_LOST, EXIT_NO_WINDOW, EXIT_STOPPED
         rospy = self.rospy
-        conn = self.wait_for_server()
-        if conn is None:
+        sock = self.wait_for_server()
+        if sock is None:
             return 0
-        watch = viewer_process.XConnectionWatch()
+        window, _ = child_process.start(WINDOW_MODULE, args=[rospy.get_name()], connection=sock)
+        rospy.loginfo('attached to the world server %s: its window is process %d (niced %+d)' % (
+            self.namespace, window.pid, NICENESS))
         try:
-            window = viewer_process.Window()
-        except PhysicsError as err:
-            rospy.logerr('the window could not open (%s); the world server runs on without it' % err)
-            conn.close()
-            return 1
-        try:
-            conn.send(('hello', os.getpid(), rospy.get_name()))
-            rospy.loginfo('attached to the world server %s: showing its world (process %d, niced %+d)' % (
-                self.namespace, os.getpid(), NICENESS))
-            how, why = viewer_process.serve(conn, window, watch.fd)
-        except (EOFError, OSError) as err:
-            how, why = viewer_process.LOST, 'its connection closed (%s)' % type(err).__name__
+            code = window.wait()
         except KeyboardInterrupt:
             rospy.loginfo('interrupted: closing the window; the world server %s runs on' % self.namespace)
-            conn.close()
-            window.close()
+            child_process.stop(window, None)
             return 0
-        conn.close()
-        if how == viewer_process.CLOSED:
-            rospy.loginfo('the window was closed (%s); the world server %s runs on' % (why, self.namespace))
-            # PyBullet's drawing thread is parked in the X error handler: disconnecting would wait for it
-            rospy.signal_shutdown('window closed')
-            sys.stdout.flush()
-            os._exit(0)
-        window.close()
-        if how == viewer_process.STOPPED:
-            rospy.loginfo('the world server %s said: %s. Closing the window' % (self.namespace, why))
+        if code == EXIT_CLOSED or code < 0:
+            rospy.loginfo('the window was closed (%s); the world server %s runs on' % (
+                'its X connection closed' if code == EXIT_CLOSED else 'its process was killed, signal %d' % -code,
+                self.namespace))
             return 0
-        rospy.logerr('lost the world server %s: %s. Closing the window' % (self.namespace, why))
+        if code == EXIT_STOPPED:
+            rospy.loginfo('the world server %s shut down: the window closes with it' % self.namespace)
+            return 0
+        if code == EXIT_LOST:
+            rospy.logerr('lost the world server %s: its connection closed without a word (it crashed or was '
+                         'killed). The window closed' % self.namespace)
+        elif code == EXIT_NO_WINDOW:
+            rospy.logerr('the window could not open (see the line above); the world server runs on without it')
+        else:
+            rospy.logerr('the window process ended with exit code %d%s; the world server runs on' % (
+                code, ' (it crashed: see the traceback above)' if code == EXIT_CRASHED else ''))
         return 1
 
 
@@ -179,7 +199,6 @@ def main(argv=None):
         print(USAGE if opts['help'] else VERSION)
         sys.exit(0)
     signal.signal(signal.SIGTERM, _interrupt)  # roslaunch's escalation: end as on Ctrl-C
-    quiet_c_stdout()  # before rospy's log handler takes sys.stdout
     try:
         rospy.init_node(NODE_NAME, disable_rostime=True, disable_signals=True,
                         log_level=rospy.DEBUG if opts['verbose'] else rospy.INFO)
@@ -187,7 +206,6 @@ def main(argv=None):
             rospy.loginfo('gzclient -g %s: Gazebo GUI plugins cannot load here; ignored' % plugin)
         for arg in opts['ignored']:
             rospy.loginfo('gzclient option %s has no meaning here; ignored' % arg)
-        from .viewer_process import display_problem
         problem = display_problem()
         if problem is not None:
             unset = not os.environ.get('DISPLAY')

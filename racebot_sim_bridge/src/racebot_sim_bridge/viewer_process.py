@@ -1,26 +1,33 @@
-"""The window of gzclient (gzclient.py): PyBullet's GUI client showing what a world server sends it.
+"""The window's process: `python -m racebot_sim_bridge.viewer_process FD NODE_NAME`, started by gzclient.py.
 
-No rospy here. The window holds a world_copy.WorldCopy of the simulated world. For each update the
-world server sends (viewer.AttachedWindows), it brings the copy's bodies and poses up to date (only
-what moved: every call into the GUI client waits for its next frame), keeps the camera on the car,
-and answers, which tells the server it may send the next.
+No rospy here. PyBullet's GUI client with a world_copy.WorldCopy of the simulated world, talking to
+the world server (viewer.AttachedWindows) over FD, the socket gzclient connected. For each update
+the server sends, it brings the copy's bodies and poses up to date (only what moved: every call
+into the GUI client waits for its next frame), keeps the camera on the car, and answers, which
+tells the server it may send the next. Niced by gzclient (it inherits), so that physics and
+cameras come first.
 
-Closing the window: PyBullet's window sets no WM_PROTOCOLS, so a window manager's close button kills
-its X connection (XKillClient), and Xlib's default answer is exit(1) from PyBullet's drawing thread.
-`XConnectionWatch` replaces that answer: the main thread hears of it and gzclient ends as a window
-closed by its user should, exit code 0.
+How it ends says why, in its exit code (gzclient reads it):
+  EXIT_STOPPED  the world server said it shuts down;
+  EXIT_LOST     the world server's connection broke without a word;
+  EXIT_NO_WINDOW  PyBullet could not open the window (the reason on stderr);
+  EXIT_CLOSED   the window was closed: PyBullet's window sets no WM_PROTOCOLS, so a window manager's
+                close button kills its X connection (XKillClient), and Xlib ends the process with
+                exit(1) from PyBullet's drawing thread, whatever Python is doing;
+  EXIT_CRASHED  anything else (the traceback on stderr); killed: the signal.
+It also ends with gzclient (child_process.helper_main).
 """
-import ctypes
-import ctypes.util
 import os
-import time
-from multiprocessing.connection import wait
+import sys
+import traceback
 
 import pybullet as pb
 
-from .physics import PhysicsWorld
+from .child_process import helper_main
+from .physics import PhysicsError, PhysicsWorld
 from .world_copy import WorldCopy
 
+EXIT_STOPPED, EXIT_CLOSED, EXIT_LOST, EXIT_CRASHED, EXIT_NO_WINDOW = 0, 1, 3, 4, 5
 FOLLOW = dict(distance=1.5, pitch=-30.0)  # the camera behind the car
 
 
@@ -32,53 +39,6 @@ def moved(last, entry, tol=1e-4):
         if any(abs(a - b) >= tol for a, b in zip(tuple(p0) + tuple(q0), tuple(p1) + tuple(q1))):
             return True
     return any(abs(a - b) >= tol for a, b in zip(last[2], entry[2]))
-
-
-def _libx11():
-    try:
-        return ctypes.CDLL(ctypes.util.find_library('X11') or 'libX11.so.6')
-    except OSError:
-        return None
-
-
-def display_problem(display=None):
-    """None if an X display can be opened (DISPLAY, or `display`), else why not, in words."""
-    name = display if display is not None else os.environ.get('DISPLAY', '')
-    if not name:
-        return 'there is no display (DISPLAY is unset)'
-    x11 = _libx11()
-    if x11 is None:
-        return None  # no libX11 to ask: PyBullet will say
-    x11.XOpenDisplay.restype = ctypes.c_void_p
-    x11.XOpenDisplay.argtypes = [ctypes.c_char_p]
-    x11.XCloseDisplay.argtypes = [ctypes.c_void_p]
-    handle = x11.XOpenDisplay(name.encode())
-    if not handle:
-        return 'the X display %r cannot be opened (no X server there, or no permission: see xhost/XAUTHORITY)' % name
-    x11.XCloseDisplay(handle)
-    return None
-
-
-class XConnectionWatch(object):
-    """Hears of the process's X connection breaking (the window closed or killed, the X server gone):
-    `fd` becomes readable. Install before the window opens. Xlib calls the handler on the thread that
-    found the break (PyBullet's drawing thread), which is then parked: Xlib would exit the process
-    when the handler returns."""
-    _HANDLER = ctypes.CFUNCTYPE(ctypes.c_int, ctypes.c_void_p)
-
-    def __init__(self):
-        self.fd, self._write_fd = os.pipe()
-        self._callback = self._HANDLER(self._on_io_error)  # kept: Xlib holds only the pointer
-        x11 = _libx11()
-        self.installed = x11 is not None
-        if self.installed:
-            x11.XSetIOErrorHandler.argtypes = [self._HANDLER]
-            x11.XSetIOErrorHandler(self._callback)
-
-    def _on_io_error(self, display):
-        os.write(self._write_fd, b'x')
-        while True:
-            time.sleep(3600)
 
 
 class Window(object):
@@ -109,27 +69,37 @@ class Window(object):
         self.world.close()
 
 
-# How serve() ended
-CLOSED = 'closed'    # the window was closed (its X connection broke)
-STOPPED = 'stopped'  # the world server said it shuts down
-LOST = 'lost'        # the world server's connection broke without a word
-
-
-def serve(conn, window, x_fd):
-    """Shows every update arriving on `conn` until the window closes (x_fd readable) or the world
-    server goes -> (CLOSED | STOPPED | LOST, why)."""
+def serve(conn, window):
+    """Shows every update arriving on `conn` until the world server goes -> EXIT_STOPPED or EXIT_LOST."""
     while True:
-        ready = wait([conn, x_fd])
-        if x_fd in ready:
-            return CLOSED, 'its X connection closed'
         try:
             message = conn.recv()
-        except (EOFError, OSError) as err:
-            return LOST, 'its connection closed without a word (%s): it crashed or was killed' % type(err).__name__
-        if message[0] == 'stop':
-            return STOPPED, message[1]
-        window.show(*message[1:])
-        try:
+            if message[0] == 'stop':
+                return EXIT_STOPPED
+            window.show(*message[1:])
             conn.send(('shown',))
-        except (EOFError, OSError) as err:
-            return LOST, 'its connection closed without a word (%s): it crashed or was killed' % type(err).__name__
+        except (EOFError, OSError):
+            return EXIT_LOST
+
+
+def window_main(fd, node_name):
+    conn = helper_main(fd)
+    try:
+        try:
+            window = Window()
+        except PhysicsError as err:
+            sys.stderr.write('gzclient: the window could not open: %s\n' % err)
+            return EXIT_NO_WINDOW
+        conn.send(('hello', os.getpid(), node_name))
+        return serve(conn, window)
+    except (EOFError, OSError):
+        return EXIT_LOST
+    except Exception:  # noqa: BLE001 (said, and told apart from a closed window's exit code 1)
+        traceback.print_exc()
+        return EXIT_CRASHED
+
+
+if __name__ == '__main__':
+    code = window_main(int(sys.argv[1]), sys.argv[2])
+    sys.stderr.flush()
+    os._exit(code)  # not sys.exit: PyBullet's drawing thread would hold up the interpreter's exit
