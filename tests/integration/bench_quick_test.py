@@ -87,6 +87,8 @@ class BenchQuickTest(unittest.TestCase):
 
     def test_in_process_figures_and_determinism(self):
         h = self.results['inprocess']['hinge']
+        runs = self.results['inprocess']['sim_rtf_runs']
+        self.assertTrue(len(runs) >= 3 and all(finite(x) and x > 0 for x in runs), runs)
         self.assertTrue(finite(h['rise_time_s']) and h['rise_time_s'] > 0, h)
         self.assertTrue(0.0 < h['final_rad'] < 0.6, h)
         d = self.results['determinism']

@@ -75,8 +75,8 @@ def key_figures(r):
             'lower', tolerance=0.10)
     ip = r.get('inprocess')
     if ip:
-        add('inprocess.sim_rtf', 'simulator in-process, no ROS: real-time factor', ip['sim_rtf'], better='higher',
-            fmt='%.1f')
+        add('inprocess.sim_rtf', 'simulator in-process, no ROS: real-time factor',
+            stats.spread(ip['sim_rtf_runs']) if ip.get('sim_rtf_runs') else ip['sim_rtf'], better='higher', fmt='%.1f')
     de = r.get('determinism')
     if de:
         add('determinism.max_diff_m', 'determinism: two runs, max difference', de['max_diff_m'], ' m', 'lower',

@@ -130,7 +130,8 @@ def rows(r):
             '-', '-', '-')
         add('hinge step: settling into 2 %', _fmt(h['settling_time_s'], '%.3f s', 'not within 2 %% in %.0f s'
                                                   % h['duration_s']), '-', '-', '-')
-        add('simulator in-process, no ROS (real-time factor)', '%.1f' % ip['sim_rtf'], '-', '-', '-')
+        add('simulator in-process, no ROS (real-time factor; min-max)', stats.with_spread(
+            stats.spread(ip.get('sim_rtf_runs') or [ip['sim_rtf']]), '%.1f'), '-', '-', '-')
     elif 'inprocess' in errors:
         add('hinge step', 'ERROR', '-', '-', 'NO')
 
