@@ -54,9 +54,12 @@ class GazeboRosLaunchArgsTest(unittest.TestCase):
         cls.clock_sub = rospy.Subscriber('/clock', Clock, lambda m: cls.stamps.append(m.clock.to_sec()),
                                          queue_size=200)
         cls.world = Process(['roslaunch', '--disable-title', path])
-        # the services would be advertised before the first /clock and the "loaded" line
-        cls.world.wait_output('world ', ' loaded: ')
-        wait_for(lambda: len(cls.stamps) > 0, 'the first /clock')
+        try:  # the services would be advertised before the first /clock and the "loaded" line
+            cls.world.wait_output('world ', ' loaded: ')
+            wait_for(lambda: len(cls.stamps) > 0, 'the first /clock')
+        except AssertionError:
+            cls.tearDownClass()  # unittest skips it when setUpClass fails: the world would outlive the test
+            raise
 
     @classmethod
     def tearDownClass(cls):

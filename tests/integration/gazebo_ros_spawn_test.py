@@ -153,6 +153,7 @@ class GazeboRosSpawnTest(unittest.TestCase):
         try:
             rospy.wait_for_service(GZ + '/get_world_properties', timeout=WALL_TIMEOUT)
         except rospy.ROSException:
+            cls.tearDownClass()  # unittest skips it when setUpClass fails: the world would outlive the test
             raise AssertionError('%s/get_world_properties did not appear; roslaunch said:\n%s'
                                  % (GZ, cls.world.text[-3000:]))
         cls.world_properties = rospy.ServiceProxy(GZ + '/get_world_properties', GetWorldProperties)
