@@ -1,10 +1,14 @@
 """A user's catkin workspace under /tmp, overlaying racebot's devel space, and roslaunch started in it from
 a shell, as a user starts it (helpers of the rostest nodes in this folder, not a test node itself)."""
 import os
+import re
 import shutil
 import signal
 import subprocess
 import tempfile
+import time
+
+import rospy
 
 BUILD_TIMEOUT = 240.0  # wall s for catkin_make of a few tiny packages on a busy 2-core machine
 STOP_TIMEOUT = 30.0    # wall s roslaunch gets to stop its nodes after SIGINT
@@ -80,3 +84,36 @@ class ShellCommand(object):
         self.process.wait()
         self._log.close()
 
+
+
+class LaunchWatch(object):
+    """Waits on conditions while a ShellCommand runs roslaunch. A wait fails at once, with roslaunch's
+    output, when roslaunch has ended or one of its nodes died; after one wait failed, later waits fail at
+    once (each would otherwise sit out its whole timeout on a launch that is already broken)."""
+
+    DIED = re.compile(r'\[([\w/.-]+)\] process has died')
+
+    def __init__(self, shell):
+        self.shell = shell
+        self.broken = None
+
+    def wait(self, condition, what, timeout, period=0.05):
+        if self.broken:
+            raise AssertionError('not waiting for %s: %s' % (what, self.broken))
+        deadline = time.time() + timeout
+        while True:
+            output = self.shell.output()
+            died = self.DIED.search(output)
+            if not self.shell.running() or died:
+                self._fail('roslaunch ended (%s)' % self.shell.process.returncode if not died
+                           else 'node %s died' % died.group(1), what, output)
+            value = condition()
+            if value:
+                return value
+            if time.time() > deadline or rospy.is_shutdown():
+                self._fail('timed out after %.0f s (wall)' % timeout, what, output)
+            time.sleep(period)
+
+    def _fail(self, why, what, output):
+        self.broken = '%s while waiting for %s' % (why, what)
+        raise AssertionError('%s; roslaunch\'s output ends:\n%s' % (self.broken, output[-3000:]))

@@ -27,8 +27,8 @@ from controller_manager_msgs.srv import ListControllers
 from gazebo_msgs.srv import GetModelState
 from geometry_msgs.msg import Twist
 
-from catkin_overlay import ShellCommand, Workspace
-from integration_common import wait_for, yaw_of
+from catkin_overlay import LaunchWatch, ShellCommand, Workspace
+from integration_common import yaw_of
 
 FIXTURES = os.path.join(os.path.dirname(os.path.abspath(__file__)), '..', 'fixtures', 'tutorial_launch')
 CMD_TOPIC = '/ackermann_cmd_mux/output'
@@ -44,7 +44,6 @@ class TutorialLaunchTest(unittest.TestCase):
         rospy.init_node('tutorial_launch_test')
         cls.workspace = Workspace('racebot-tutorial-ws-')
         cls.launch = None
-        cls.not_ready = None  # None: not waited for yet; '' ready; else why not
         for package in ('racebot_gazebo', 'racebot_control'):
             cls.workspace.link(os.path.realpath(os.path.join(FIXTURES, package)))
         setup = cls.workspace.build()
@@ -56,6 +55,7 @@ class TutorialLaunchTest(unittest.TestCase):
         cls.files = files.output()
         files.stop()
         cls.launch = ShellCommand(command % '', env, os.path.join(cls.workspace.root, 'roslaunch.log'))
+        cls.watch = LaunchWatch(cls.launch)
         cls.pub = rospy.Publisher(CMD_TOPIC, AckermannDriveStamped, queue_size=10)
         cls.twist = rospy.Publisher('/cmd_vel', Twist, queue_size=10)
         cls.get_state = rospy.ServiceProxy('/gazebo/get_model_state', GetModelState)
@@ -68,13 +68,7 @@ class TutorialLaunchTest(unittest.TestCase):
         cls.workspace.remove()
 
     def launched(self, condition, what, timeout=STARTUP_TIMEOUT):
-        """wait_for that fails at once, with roslaunch's output, when roslaunch has ended."""
-        def check():
-            if not self.launch.running():
-                self.fail('roslaunch ended (%s) while waiting for %s:\n%s'
-                          % (self.launch.process.returncode, what, self.launch.output()[-3000:]))
-            return condition()
-        return wait_for(check, what, timeout)
+        return self.watch.wait(condition, what, timeout)
 
     def model_state(self):
         try:
@@ -92,17 +86,9 @@ class TutorialLaunchTest(unittest.TestCase):
         return sum(c.state == 'running' for c in listed.controller) == CONTROLLERS
 
     def ready(self):
-        """Waits for the car, its controllers and servo_commands.py once; later tests fail at once if that
-        failed (each would otherwise wait the whole start-up timeout again)."""
-        cls = type(self)
-        if cls.not_ready is None:
-            cls.not_ready = 'start-up failed'
-            self.launched(self.model_state, 'the racebot in the world (/gazebo/get_model_state)')
-            self.launched(self.controllers_running, 'the %d controllers running' % CONTROLLERS)
-            self.launched(lambda: self.pub.get_num_connections() > 0, 'servo_commands.py on %s' % CMD_TOPIC)
-            cls.not_ready = ''
-        if cls.not_ready:
-            self.fail('the racebot did not come up (see the first failing test)')
+        self.launched(self.model_state, 'the racebot in the world (/gazebo/get_model_state)')
+        self.launched(self.controllers_running, 'the %d controllers running' % CONTROLLERS)
+        self.launched(lambda: self.pub.get_num_connections() > 0, 'servo_commands.py on %s' % CMD_TOPIC)
 
     def drive(self, speed, steering, done, what):
         """Publishes the command at 10 Hz (wall) until done(pose) is true; then a stop command."""

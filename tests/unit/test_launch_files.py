@@ -11,6 +11,7 @@ import pytest
 
 REPO = Path(__file__).resolve().parents[2]
 EXCLUDED = {'build', 'devel', '.venv', 'install', 'out', '.git', 'node_modules'}
+ROBOT_PACKAGE_FIXTURES = REPO / 'tests' / 'fixtures' / 'robot_package'
 
 
 def launch_files():
@@ -28,7 +29,9 @@ LAUNCH_FILES = launch_files()
 def ros_package_path(monkeypatch):
     paths = [p for p in os.environ.get('ROS_PACKAGE_PATH', '').split(os.pathsep) if p]
     if not any(Path(p).resolve() == REPO for p in paths):
-        monkeypatch.setenv('ROS_PACKAGE_PATH', os.pathsep.join([str(REPO)] + paths))
+        paths = [str(REPO)] + paths
+    # the robot package fixture's own launch file finds its package (last: it shadows nothing)
+    monkeypatch.setenv('ROS_PACKAGE_PATH', os.pathsep.join(paths + [str(ROBOT_PACKAGE_FIXTURES)]))
 
 
 def test_there_are_launch_files():
