@@ -17,6 +17,8 @@ def _wait(service, timeout):
     rospy.loginfo('Waiting for service %s' % service)
     try:
         rospy.wait_for_service(service, timeout=timeout)
+    except rospy.ROSInterruptException:
+        raise  # shut down while waiting (a subclass of ROSException): the caller ends
     except rospy.ROSException:
         rospy.logerr('%s did not appear within %g s: is the simulator running (roslaunch gazebo_ros '
                      'empty_world.launch), and is -gazebo_namespace its namespace?' % (service, timeout))
