@@ -17,6 +17,7 @@ robot drives straight ahead. Waits are bounded in wall time.
 import math
 import os
 import shutil
+import subprocess
 import sys
 import unittest
 import xmlrpc.client
@@ -28,7 +29,7 @@ from controller_manager_msgs.srv import ListControllers
 from gazebo_msgs.srv import GetModelState
 from std_msgs.msg import Float64
 
-from catkin_overlay import LaunchWatch, ShellCommand, Workspace
+from catkin_overlay import BUILD_TIMEOUT, LaunchWatch, ShellCommand, Workspace
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 REPO = os.path.dirname(os.path.dirname(HERE))
@@ -54,21 +55,31 @@ def user_environment():
 
 
 class RobotPackageTest(unittest.TestCase):
+    launch = workspace = None  # set by start(); tearDownClass also runs after a failed start
 
     @classmethod
     def setUpClass(cls):
+        try:
+            cls.start()
+        except BaseException:
+            cls.tearDownClass()  # unittest does not call it when setUpClass fails
+            raise
+
+    @classmethod
+    def start(cls):
         rospy.init_node('robot_package_test')
         cls.commands = []
         cls.command_sub = rospy.Subscriber('/%s/left_wheel_controller/command' % MODEL, Float64,
                                            cls.commands.append, queue_size=10)
-        cls.launch = None
         cls.workspace = Workspace('racebot-robot-ws-')
         shutil.copytree(PACKAGE, os.path.join(cls.workspace.src, 'demo_diffbot'))
         env = user_environment()
         build = ShellCommand('source %s && catkin_make -C %s' % (RACEBOT_SETUP, cls.workspace.root), env,
                              os.path.join(cls.workspace.root, 'catkin_make.log'), login=True)
-        build.process.wait(240)
-        built = build.process.returncode
+        try:
+            built = build.process.wait(BUILD_TIMEOUT)
+        except subprocess.TimeoutExpired:
+            built = 'timed out after %.0f s' % BUILD_TIMEOUT
         log = build.output()
         build.stop()
         assert built == 0, 'catkin_make of the robot package failed (%s):\n%s' % (built, log[-3000:])
@@ -83,7 +94,8 @@ class RobotPackageTest(unittest.TestCase):
         if cls.launch is not None:
             cls.launch.stop()
             sys.stdout.write('--- roslaunch output ---\n%s\n' % cls.launch.output()[-6000:])
-        cls.workspace.remove()
+        if cls.workspace is not None:
+            cls.workspace.remove()
 
     def launched(self, condition, what, timeout=STARTUP_TIMEOUT):
         return self.watch.wait(condition, what, timeout)

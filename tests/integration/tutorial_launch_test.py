@@ -38,12 +38,20 @@ DRIVE_TIMEOUT = 120.0    # wall s for a drive that takes a few s of sim time
 
 
 class TutorialLaunchTest(unittest.TestCase):
+    launch = workspace = None  # set by start(); tearDownClass also runs after a failed start
 
     @classmethod
     def setUpClass(cls):
+        try:
+            cls.start()
+        except BaseException:
+            cls.tearDownClass()  # unittest does not call it when setUpClass fails
+            raise
+
+    @classmethod
+    def start(cls):
         rospy.init_node('tutorial_launch_test')
         cls.workspace = Workspace('racebot-tutorial-ws-')
-        cls.launch = None
         for package in ('racebot_gazebo', 'racebot_control'):
             cls.workspace.link(os.path.realpath(os.path.join(FIXTURES, package)))
         setup = cls.workspace.build()
@@ -51,9 +59,11 @@ class TutorialLaunchTest(unittest.TestCase):
         env.pop('DISPLAY', None)
         command = 'source %s && exec roslaunch %%s racebot_gazebo racebot.launch gui:=false' % setup
         files = ShellCommand(command % '--files', env, os.path.join(cls.workspace.root, 'files.log'))
-        files.process.wait(120)
+        try:
+            files.process.wait(120)
+        finally:
+            files.stop()
         cls.files = files.output()
-        files.stop()
         cls.launch = ShellCommand(command % '', env, os.path.join(cls.workspace.root, 'roslaunch.log'))
         cls.watch = LaunchWatch(cls.launch)
         cls.pub = rospy.Publisher(CMD_TOPIC, AckermannDriveStamped, queue_size=10)
@@ -65,7 +75,8 @@ class TutorialLaunchTest(unittest.TestCase):
         if cls.launch is not None:
             cls.launch.stop()
             sys.stdout.write('--- roslaunch output ---\n%s\n' % cls.launch.output()[-6000:])
-        cls.workspace.remove()
+        if cls.workspace is not None:
+            cls.workspace.remove()
 
     def launched(self, condition, what, timeout=STARTUP_TIMEOUT):
         return self.watch.wait(condition, what, timeout)
