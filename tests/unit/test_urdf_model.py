@@ -364,3 +364,13 @@ def test_imu(robot):
     assert plugin.findtext("topicName") == "imu"
     assert float(plugin.findtext("updateRateHZ")) == pytest.approx(100.0)
     assert float(plugin.findtext("gaussianNoise")) == 0.0
+
+
+def test_rosparam_set_takes_the_rendered_description(urdf_text, robot):
+    # `rosparam set robot_description "$(xacro racecar.xacro)"` parses its value as YAML: a ': ' or
+    # ' #' in a comment xacro keeps would stop it ("mapping values are not allowed here") or cut it
+    import yaml
+    value = yaml.safe_load(urdf_text)
+    assert isinstance(value, str)
+    assert [link.get("name") for link in ET.fromstring(value).findall("link")] == \
+        [link.get("name") for link in robot.findall("link")]
