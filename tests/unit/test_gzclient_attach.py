@@ -134,6 +134,24 @@ def test_a_respawn_under_the_same_name_is_sent_again(world, windows):
     conn.close()
 
 
+def test_the_physics_thread_never_waits_for_a_window_that_does_not_read(world, windows):
+    for i in range(1000):  # a first update (~1 MB) larger than what a Unix socket holds (~230 kB)
+        spawn_box(world, 'box%d' % i, z=1.0 + i)
+    conn = attach(windows)  # says hello, then reads nothing
+
+    def physics_thread():
+        sync_until(windows, lambda: windows.count == 1, 'the window to attach')
+        for _ in range(5):
+            windows.sync()
+    thread = threading.Thread(target=physics_thread, daemon=True)
+    thread.start()
+    thread.join(2 * WAIT)  # a hang detector: sync would block for ever if it wrote to the socket itself
+    assert not thread.is_alive(), 'sync waited for a window that does not read'
+    _, bodies, names, _, _ = conn.recv()  # the update arrives whole once the window reads
+    assert len(bodies) == len(names) == 1001
+    conn.close()
+
+
 def test_a_window_that_goes_is_forgotten_and_said_once(world, windows):
     conn = attach(windows)
     next_update(windows, conn)

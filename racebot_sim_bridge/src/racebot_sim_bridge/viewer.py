@@ -10,8 +10,9 @@ processes can attach; the messages are pickles). The world server publishes its 
 parameter `~gzclient_address`. Any number of windows may attach, each at any time. About 30 times a
 second of wall time the physics thread sends each window the bodies it has not seen (their
 `Body.source`), the names of all bodies (so deleted ones go) and the world's snapshot (poses and
-joint positions, a few kB), but only once that window has applied the previous one: the physics
-never waits for a window, and a slow window shows fewer updates, never old ones. A window that goes
+joint positions, a few kB), but only once that window has applied the previous one, written by a
+thread per window: the physics never waits for a window, and a slow window shows fewer updates,
+never old ones. A window that goes
 away (closed, killed, its X server gone) is forgotten, said once; the simulation goes on.
 
 Protocol (multiprocessing.connection messages): window -> server ('hello', pid, node name), then
@@ -41,16 +42,55 @@ def follow_target(world):
 
 
 class WindowLink(object):
-    """One attached window, seen from the physics thread."""
+    """One attached window, seen from the physics thread. Updates are written by a thread of its own:
+    a first update holding many bodies may be larger than the socket's buffer, and a window that
+    does not read (stopped in a debugger, frozen) must not hold up the physics thread."""
 
-    def __init__(self, conn, now):
-        self.conn = conn
+    def __init__(self, sock, now):
+        self._sock = sock      # kept to shut down: that wakes the writer out of a blocked send
+        self.conn = Connection(os.dup(sock.fileno()))
         self.accepted = now
         self.pid = None        # from its hello
         self.name = None
         self.gone = None       # why it went away
         self._known = {}       # name -> key of the bodies it has been sent
         self._busy = False     # an update is on its way or being applied
+        self._outbox = None    # the message for the writer; one at a time (see ready)
+        self._closing = False
+        self._writer_done = False
+        self._send_error = None
+        self._cv = threading.Condition()
+        self._writer = threading.Thread(target=self._write_loop, name='gzclient-writer', daemon=True)
+        self._writer.start()
+
+    def _write_loop(self):
+        try:
+            while True:
+                with self._cv:
+                    while self._outbox is None and not self._closing:
+                        self._cv.wait()
+                    if self._closing:
+                        return
+                    message, self._outbox = self._outbox, None
+                try:
+                    self.conn.send(message)
+                except (EOFError, OSError) as err:
+                    self._send_error = type(err).__name__
+                    return
+                if message[0] == 'stop':
+                    return
+        finally:
+            # Whoever is last closes the descriptors (never one still in use: no reuse under a send)
+            with self._cv:
+                self._writer_done = True
+                closing = self._closing
+            if closing:
+                self._close_handles()
+
+    def _post(self, message):
+        with self._cv:
+            self._outbox = message
+            self._cv.notify()
 
     @property
     def attached(self):
@@ -80,6 +120,9 @@ class WindowLink(object):
     def ready(self):
         """Whether it has applied the last update (and so may be sent the next). False when it has
         gone (see `gone`)."""
+        if self._send_error is not None:
+            self._lost('its connection closed (%s)' % self._send_error)
+            return False
         if not self._busy:
             return True
         try:
@@ -95,29 +138,40 @@ class WindowLink(object):
     def send(self, all_sources, names, shot, follow):
         """Sends one update: the bodies it has not seen, every name, the snapshot."""
         new = {name: entry for name, entry in all_sources.items() if self._known.get(name) != entry[0]}
-        try:
-            self.conn.send(('sync', new, names, shot, follow))
-        except (EOFError, OSError) as err:
-            return self._lost('its connection closed (%s)' % type(err).__name__)
+        self._post(('sync', new, names, shot, follow))
         self._busy = True
         for name, (key, _) in new.items():
             self._known[name] = key
         return True
 
-    def stop(self, why):
-        """Tells the window the world server is going (it closes) and drops the connection."""
+    def stop(self, why, wait=1.0):
+        """Tells the window the world server is going (it closes; given `wait` s to be told) and drops
+        the connection. At shutdown only: it waits."""
         if self.gone is None:
-            try:
-                self.conn.send(('stop', why))
-            except (EOFError, OSError):
-                pass
+            self._post(('stop', why))
+            self._writer.join(wait)
         self.close()
 
     def close(self):
+        """Drops the connection without waiting (the writer, if blocked in a send, is woken and
+        closes the descriptors when it ends)."""
+        with self._cv:
+            self._closing = True
+            self._cv.notify()
+            writer_done = self._writer_done
         try:
-            self.conn.close()
+            self._sock.shutdown(socket.SHUT_RDWR)
         except OSError:
             pass
+        if writer_done:
+            self._close_handles()
+
+    def _close_handles(self):
+        for closable in (self.conn, self._sock):
+            try:
+                closable.close()
+            except OSError:
+                pass
 
     def _lost(self, why):
         self.gone = why
@@ -164,7 +218,7 @@ class AttachedWindows(object):
                 continue
             sock.setblocking(True)  # whatever socket.setdefaulttimeout says (rospy sets one)
             with self._new_lock:
-                self._new.append(Connection(sock.detach()))
+                self._new.append(sock)
 
     def sync(self, now=None):
         """Called by the physics thread with the simulation's lock held, every SYNC_PERIOD: takes in
@@ -173,7 +227,7 @@ class AttachedWindows(object):
         now = time.monotonic() if now is None else now
         with self._new_lock:
             new, self._new = self._new, []
-        self.links.extend(WindowLink(conn, now) for conn in new)
+        self.links.extend(WindowLink(sock, now) for sock in new)
         update = None
         for link in list(self.links):
             if link.pid is None:
@@ -211,8 +265,8 @@ class AttachedWindows(object):
             pass
         with self._new_lock:
             new, self._new = self._new, []
-        for conn in new:
-            conn.close()
+        for sock in new:
+            sock.close()
         for link in self.links:
             link.stop(why)
         self.links = []
