@@ -21,7 +21,7 @@ from .noise import make_noise
 from .ray import ScanGeometry
 from .raycast import cast_rays
 from .render import TINY, CameraFrames
-from .render_worker import FrameBuffers
+from .render_worker import FrameBuffers, InFlight
 from .schedule import RateMeter, UpdateSchedule
 
 
@@ -115,7 +115,7 @@ class CameraSensor(Sensor):
         self.worker_camera = (self.camera.width, self.camera.height, self.camera.hfov, self.camera.near,
                               self.camera.far, noise.mean if noise else 0.0, noise.stddev if noise else None)
         self.buffers = None  # FrameBuffers shared with the worker, made for the first frame it renders
-        self.in_worker = 0   # frames sent to the worker and not rendered yet
+        self.in_worker = InFlight(FRAMES_IN_WORKER)  # frames sent to the worker, not rendered yet
         self.advertise('image', Image, 2)
         self.advertise('info', CameraInfo, 2)
 
@@ -130,35 +130,35 @@ class CameraSensor(Sensor):
         manager = self.manager
         if manager.worker_expected():
             worker = manager.worker
-            if not worker.ready or self.in_worker >= FRAMES_IN_WORKER:
+            if not worker.ready or not self.in_worker.take():
                 self.meter.skip()  # starting, restarting, or this camera's frames not rendered yet
                 return
             if self.buffers is None:
                 self.buffers = FrameBuffers(self.camera.width, self.camera.height, FRAMES_IN_WORKER + 1)
             slot = self.buffers.take()
             if slot is None:  # every buffer still being rendered or published
+                self.in_worker.give_back()
                 self.meter.skip()
                 return
             position, orientation = self.mount.pose()
             buffers = self.buffers
 
             def done(rgb, depth):
-                self.in_worker -= 1
+                self.in_worker.give_back()
                 try:
                     self.publish_frame(stamp, wanted, rgb, depth)
                 finally:
                     buffers.give_back(slot)
 
             def failed(reason):
-                self.in_worker -= 1
+                self.in_worker.give_back()
                 buffers.give_back(slot)
                 self.meter.skip()
                 manager.frame_failed(self, reason)
 
-            self.in_worker += 1
             if not worker.submit(self.sim.world, manager.snapshot(), self.worker_camera, position,
                                  quaternion_to_matrix(orientation), want_depth, buffers, slot, done, failed):
-                self.in_worker -= 1
+                self.in_worker.give_back()
                 buffers.give_back(slot)
                 self.meter.skip()
             return

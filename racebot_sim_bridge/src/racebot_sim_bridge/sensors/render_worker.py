@@ -79,6 +79,30 @@ class FrameBuffers(object):
             pass
 
 
+class InFlight(object):
+    """How many of one camera's frames the worker holds (sent, not answered yet), at most `limit`.
+    Taken on the physics thread and given back on the reader thread, so under a lock: a bare
+    `count += 1` / `count -= 1` from two threads loses updates (the camera then stalls for good or
+    overfills the worker)."""
+
+    def __init__(self, limit):
+        self.limit = limit
+        self.count = 0
+        self._lock = threading.Lock()
+
+    def take(self):
+        """True (and counted) when another frame may go to the worker."""
+        with self._lock:
+            if self.count >= self.limit:
+                return False
+            self.count += 1
+            return True
+
+    def give_back(self):
+        with self._lock:
+            self.count -= 1
+
+
 def view_slot(path, offset, width, height):
     """(rgb uint8 view, depth float32 view) of one slot of a frame-buffer file."""
     rgb = np.memmap(path, dtype=np.uint8, mode='r+', offset=offset, shape=(height, width, 3))
@@ -88,7 +112,15 @@ def view_slot(path, offset, width, height):
 
 class RenderWorker(object):
     """The simulator's side of the worker. `submit` from the physics thread; callbacks run on the
-    reader thread."""
+    reader thread.
+
+    The two threads meet at one lock, `_lock`: it covers the connection in use, `ready`, the
+    requests in flight (`_pending`, `_next_id`) and the bodies the worker has been sent (`_known`).
+    `submit` holds it from its `ready` check to its send, and the reader holds it to install a new
+    worker, to take a reply's request and to end a worker. So a request is either in `_pending`
+    before a worker's end fails what is pending, or refused (`ready` is False by then); and the
+    bodies a request leaves out are known to the very worker it goes to. Callbacks run outside it
+    (they publish, and the physics thread holds the simulator's lock while it waits for ours)."""
 
     def __init__(self, renderer='auto', log=None, on_ready=None):
         """`renderer`: 'auto', 'egl' or 'tiny'; `log`: object with info/warn/error(message);
@@ -106,7 +138,7 @@ class RenderWorker(object):
         self._pending = {}     # request id -> (done, failed, buffers, slot)
         self._next_id = 0
         self._known = {}       # name -> key of the bodies the worker has been sent
-        self._send_lock = threading.Lock()
+        self._lock = threading.Lock()  # see the class docstring
         self._closing = False
         self._lost = None      # why the connection to the last worker ended
         # This thread starts every worker and lives as long as it: the worker's PR_SET_PDEATHSIG
@@ -120,27 +152,27 @@ class RenderWorker(object):
         physics.PhysicsWorld (its bodies are sent to the worker when new); `shot`: world_copy.snapshot;
         `camera`: (width, height, hfov, near, far, noise mean, noise stddev or None);
         `done(rgb, depth or None)` / `failed(reason)` are called once, on the reader thread."""
-        if not self.ready or self._closing:
-            return False
-        bodies = {name: entry for name, entry in sources(world).items() if self._known.get(name) != entry[0]}
-        names = list(world.bodies)
-        request_id = self._next_id
-        self._next_id += 1
-        self._pending[request_id] = (done, failed, buffers, slot)
-        message = ('render', request_id, bodies, names, shot, camera, tuple(position),
-                   np.asarray(rotation).tolist(), bool(want_depth), buffers.path, buffers.offset(slot))
-        try:
-            with self._send_lock:
+        with self._lock:
+            if not self.ready or self._closing:
+                return False
+            bodies = {name: entry for name, entry in sources(world).items() if self._known.get(name) != entry[0]}
+            request_id = self._next_id
+            self._next_id += 1
+            message = ('render', request_id, bodies, list(world.bodies), shot, camera, tuple(position),
+                       np.asarray(rotation).tolist(), bool(want_depth), buffers.path, buffers.offset(slot))
+            try:
                 self._conn.send(message)
-        except (OSError, EOFError, AttributeError) as err:
-            self._pending.pop(request_id, None)
-            self.ready = False
-            if self.log:
-                self.log.error('render worker: could not send a frame request (%s)' % err)
-            return False
-        for name, (key, _) in bodies.items():
-            self._known[name] = key
-        return True
+            except (OSError, EOFError) as err:  # the worker died; the reader sees it too and restarts it
+                self.ready = False
+                error = err
+            else:
+                self._pending[request_id] = (done, failed, buffers, slot)
+                for name, (key, _) in bodies.items():
+                    self._known[name] = key
+                return True
+        if self.log:
+            self.log.error('render worker: could not send a frame request (%s)' % error)
+        return False
 
     # -- reader thread -------------------------------------------------------------------------
     def _run(self):
@@ -155,7 +187,6 @@ class RenderWorker(object):
                     return
                 continue
             self._read()
-            self.ready = False
             self._fail_pending('the render worker stopped')
             if self._closing:
                 return
@@ -182,18 +213,21 @@ class RenderWorker(object):
         return True
 
     def _start(self):
-        self.process, self._conn = child_process.start(
+        process, conn = child_process.start(
             'racebot_sim_bridge.sensors.render_process',
             env={'LP_NUM_THREADS': os.environ.get('LP_NUM_THREADS', llvmpipe_threads(os.cpu_count() or 2))})
-        self._known = {}
-        self._conn.send(('init', self.renderer_choice))
-        if not self._conn.poll(START_TIMEOUT):
+        with self._lock:  # nobody sends while ready is False, so the handshake has the connection alone
+            self.process, self._conn = process, conn
+        conn.send(('init', self.renderer_choice))
+        if not conn.poll(START_TIMEOUT):
             raise RuntimeError('no answer within %g s' % START_TIMEOUT)
-        kind, renderer, description = self._conn.recv()
+        kind, renderer, description = conn.recv()
         if kind != 'ready':
             raise RuntimeError(description)
-        self.renderer, self.description = renderer, description
-        self.ready = True
+        with self._lock:
+            self.renderer, self.description = renderer, description
+            self._known = {}  # a new worker has been sent no body
+            self.ready = not self._closing
         if self.on_ready:
             self.on_ready('%s (worker pid %d)' % (description, self.process.pid))
 
@@ -205,7 +239,8 @@ class RenderWorker(object):
                 self._lost = '%s: %s' % (type(err).__name__, err) if str(err) else 'its socket closed'
                 return
             _, request_id, error, has_depth = reply
-            entry = self._pending.pop(request_id, None)
+            with self._lock:
+                entry = self._pending.pop(request_id, None)
             if entry is None:
                 continue
             done, failed, buffers, slot = entry
@@ -220,7 +255,10 @@ class RenderWorker(object):
                     self.log.error('render worker: frame handler failed: %s: %s' % (type(err).__name__, err))
 
     def _fail_pending(self, reason):
-        pending, self._pending = self._pending, {}
+        """Ends the current worker's requests: no request is accepted until the next `_start`."""
+        with self._lock:
+            self.ready = False
+            pending, self._pending = self._pending, {}
         for _, failed, _, _ in pending.values():
             try:
                 failed(reason)
@@ -228,13 +266,18 @@ class RenderWorker(object):
                 pass
 
     def _stop_process(self):
-        child_process.stop(self.process, self._conn)
+        with self._lock:  # ready is False: submit no longer touches the connection
+            self.ready = False
+            process, conn = self.process, self._conn
+        child_process.stop(process, conn)
 
     def close(self):
         """Stops the worker and waits for it."""
-        self._closing = True
-        self.ready = False
-        child_process.ask_to_stop(self.process, self._conn, lock=self._send_lock)
-        self._stop_process()
+        with self._lock:
+            self._closing = True
+            self.ready = False
+        child_process.ask_to_stop(self.process, self._conn, lock=self._lock)
+        self._thread.join(2.0)  # the worker exits, the reader sees its socket close and ends
+        self._stop_process()    # (closing a connection the reader still reads would raise there)
         self._thread.join(2.0)
         self._fail_pending('the render worker was closed')
