@@ -1,6 +1,9 @@
 #!/usr/bin/env python3
 """Runs racebot's whole test suite and ends with one line `N passed, N failed[, N skipped]`.
 
+`--repeat N` runs it (or the part -k / --unit-only picks) N times and ends with each test's
+failure count over the N runs: the way to tell a flaky test (fails 1 of 10) from a broken one.
+
 Two tiers: pytest unit tests in tests/unit (no ROS master) and every rostest file in
 tests/integration (each brings up its own master, roslaunch and nodes). Results are counted
 from the JUnit XML both write, so a test node that crashes or never reports counts as failed.
@@ -50,7 +53,7 @@ def count_junit(path):
     try:
         root = ET.parse(path).getroot()
     except (ET.ParseError, OSError) as err:
-        return 0, 1, 0, ['%s: unreadable results (%s)' % (path, err)]
+        return 0, 1, 0, ['%s: unreadable results (%s)' % (os.path.relpath(path, OUT), err)]
     passed = failed = skipped = 0
     failures = []
     for case in root.iter('testcase'):
@@ -122,17 +125,67 @@ def rostest_cases(test_file):
     return passed, failed, skipped, failures
 
 
+def failed_test(failure):
+    """The test a failure line names, without its reason: the key failures are counted by."""
+    return failure.split(' -- ', 1)[0]
+
+
+def failure_counts(runs):
+    """[(failures, test)] over `runs` (one list of failure lines per run), most failures first;
+    a test that failed twice in one run counts once."""
+    counts = {}
+    for failures in runs:
+        for test in set(failed_test(f) for f in failures):
+            counts[test] = counts.get(test, 0) + 1
+    return sorted(((n, test) for test, n in counts.items()), key=lambda item: (-item[0], item[1]))
+
+
+def repeat_summary(runs, tests_per_run):
+    """The lines `--repeat` ends with: each failing test's count, then the runs' totals."""
+    n = len(runs)
+    lines = ['', '== %d runs: failures per test' % n]
+    counted = failure_counts(runs)
+    for failures, test in counted:
+        lines.append('  %d of %d  %s' % (failures, n, test))
+    lines.append('  0 of %d  every other test (%d tests a run)' % (n, max(tests_per_run or [0]) - len(counted))
+                 if counted else '  0 of %d  every test (%d tests a run)' % (n, max(tests_per_run or [0])))
+    lines.append('%d of %d runs passed' % (sum(1 for failures in runs if not failures), n))
+    return lines
+
+
 def main():
+    global OUT
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument('--unit-only', action='store_true', help='only the unit tests')
     parser.add_argument('-k', dest='only', help='only the rostest files whose name contains this')
+    parser.add_argument('--repeat', type=int, default=1, metavar='N',
+                        help='run N times; end with each test\'s failure count')
+    parser.add_argument('--out', default=OUT, help='results directory (emptied first; default %(default)s)')
     args = parser.parse_args()
+    if args.repeat < 1:
+        parser.error('--repeat N needs N >= 1, got %d' % args.repeat)
     if 'ROS_PACKAGE_PATH' not in os.environ or ROOT not in os.environ['ROS_PACKAGE_PATH']:
         sys.exit('racebot: source devel/setup.bash first (or use `make test`)')
-    shutil.rmtree(OUT, ignore_errors=True)
-    os.makedirs(OUT)
     use_loopback_ros_networking(os.environ)
     os.environ.setdefault('ROS_LOG_DIR', os.path.join(ROOT, 'out', 'ros_log'))
+    base = os.path.abspath(args.out)
+    runs, tests_per_run = [], []
+    for run in range(args.repeat):
+        OUT = base if args.repeat == 1 else os.path.join(base, 'run-%d' % (run + 1))
+        if args.repeat > 1:
+            print('\n==== run %d of %d' % (run + 1, args.repeat), flush=True)
+        totals, failures = run_once(args)
+        runs.append(failures)
+        tests_per_run.append(sum(totals))
+    if args.repeat > 1:
+        print('\n'.join(repeat_summary(runs, tests_per_run)))
+    sys.exit(0 if not any(runs) and all(tests_per_run) else 1)
+
+
+def run_once(args):
+    """One run of the tests `args` pick, into OUT: ([passed, failed, skipped], failure lines)."""
+    shutil.rmtree(OUT, ignore_errors=True)
+    os.makedirs(OUT)
     totals = [0, 0, 0]
     failures = []
 
@@ -153,8 +206,10 @@ def main():
     line = '%d passed, %d failed' % (totals[0], totals[1])
     if totals[2]:
         line += ', %d skipped' % totals[2]
-    print(line)
-    sys.exit(0 if totals[1] == 0 and totals[0] > 0 else 1)
+    print(line, flush=True)
+    if totals[0] == 0 and not failures:
+        failures.append('no test ran')
+    return totals, failures
 
 
 if __name__ == '__main__':
