@@ -13,6 +13,7 @@ No rospy here. Two renderers:
 import os
 import pkgutil
 import tempfile
+import threading
 
 import numpy as np
 import pybullet as pb
@@ -86,21 +87,22 @@ def load_egl(client):
     """Loads PyBullet's EGL renderer plugin into `client` (DIRECT, no bodies yet) and switches its
     shadow-map pass off (egl_shadow_map). Returns what the plugin says of the OpenGL driver (e.g.
     'Mesa/X.org, llvmpipe (LLVM 15.0.6, 256 bits)') and of the shadow map when it stays on.
-    Raises RendererError when it does not load."""
+    Raises RendererError when it does not load.
+
+    The plugin prints the driver on fd 1, so the driver is read by pointing fd 1 at a file while it
+    loads. fd 1 belongs to the whole process: another thread's output would vanish into that file
+    meanwhile, and no lock can make the plugin's C code wait. So it is done only in a process with
+    one thread: the render worker process (render_process), which loads the renderer before anything
+    else. With other threads running the plugin prints where it likes and the driver goes unnamed."""
     loader = pkgutil.get_loader('eglRenderer')
     if loader is None:
         raise RendererError('PyBullet has no eglRenderer plugin')
-    # The plugin prints the driver's vendor and renderer on stdout: keep them for the log.
-    with tempfile.TemporaryFile(mode='w+b') as out:
-        saved = os.dup(1)
-        try:
-            os.dup2(out.fileno(), 1)
-            plugin = pb.loadPlugin(loader.get_filename(), '_eglRendererPlugin', physicsClientId=client)
-        finally:
-            os.dup2(saved, 1)
-            os.close(saved)
-        out.seek(0)
-        said = out.read().decode('utf-8', 'replace')
+    if threading.active_count() > 1:
+        plugin = pb.loadPlugin(loader.get_filename(), '_eglRendererPlugin', physicsClientId=client)
+        said = 'Renderer = driver not read (other threads share stdout)'
+    else:
+        said, plugin = stdout_of(lambda: pb.loadPlugin(loader.get_filename(), '_eglRendererPlugin',
+                                                       physicsClientId=client))
     if plugin < 0:
         raise RendererError('the EGL plugin did not load (no EGL driver: install libegl1 libegl-mesa0 '
                             'libgl1-mesa-dri for Mesa)')
@@ -111,6 +113,20 @@ def load_egl(client):
     except egl_shadow_map.ShadowMapError as err:
         driver += '; its shadow-map pass stays on (about 2-4 times slower): %s' % err
     return driver
+
+
+def stdout_of(call):
+    """(what `call()` wrote on fd 1, its result). Only in a process with no other thread (see load_egl)."""
+    with tempfile.TemporaryFile(mode='w+b') as out:
+        saved = os.dup(1)
+        try:
+            os.dup2(out.fileno(), 1)
+            result = call()
+        finally:
+            os.dup2(saved, 1)
+            os.close(saved)
+        out.seek(0)
+        return out.read().decode('utf-8', 'replace'), result
 
 
 def renderer_draws_correctly(world, renderer):
