@@ -20,15 +20,15 @@ Timing runs on Tk's after(), i.e. on the wall clock, in the Tk thread, not on a 
 - key events and publishing happen in one thread, so a stop can never be overtaken by a stale drive
   command from a timer thread, and no lock is needed.
 
-X key auto-repeat is switched off (`xset r off`) while the window runs and switched back on at exit,
-whatever the exit: Q, the window closed, SIGINT/SIGTERM (roslaunch), a rospy shutdown, an exception.
+The user's X key auto-repeat is left alone (the tutorial's node ran `xset r off`, a setting of the
+whole X session that a hard kill left off). A held key's auto-repeat reaches Tk as KeyRelease +
+KeyPress pairs sent together; teleop_keys.TeleopController takes a release followed at once by a
+press of the same key for what it is, the key still held.
 Without a display the node prints one line and exits with status 0, so a headless launch goes on.
 """
-import atexit
 import math
 import os
 import signal
-import subprocess
 import sys
 import time
 import traceback
@@ -47,61 +47,6 @@ def say(line):
     """One line on stdout, flushed (roslaunch shows it with output="screen")."""
     sys.stdout.write('keyboard_teleop: %s\n' % line)
     sys.stdout.flush()
-
-
-class KeyRepeat(object):
-    """`xset r off` at switch_off(), `xset r on` at restore() (idempotent, also run by atexit).
-
-    A process can also die where neither `finally` nor atexit runs: SIGKILL (roslaunch's last resort),
-    or Xlib's default error handler calling exit() from inside Tk. For those, switch_off() starts a
-    small guardian shell that waits on a pipe only this process holds: at EOF (this process died,
-    however) it runs `xset r on`; restore() tells it "done" first, so it then does nothing."""
-
-    GUARDIAN = 'read -r done; [ "$done" = done ] || exec xset r on'
-
-    def __init__(self, run=subprocess.run):
-        self._run = run
-        self.switched_off = False
-        self._guardian_fd = None
-
-    def _xset(self, state):
-        try:
-            self._run(['xset', 'r', state], stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
-                      timeout=5, check=True)
-            return True
-        except (OSError, subprocess.SubprocessError):
-            return False
-
-    def _start_guardian(self):
-        read_fd, write_fd = os.pipe()  # not inheritable (PEP 446): no other child holds the write end
-        try:
-            subprocess.Popen(['sh', '-c', self.GUARDIAN], stdin=read_fd, stdout=subprocess.DEVNULL,
-                             stderr=subprocess.DEVNULL, start_new_session=True)  # not hit by Ctrl-C
-        except OSError:
-            os.close(write_fd)
-            return
-        finally:
-            os.close(read_fd)
-        self._guardian_fd = write_fd
-
-    def switch_off(self):
-        atexit.register(self.restore)
-        self.switched_off = self._xset('off')
-        if self.switched_off:
-            self._start_guardian()
-        return self.switched_off
-
-    def restore(self):
-        if self.switched_off:
-            self.switched_off = False
-            self._xset('on')
-        if self._guardian_fd is not None:
-            try:
-                os.write(self._guardian_fd, b'done\n')
-                os.close(self._guardian_fd)
-            except OSError:
-                pass
-            self._guardian_fd = None
 
 
 class TkWindow(object):
@@ -241,11 +186,7 @@ def main(argv=None):
         window.close('exception in a Tk callback')
     window.root.report_callback_exception = report_callback_exception
 
-    repeat = KeyRepeat()
     try:
-        if not repeat.switch_off():
-            rospy.logwarn('keyboard_teleop: `xset r off` failed: key auto-repeat stays on '
-                          '(its release/press pairs are recognised and ignored)')
         rospy.loginfo('keyboard_teleop: focus the "%s" window; W/S drive, A/D steer, Q quits '
                       '(speed %g m/s, steering %g rad)' % (WINDOW_TITLE, node.speed, node.max_steering_angle))
         window.run(lambda: signals[-1] if signals else ('ROS shutdown' if rospy.is_shutdown() else None))
@@ -254,7 +195,6 @@ def main(argv=None):
         if node.published > before:
             time.sleep(STOP_FLUSH_TIME)  # wall time: let the final stop leave before the connections close
     finally:
-        repeat.restore()
         window.destroy()
         rospy.loginfo('keyboard_teleop: exiting (%s)' % (window.close_reason or 'exception'))
         rospy.signal_shutdown(window.close_reason or 'exception')
