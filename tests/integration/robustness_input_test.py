@@ -176,8 +176,15 @@ class RobustnessInputTest(unittest.TestCase):
         self.assert_throttled(mark, 'left_rear_wheel_velocity_controller: command', 'beyond the velocity limit')
         self.sim.sim_sleep(1.0)
         self.assert_survived()
+        # The absurd steering reaches the hinges clamped: their set points stay within the limit. Not
+        # their positions: the flood drives the car at the wheels' 1000 rad/s limit (32 m/s) at full
+        # lock, and the tyres' contact forces then push a hinge past PyBullet's soft joint limit
+        # (0.633-0.647 rad seen within 3 s; 0.600 standing, 0.601 at 3 m/s), by how much depends on
+        # the instant joint_states is read, which moves with the machine's load.
+        for name, set_point in zip(HINGES, self.set_points()):
+            self.assertLessEqual(abs(set_point), HINGE_LIMIT + 1e-9, '%s: set point %g' % (name, set_point))
         for position in self.hinge_positions():
-            self.assertLessEqual(abs(position), HINGE_LIMIT + 0.02)
+            self.assertTrue(math.isfinite(position))
         self.twist(0.0, 0.0)
         self.settle()
 
