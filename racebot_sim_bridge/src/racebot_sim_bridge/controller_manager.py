@@ -55,49 +55,74 @@ class ControllerManager(object):
         self.loaded = collections.OrderedDict()  # name -> Entry, in load order (= update order)
         self.state = {}  # name -> 'initialized' | 'running' | 'stopped'
         self.pending = None  # the accepted SwitchRequest the next update carries out
+        self._loading = set()  # names being loaded (built outside the lock, not in `loaded` yet)
+        self._closed = False  # shut down: a load that finishes now is undone
         self.lock = threading.RLock()
 
     # -- the services' semantics ------------------------------------------------------------------
     def load(self, name):
+        """load_controller. The slow part (the parameter read, the controller's publishers and
+        subscribers: calls to the master) runs without `lock`, which every update needs, so the
+        physics steps on while a controller loads; the lock is taken only to check and insert."""
         with self.lock:
             if not name:
                 self.log.error('Could not load a controller with an empty name; give the name of a '
                                'controller whose configuration is on the parameter server')
                 return False
-            if name in self.loaded:
+            if name in self.loaded or name in self._loading:
                 self.log.error("A controller named '%s' was already loaded inside the controller manager "
                                "(%s); unload it first, or give the new one another name" % (name, self.ns or '/'))
                 return False
-            params = self.get_params(name)
-            where = '%s/%s' % (self.ns, name)
-            if not isinstance(params, dict) or 'type' not in params:
-                self.log.error("Could not load controller '%s' because the type was not specified. Did you load "
-                               "the controller configuration on the parameter server (namespace: '%s')? e.g. "
-                               "rosparam load your_controllers.yaml, with '%s: {type: ...}' under '%s'"
-                               % (name, where, name, self.ns or '/'))
-                return False
-            type_name = params['type']
-            cls = self.types.get(type_name) if isinstance(type_name, str) else None
-            if cls is None:
-                self.log.error("Could not load controller '%s' because controller type '%s' does not exist. "
-                               "Use 'rosservice call %s/controller_manager/list_controller_types' to get the "
-                               "available types" % (name, type_name, self.ns))
-                return False
-            try:
-                controller = cls(name, self.ns, params, self.hw, self.io)
-            except ControllerInitError as err:
-                self.log.error("Initializing controller '%s' failed: %s" % (name, err))
-                return False
-            except Exception as err:  # a malformed configuration: ros_control catches init's exceptions too
-                self.log.error("Initializing controller '%s' failed: its configuration under '%s' is malformed "
-                               "(%s: %s)" % (name, where, type(err).__name__, err))
-                return False
-            self.loaded[name] = Entry(controller, type_name)
-            self.state[name] = 'initialized'
-            self.log.info("Loaded '%s' (%s)" % (name, type_name))
-            return True
+            self._loading.add(name)  # the name is taken while it loads: a second load of it is refused
+        made = None
+        try:
+            made = self._make(name)
+        finally:
+            with self.lock:
+                self._loading.discard(name)
+                closed = self._closed
+                if made is not None and not closed:
+                    self.loaded[name] = made
+                    self.state[name] = 'initialized'
+        if made is None:
+            return False
+        if closed:  # shut down while it loaded (its model was deleted): undone
+            made.controller.shutdown()
+            self.log.error("Could not load controller '%s': its controller manager (%s) was shut down while it "
+                           "loaded (the model was deleted); spawn the model again, then load it" % (name, self.ns or '/'))
+            return False
+        self.log.info("Loaded '%s' (%s)" % (name, made.type_name))
+        return True
+
+    def _make(self, name):
+        """The controller `name` built from its parameters (an Entry), or None with the error logged."""
+        params = self.get_params(name)
+        where = '%s/%s' % (self.ns, name)
+        if not isinstance(params, dict) or 'type' not in params:
+            self.log.error("Could not load controller '%s' because the type was not specified. Did you load "
+                           "the controller configuration on the parameter server (namespace: '%s')? e.g. "
+                           "rosparam load your_controllers.yaml, with '%s: {type: ...}' under '%s'"
+                           % (name, where, name, self.ns or '/'))
+            return None
+        type_name = params['type']
+        cls = self.types.get(type_name) if isinstance(type_name, str) else None
+        if cls is None:
+            self.log.error("Could not load controller '%s' because controller type '%s' does not exist. "
+                           "Use 'rosservice call %s/controller_manager/list_controller_types' to get the "
+                           "available types" % (name, type_name, self.ns))
+            return None
+        try:
+            return Entry(cls(name, self.ns, params, self.hw, self.io), type_name)
+        except ControllerInitError as err:
+            self.log.error("Initializing controller '%s' failed: %s" % (name, err))
+        except Exception as err:  # a malformed configuration: ros_control catches init's exceptions too
+            self.log.error("Initializing controller '%s' failed: its configuration under '%s' is malformed "
+                           "(%s: %s)" % (name, where, type(err).__name__, err))
+        return None
 
     def unload(self, name):
+        """unload_controller; the controller's topics are unregistered (calls to the master) after
+        it has left the update loop, without `lock`."""
         with self.lock:
             if name not in self.loaded:
                 self.log.error("Could not unload controller with name '%s' because no controller with this name "
@@ -107,10 +132,11 @@ class ControllerManager(object):
                 self.log.error("Could not unload controller with name '%s' because it is still running; stop it "
                                "first with switch_controller" % name)
                 return False
-            self.loaded.pop(name).controller.shutdown()
+            entry = self.loaded.pop(name)
             del self.state[name]
-            self.log.info("Unloaded '%s'" % name)
-            return True
+        entry.controller.shutdown()
+        self.log.info("Unloaded '%s'" % name)
+        return True
 
     def request_switch(self, start, stop, strictness, start_asap=False, timeout=0.0):
         """switch_controller's checks, as controller_manager 0.20 makes them; returns the accepted
@@ -306,6 +332,7 @@ class ControllerManager(object):
 
     def shutdown(self):
         with self.lock:
+            self._closed = True
             if self.pending is not None:  # its caller stops waiting: the model is gone
                 self.pending.cancel()
                 self.pending = None
