@@ -23,7 +23,7 @@ import rostest
 from controller_manager_msgs.srv import ListControllers
 from gazebo_msgs.srv import DeleteModel, SpawnModel
 from geometry_msgs.msg import Pose
-from racebot_sim_bridge import sdf_world, urdf_model
+from racebot_sim_bridge import rotations, urdf_model
 from racebot_sim_bridge.sensors.imu import quaternion_to_matrix as rotation
 from sensor_msgs.msg import Image, LaserScan
 from std_msgs.msg import Float64
@@ -123,8 +123,8 @@ class MeshesTest(unittest.TestCase):
 
     def sensor_pose(self, spec):
         position, q = self.car()
-        offset = sdf_world.compose(self.model.pose_in_lumped_link(spec.reference), spec.pose)
-        p, o = sdf_world.compose((tuple(position), q), offset)
+        offset = rotations.compose(self.model.pose_in_lumped_link(spec.reference), spec.pose)
+        p, o = rotations.compose((tuple(position), q), offset)
         return np.array(p), o
 
     # -- the world ------------------------------------------------------------------------------------
@@ -151,7 +151,7 @@ class MeshesTest(unittest.TestCase):
     def test_3_the_lidar_sees_the_mesh_wall_at_its_range(self):
         scan = self.latest('/scan', LaserScan).after(self.now() + 0.1, 'a /scan')
         position, q = self.sensor_pose(self.specs['ray'])
-        yaw = sdf_world.quaternion_to_rpy(q)[2]
+        yaw = rotations.quaternion_to_rpy(q)[2]
         checked = []
         for i, r in enumerate(scan.ranges):
             a = scan.angle_min + i * scan.angle_increment + yaw

@@ -16,7 +16,7 @@ import integration_common  # next to this file
 from gazebo_msgs.msg import LinkStates
 from gazebo_msgs.srv import GetLinkState, GetModelState
 from integration_common import Latest
-from racebot_sim_bridge import sdf_world, urdf_model
+from racebot_sim_bridge import rotations, urdf_model
 from rosgraph_msgs.msg import Clock
 from sensor_msgs.msg import LaserScan
 from std_srvs.srv import Empty
@@ -77,7 +77,7 @@ class PreservedLinkTest(unittest.TestCase):
             joint = self.model.parent_joint(joint.parent)
         pose = model_pose
         for joint in reversed(chain):
-            pose = sdf_world.compose(pose, joint.origin_xyz + joint.origin_rpy)
+            pose = rotations.compose(pose, joint.origin_xyz + joint.origin_rpy)
         return pose
 
     def test_1_the_preserved_link_has_a_state_at_its_urdf_place(self):
@@ -103,8 +103,8 @@ class PreservedLinkTest(unittest.TestCase):
                         else None, 'a /scan')
         self.assertEqual(scan.header.frame_id, 'lidar')
         spec = next(s for s in self.model.sensors if s.reference == 'lidar')
-        position, orientation = sdf_world.compose(lidar_pose, spec.pose)
-        yaw = sdf_world.quaternion_to_rpy(orientation)[2]
+        position, orientation = rotations.compose(lidar_pose, spec.pose)
+        yaw = rotations.quaternion_to_rpy(orientation)[2]
         expected = sensors_geometry.expected_scan(rospy.get_param('~world'), position, yaw, scan.angle_min,
                                                   scan.angle_increment, len(scan.ranges))
         checked, bad = sensors_geometry.compare(scan.ranges, expected, scan.range_min, scan.range_max,

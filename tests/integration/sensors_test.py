@@ -20,7 +20,7 @@ from gazebo_msgs.msg import ModelStates
 from gazebo_msgs.srv import DeleteModel, GetPhysicsProperties, SpawnModel
 from geometry_msgs.msg import Pose
 from integration_common import Latest
-from racebot_sim_bridge import sdf_world, urdf_model
+from racebot_sim_bridge import rotations, urdf_model
 from racebot_sim_bridge.sensors.imu import quaternion_to_matrix as rotation
 from rosgraph_msgs.msg import Clock
 from sensor_msgs.msg import CameraInfo, Image, Imu, LaserScan, PointCloud2
@@ -86,8 +86,8 @@ class SensorsTest(unittest.TestCase):
         position, q = self.car_pose()
         link = self.model.lumped_link(spec.reference)
         self.assertEqual(link, self.model.root_link, 'the sensor links hang on fixed joints from the root')
-        offset = sdf_world.compose(self.model.pose_in_lumped_link(spec.reference), spec.pose)
-        p, o = sdf_world.compose((tuple(position), q), offset)
+        offset = rotations.compose(self.model.pose_in_lumped_link(spec.reference), spec.pose)
+        p, o = rotations.compose((tuple(position), q), offset)
         return np.array(p), o
 
     def latest(self, topic, cls):
@@ -116,7 +116,7 @@ class SensorsTest(unittest.TestCase):
         self.assertAlmostEqual(scan.angle_increment, (ray.max_angle - ray.min_angle) / (ray.samples - 1), places=8)
         self.assertEqual((scan.range_min, scan.range_max), (np.float32(ray.range_min), np.float32(ray.range_max)))
         position, q = self.sensor_pose(self.specs['ray'])
-        yaw = sdf_world.quaternion_to_rpy(q)[2]
+        yaw = rotations.quaternion_to_rpy(q)[2]
         expected = sensors_geometry.expected_scan(rospy.get_param('~world'), position, yaw, scan.angle_min,
                                                   scan.angle_increment, len(scan.ranges))
         checked, bad = sensors_geometry.compare(scan.ranges, expected, scan.range_min, scan.range_max,

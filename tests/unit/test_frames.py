@@ -7,7 +7,7 @@ import pytest
 
 from racebot_sim_bridge import frames, spawn_xml
 from racebot_sim_bridge.frames import Entity, ModelEntry
-from racebot_sim_bridge.sdf_world import quaternion_to_rpy, rpy_to_quaternion
+from racebot_sim_bridge.rotations import quaternion_to_rpy, rpy_to_quaternion
 
 WORLD = [ModelEntry('ground_plane', ['link'], []),
          ModelEntry('car', ['base_link', 'wheel'], ['wheel_joint']),
@@ -76,7 +76,7 @@ def test_in_world_of_a_yawed_frame():
 def test_in_world_applies_the_local_rotation_first():
     rolled = ((0.0, 0.0, 0.0), rpy_to_quaternion(math.pi / 2, 0, 0))   # frame: 90 degrees about x
     q = frames.in_world(rolled, ((0.0, 0.0, 0.0), rpy_to_quaternion(0, 0, math.pi / 2)))[1]  # local: yaw 90
-    from racebot_sim_bridge.sdf_world import rotate
+    from racebot_sim_bridge.rotations import rotate
     assert close(rotate(q, (1.0, 0.0, 0.0)), (0.0, 0.0, 1.0))  # local x -> frame's y -> world z
 
 

@@ -7,7 +7,7 @@ import pytest
 from racebot_sim_bridge import sdf_world, urdf_model
 from racebot_sim_bridge.gazebo_properties import principal_in_frame, tensor_from_principal, urdf_geom_names
 from racebot_sim_bridge.performance_metrics import NO_FPS, MetricsWindow
-from racebot_sim_bridge.sdf_world import rpy_to_quaternion
+from racebot_sim_bridge.rotations import rpy_to_quaternion
 
 
 # -- inertia --------------------------------------------------------------------------------------

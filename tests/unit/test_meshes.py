@@ -384,7 +384,7 @@ def test_a_robot_with_mesh_wheels_and_body_rests_on_its_wheels(isolated, physics
             world.step()
         heights[label] = body.frame_pose().position[2]
         if label == 'meshes':
-            assert 'package://' not in body.source[2]
+            assert 'package://' not in body.source.urdf_xml
             shapes = pb.getCollisionShapeData(body.id, body.link_index['left_rear_wheel'],
                                               physicsClientId=world.client)
             assert shapes[0][2] == pb.GEOM_MESH
@@ -413,7 +413,7 @@ from racebot_sim_bridge.physics import PhysicsWorld
 sources = pickle.load(open(sys.argv[1], 'rb'))
 world = PhysicsWorld()
 for name, source in sources.items():
-    body = world.add_sdf_model(source[1]) if source[0] == 'sdf' else world.spawn_urdf(name, source[1], source[2])
+    body = world.add_copy(name, source)  # as the viewer and the render worker build theirs
     data = pb.getVisualShapeData(body.id, physicsClientId=world.client)
     shapes = pb.getCollisionShapeData(body.id, -1, physicsClientId=world.client)
     print(name, shapes[0][2] == pb.GEOM_MESH, tuple(round(c, 3) for c in data[0][7]))

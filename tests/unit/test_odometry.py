@@ -4,8 +4,8 @@ import math
 
 import pytest
 
-from racebot_sim_bridge.odometry import (REAR_AXLE_X, WHEEL_RADIUS, WHEELBASE, AckermannOdometry,
-                                         quaternion_to_yaw, rotate_into, yaw_to_quaternion)
+from racebot_sim_bridge.odometry import REAR_AXLE_X, WHEEL_RADIUS, WHEELBASE, AckermannOdometry
+from racebot_sim_bridge.rotations import rotate_back, rpy_to_quaternion, yaw_of
 
 
 def drive(odo, seconds, wheel_speed, steering, dt=0.02, start=0.0):
@@ -57,8 +57,9 @@ def test_time_going_back_does_not_move_and_reset_starts_over():
         AckermannOdometry(wheel_radius=0)
 
 
-def test_quaternion_helpers():
-    q = yaw_to_quaternion(1.2)
-    assert quaternion_to_yaw(*q) == pytest.approx(1.2)
-    # a world velocity along +y seen from a body facing +y is straight ahead
-    assert rotate_into(yaw_to_quaternion(math.pi / 2), (0.0, 2.0, 0.0)) == pytest.approx((2.0, 0.0, 0.0))
+def test_quaternion_helpers_the_nodes_use():
+    q = rpy_to_quaternion(0.0, 0.0, 1.2)  # wheel odometry's orientation
+    assert q == pytest.approx((0.0, 0.0, math.sin(0.6), math.cos(0.6)))
+    assert yaw_of(q) == pytest.approx(1.2)
+    # ground truth's twist: a world velocity along +y seen from a body facing +y is straight ahead
+    assert rotate_back(rpy_to_quaternion(0.0, 0.0, math.pi / 2), (0.0, 2.0, 0.0)) == pytest.approx((2.0, 0.0, 0.0))

@@ -273,3 +273,27 @@ def test_reset_to_spawn(world, car):
     assert car.twist().linear == pytest.approx((0.0, 0.0, 0.0), abs=1e-12)
     states = world.joint_states(car, [j.index for j in car.joints.values()])
     assert all(s.position == 0.0 and s.velocity == 0.0 for s in states)
+
+
+TWO_LINKS = """<sdf version="1.6"><world name="w"><model name="pair"><static>true</static>
+  <link name="a"><collision name="c"><geometry><box><size>1 1 1</size></box></geometry></collision></link>
+  <link name="b"><pose>2 0 0 0 0 0</pose>
+    <collision name="c"><geometry><sphere><radius>0.5</radius></sphere></geometry></collision></link>
+</model></world></sdf>"""
+
+
+def test_a_body_declares_where_it_came_from_and_its_extra_bodies(make_world, car, racebot_model):
+    import pickle
+    from racebot_sim_bridge.physics import BodySource
+    w = make_world(world_text=TWO_LINKS)
+    pair = w.bodies['pair']
+    assert pair.source == BodySource('sdf', pair.source.model, None) and pair.source.model.name == 'pair'
+    assert [link for link, _ in pair.extra_bodies] == ['b'] and pair.copy_key is None
+    assert pb.getBasePositionAndOrientation(pair.extra_bodies[0][1], physicsClientId=w.client)[0] == (2, 0, 0)
+    assert (car.source.kind, car.source.model, car.extra_bodies) == ('urdf', racebot_model, [])
+    assert '<robot' in car.source.urdf_xml
+    with pytest.raises(TypeError):
+        car.source[0]  # a named record: read by field
+    copy = pickle.loads(pickle.dumps(pair.source))  # what the viewer and the render worker receive
+    other = make_world(world_text='<sdf version="1.6"><world name="other"/></sdf>')
+    assert copy == pair.source and other.add_copy('pair', copy).extra_bodies[0][0] == 'b'

@@ -6,12 +6,14 @@ import random
 
 import pybullet as pb
 import pytest
+from hypothesis import given, settings, strategies as st
 
 from racebot_sim_bridge import rotations
 
 TOL = 1e-9  # our own round trips, in double precision
 PB = 1e-5  # against multiplyTransforms and friends: PyBullet computes them in single precision
 N = 500
+HALF_PI = math.pi / 2
 
 
 def _random_rpy(rng):
@@ -122,3 +124,26 @@ def test_six_tuple_poses_are_taken_as_xyz_rpy(rng):
 def test_as_transform_gives_floats():
     p, q = rotations.as_transform(((1, 2, 3), (0, 0, 0, 1)))
     assert all(type(c) is float for c in p + q)
+
+
+def test_rpy_is_fixed_axis_xyz():
+    # R = Rz(yaw) Ry(pitch) Rx(roll): roll 90 then yaw 90 sends y to z, then z stays z.
+    q = rotations.rpy_to_quaternion(HALF_PI, 0.0, HALF_PI)
+    assert rotations.rotate(q, (0.0, 1.0, 0.0)) == pytest.approx((0.0, 0.0, 1.0), abs=1e-12)
+    assert rotations.rotate(q, (1.0, 0.0, 0.0)) == pytest.approx((0.0, 1.0, 0.0), abs=1e-12)
+
+
+def test_compose_of_six_tuples_by_hand():
+    xyz, _ = rotations.compose((1, 0, 0, 0, 0, HALF_PI), (1, 0, 0, 0, 0, 0))
+    assert xyz == pytest.approx((1.0, 1.0, 0.0))
+    # Rotations do not commute: roll 90 of the parent, then yaw 90 of the child.
+    _, quat = rotations.compose((0, 0, 0, HALF_PI, 0, 0), (0, 0, 0, 0, 0, HALF_PI))
+    assert rotations.rotate(quat, (1.0, 0.0, 0.0)) == pytest.approx((0.0, 0.0, 1.0), abs=1e-12)
+
+
+@settings(max_examples=200, deadline=None)
+@given(st.floats(-3.1, 3.1), st.floats(-1.5, 1.5), st.floats(-3.1, 3.1))
+def test_rpy_round_trip(roll, pitch, yaw):
+    # Angles are unique for |pitch| < pi/2 and roll, yaw in (-pi, pi).
+    back = rotations.quaternion_to_rpy(rotations.rpy_to_quaternion(roll, pitch, yaw))
+    assert back == pytest.approx((roll, pitch, yaw), abs=1e-9)

@@ -1,13 +1,14 @@
 """Unit tests of racebot_sim_bridge.sdf_world (SDF 1.6 worlds)."""
 
 import math
+import sys
+from pathlib import Path
 
 import pytest
 from hypothesis import given, settings, strategies as st
 
-from racebot_sim_bridge.sdf_world import (
-    WorldError, compose, inverse, load_world, parse_world, quaternion_to_rpy, rotate,
-    rpy_to_quaternion)
+from racebot_sim_bridge.rotations import quaternion_to_rpy
+from racebot_sim_bridge.sdf_world import Physics, WorldError, load_world, parse_world
 
 HALF_PI = math.pi / 2
 
@@ -162,25 +163,6 @@ def test_saved_state_poses_are_applied():
     assert world.warnings == []
 
 
-def test_rpy_is_fixed_axis_xyz():
-    # R = Rz(yaw) Ry(pitch) Rx(roll): roll 90 then yaw 90 sends y to z, then z stays z.
-    q = rpy_to_quaternion(HALF_PI, 0.0, HALF_PI)
-    assert rotate(q, (0.0, 1.0, 0.0)) == pytest.approx((0.0, 0.0, 1.0), abs=1e-12)
-    assert rotate(q, (1.0, 0.0, 0.0)) == pytest.approx((0.0, 1.0, 0.0), abs=1e-12)
-
-
-def test_compose_and_inverse():
-    a = (1.0, 2.0, 3.0, 0.1, -0.2, 0.3)
-    xyz, quat = compose(inverse(a), a)
-    assert xyz == pytest.approx((0.0, 0.0, 0.0), abs=1e-12)
-    assert abs(quat[3]) == pytest.approx(1.0)
-    xyz, quat = compose((1, 0, 0, 0, 0, HALF_PI), (1, 0, 0, 0, 0, 0))
-    assert xyz == pytest.approx((1.0, 1.0, 0.0))
-    # Rotations do not commute: roll 90 of the parent, then yaw 90 of the child.
-    _, quat = compose((0, 0, 0, HALF_PI, 0, 0), (0, 0, 0, 0, 0, HALF_PI))
-    assert rotate(quat, (1.0, 0.0, 0.0)) == pytest.approx((0.0, 0.0, 1.0), abs=1e-12)
-
-
 # -- warnings: one each, element skipped, world still loads --------------------------------
 
 @pytest.mark.parametrize('body, needles', [
@@ -323,9 +305,83 @@ def test_random_input_raises_only_world_error(data):
         pass
 
 
-@settings(max_examples=200, deadline=None)
-@given(st.floats(-3.1, 3.1), st.floats(-1.5, 1.5), st.floats(-3.1, 3.1))
-def test_rpy_round_trip(roll, pitch, yaw):
-    # Angles are unique for |pitch| < pi/2 and roll, yaw in (-pi, pi).
-    back = quaternion_to_rpy(rpy_to_quaternion(roll, pitch, yaw))
-    assert back == pytest.approx((roll, pitch, yaw), abs=1e-9)
+
+# -- the reader's pieces return what they found; only bad values in the file raise ---------------
+
+def reader(tmp_path, monkeypatch, models=()):
+    """A _WorldReader with its own mesh cache and a model path of `models` (folders under tmp_path)."""
+    from racebot_sim_bridge.sdf_world import _WorldReader
+    monkeypatch.setenv('RACEBOT_MESH_CACHE', str(tmp_path / 'cache'))
+    return _WorldReader('<test>', search=[str(tmp_path / m) for m in models])
+
+
+def geometry(text):
+    import xml.etree.ElementTree as ET
+    return ET.fromstring('<geometry>%s</geometry>' % text)
+
+
+def test_model_folder_gives_the_folder_or_the_problem_and_never_raises(tmp_path, monkeypatch):
+    (tmp_path / 'models' / 'wall').mkdir(parents=True)
+    (tmp_path / 'models' / 'a_file').write_text('')
+    r = reader(tmp_path, monkeypatch, ['models'])
+    found = r.model_folder('model://wall')
+    assert (found.path, found.problem, found.missing) == (str(tmp_path / 'models' / 'wall'), None, False)
+    assert r.model_folder('file://%s' % (tmp_path / 'models' / 'wall')).path == str(tmp_path / 'models' / 'wall')
+    missing = r.model_folder('model://cone')
+    assert missing.path is None and missing.missing
+    assert "model 'cone' not found; searched %s" % (tmp_path / 'models') in missing.problem
+    for target, needle in [('model://', 'names no model'), ('model://a_file', 'is a file, not a model folder'),
+                           ('http://example.com/wall', 'unknown URI scheme'),
+                           (str(tmp_path / 'nowhere'), 'no model folder at %s' % (tmp_path / 'nowhere'))]:
+        result = r.model_folder(target)
+        assert result.path is None and not result.missing and needle in result.problem, (target, result)
+
+
+def test_shape_gives_the_geometry_or_none_with_one_warning(tmp_path, monkeypatch):
+    r = reader(tmp_path, monkeypatch)
+    box = r.shape(geometry('<box><size>1 2 3</size></box>'), 'here')
+    assert (box.shape.kind, box.shape.size, box.mesh_rgba) == ('box', (1.0, 2.0, 3.0), None)
+    assert r.warnings == []
+    assert r.shape(geometry('<box><size>1 0 3</size></box>'), 'here') is None
+    assert r.shape(geometry('<heightmap/>'), 'there') is None
+    assert r.warnings == ['here: degenerate geometry: box size must be > 0, got 1 0 3; skipped',
+                          'there: heightmap geometry is not supported; skipped']
+
+
+def test_a_mesh_is_read_once_and_a_bad_one_warned_about_once(tmp_path, monkeypatch):
+    sys.path.insert(0, str(Path(__file__).resolve().parents[1] / 'integration'))
+    import mesh_fixtures  # tests/integration, shared with the rostest node
+    mesh_fixtures.write_mesh(mesh_fixtures.box((1.0, 1.0, 1.0)), str(tmp_path / 'red.dae'), rgba=(1, 0, 0, 1))
+    r = reader(tmp_path, monkeypatch)
+    good = '<mesh><uri>%s</uri><scale>2 2 2</scale></mesh>' % (tmp_path / 'red.dae')
+    first, again = r.shape(geometry(good), 'a'), r.shape(geometry(good), 'b')
+    assert first.shape.kind == 'mesh' and first.shape.scale == (2.0, 2.0, 2.0)
+    assert first.shape.filename.startswith(str(tmp_path / 'cache')) and first.mesh_rgba == (1.0, 0.0, 0.0, 1.0)
+    assert again == first and r.warnings == []
+    bad = '<mesh><uri>%s</uri></mesh>' % (tmp_path / 'missing.stl')
+    assert r.shape(geometry(bad), 'collision') is None
+    assert r.shape(geometry(bad), 'visual') is None
+    assert len(r.warnings) == 1 and r.warnings[0].startswith('collision: %s' % (tmp_path / 'missing.stl'))
+    assert r.shape(geometry('<mesh><uri>%s</uri><scale>1 0 1</scale></mesh>' % (tmp_path / 'red.dae')), 'v') is None
+    assert r.warnings[-1] == 'v: degenerate geometry: mesh scale must be > 0, got 1 0 1; skipped'
+
+
+def test_a_model_folder_without_an_sdf_file_is_one_warning(tmp_path, monkeypatch):
+    (tmp_path / 'models' / 'hollow').mkdir(parents=True)
+    monkeypatch.setenv('GAZEBO_MODEL_PATH', str(tmp_path / 'models'))
+    world = parse_world(world_with('<include><uri>model://hollow</uri></include>'), search=[str(tmp_path / 'models')])
+    assert world.models == []
+    one_warning(world, "include 'model://hollow'", 'has no SDF file', '; skipped')
+
+
+@pytest.mark.parametrize('tag, value, message', [
+    ('real_time_update_rate', '-1', 'real_time_update_rate must be >= 0, got -1; using the default 1000'),
+    ('real_time_factor', '0', 'real_time_factor must be > 0, got 0; using the default 1'),
+    ('max_step_size', 'fast', "max_step_size must be numbers, got 'fast'; using the default 0.001"),
+])
+def test_an_unusable_physics_value_keeps_the_default_with_one_warning(tag, value, message):
+    world = parse_world(world_with('', header='<physics type="ode"><%s>%s</%s></physics>' % (tag, value, tag)))
+    assert one_warning(world) == 'physics: ' + message
+    assert getattr(world.physics, tag) == getattr(Physics(), tag)
+    assert parse_world(world_with('', header='<physics type="ode"><real_time_update_rate>0'
+                                             '</real_time_update_rate></physics>')).physics.real_time_update_rate == 0

@@ -7,7 +7,7 @@ import numpy as np
 import pybullet as pb
 import pytest
 
-from racebot_sim_bridge.sdf_world import rpy_to_quaternion
+from racebot_sim_bridge.rotations import rpy_to_quaternion
 from racebot_sim_bridge.sensors.camera import OPTICAL_FROM_SENSOR, PinholeCamera, mask_depth
 from racebot_sim_bridge.sensors.imu import ImuKinematics, quaternion_to_matrix
 from racebot_sim_bridge.sensors.noise import GaussianNoise, ImageNoise, make_noise

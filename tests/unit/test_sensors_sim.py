@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 import rospy
 
-from racebot_sim_bridge import sdf_world, urdf_model
+from racebot_sim_bridge import rotations, sdf_world, urdf_model
 from racebot_sim_bridge.sensors import devices, render
 from racebot_sim_bridge.sensors import SensorManager
 from racebot_sim_bridge.simulator import Simulator
@@ -294,8 +294,8 @@ def test_a_preserved_fixed_link_is_a_real_frame_with_a_working_sensor(racebot_xm
         listen(fake, '/scan')
         run(sim, 0.5)
         (pose, twist), frame = sim.world.link_state(body, 'lidar'), body.frame_pose()
-        expected = sdf_world.compose((frame.position, frame.orientation),
-                                     sdf_world.compose((0.0, 0.0, 0.032, 0.0, 0.0, 0.0),
+        expected = rotations.compose((frame.position, frame.orientation),
+                                     rotations.compose((0.0, 0.0, 0.032, 0.0, 0.0, 0.0),
                                                        (0.093603, 0.0, 0.12377, 0.0, 0.0, 0.0)))
         assert pose.position == pytest.approx(expected[0], abs=1e-6)
         assert pose.orientation == pytest.approx(expected[1], abs=1e-6)
@@ -304,9 +304,9 @@ def test_a_preserved_fixed_link_is_a_real_frame_with_a_working_sensor(racebot_xm
         scan = fake.publishers['/scan'].messages[-1]
         assert scan.header.frame_id == 'lidar'
         position, orientation = laser.mount.pose()
-        on_link = sdf_world.compose((pose.position, pose.orientation), laser.spec.pose)  # the <pose> on its link
+        on_link = rotations.compose((pose.position, pose.orientation), laser.spec.pose)  # the <pose> on its link
         assert position == pytest.approx(on_link[0], abs=1e-6)
-        yaw = sdf_world.quaternion_to_rpy(orientation)[2]
+        yaw = rotations.quaternion_to_rpy(orientation)[2]
         expected_ranges = sensors_geometry.expected_scan(str(ROOM), position, yaw, scan.angle_min,
                                                          scan.angle_increment, 1081)
         checked, bad = sensors_geometry.compare(scan.ranges, expected_ranges, scan.range_min, scan.range_max, 0.03)

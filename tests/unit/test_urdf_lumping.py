@@ -7,7 +7,7 @@ import numpy as np
 import pybullet as pb
 import pytest
 
-from racebot_sim_bridge import sdf_world
+from racebot_sim_bridge import rotations
 from racebot_sim_bridge.physics import PhysicsWorld
 from racebot_sim_bridge.urdf_lumping import lump_fixed_links
 from racebot_sim_bridge.urdf_model import parse_urdf
@@ -131,7 +131,7 @@ def test_pybullet_keeps_a_preserved_link_rigid_on_its_parent():
             world.step()
         base, _ = world.link_state(body, 'base')
         arm, _ = world.link_state(body, 'arm')
-        expected = sdf_world.compose((base.position, base.orientation), (0.2, 0.0, 0.3, 0.0, 0.0, math.pi / 2))
+        expected = rotations.compose((base.position, base.orientation), (0.2, 0.0, 0.3, 0.0, 0.0, math.pi / 2))
         assert arm.position == pytest.approx(expected[0], abs=1e-5)
         assert arm.orientation == pytest.approx(expected[1], abs=1e-5)
         assert base.position[2] < -1.0  # it did fall

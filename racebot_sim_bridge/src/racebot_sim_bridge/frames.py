@@ -1,7 +1,7 @@
 """Frames as gazebo_ros's services use them: entity names, quaternions, poses and twists in a reference.
 
 Pure Python: no rospy, no pybullet. Poses are ``(position xyz, quaternion xyzw)`` pairs (physics.Pose
-fits), twists ``(linear, angular)`` pairs of world-frame vectors.
+fits), twists ``(linear, angular)`` pairs of world-frame vectors; the maths is rotations.py's.
 
 Names: Gazebo finds an entity by walking its tree depth first (world -> models in the order they came
 -> each model's links, then its joints) and taking the first whose scoped name (``model::link``) or
@@ -17,16 +17,14 @@ Twists, per service (gazebo_ros_api_plugin, noetic), with F the reference frame'
 import math
 from collections import namedtuple
 
-from .sdf_world import inverse as _inverse
-from .sdf_world import quaternion_multiply, rotate
+from . import rotations
+from .rotations import IDENTITY  # noqa: F401 (part of this module's API)
 
 # The names gazebo_ros takes as the world's inertial frame when no entity has the name.
 WORLD_FRAMES = ('', 'world', 'map', '/map')
 
 Entity = namedtuple('Entity', 'model link')  # link None: the model itself
 ModelEntry = namedtuple('ModelEntry', 'name links joints')  # what resolve() walks, in world order
-
-IDENTITY = (0.0, 0.0, 0.0, 1.0)
 
 
 def resolve(name, models):
@@ -67,25 +65,22 @@ def normalised(q):
 
 def in_world(frame_pose, local_pose):
     """A pose given in frame F, in the world: F * local (ignition's `local + F`)."""
-    (fp, fq), (lp, lq) = frame_pose, local_pose
-    moved = rotate(fq, lp)
-    return (tuple(a + b for a, b in zip(fp, moved)), quaternion_multiply(fq, lq))
+    return rotations.compose(frame_pose, local_pose)
 
 
 def relative_to(frame_pose, pose):
     """A world pose expressed in frame F: F^-1 * pose (ignition's `pose - F`)."""
-    return in_world(_inverse(frame_pose), pose)
+    return rotations.compose(rotations.inverse(frame_pose), pose)
 
 
 def rotate_into(frame_pose, v):
     """A world vector in F's axes (ignition's RotateVectorReverse)."""
-    q = frame_pose[1]
-    return rotate((-q[0], -q[1], -q[2], q[3]), v)
+    return rotations.rotate_back(frame_pose[1], v)
 
 
 def rotate_from(frame_pose, v):
     """A vector given in F's axes, in the world's (ignition's RotateVector)."""
-    return rotate(frame_pose[1], v)
+    return rotations.rotate(frame_pose[1], v)
 
 
 def _minus(a, b):

@@ -26,7 +26,7 @@ import math
 from collections import namedtuple
 
 from . import frames
-from .sdf_world import compose, inverse, rotate
+from .rotations import compose, inverse, rotate
 from .world_entities import WorldEntities
 
 NSEC_PER_SEC = 10 ** 9
@@ -256,7 +256,7 @@ def link_address(body, link):
     """(PyBullet body id, link index) of a model's link; None if it has no such link."""
     if link in body.link_index:
         return body.id, body.link_index[link]
-    for name, body_id in getattr(body, 'extra_bodies', []):
+    for name, body_id in body.extra_bodies:
         if name == link:
             return body_id, -1
     return None

@@ -27,7 +27,7 @@ import threading
 from . import frames
 from .gazebo_forces import link_address
 from .world_entities import WorldEntities
-from .sdf_world import quaternion_to_rpy, rotate
+from .rotations import matrix, quaternion_to_rpy
 
 # Gazebo's names for a URDF link's collisions after fixed-joint lumping (sdformat's parser_urdf).
 LUMP_PREFIX = '_fixed_joint_lump__'
@@ -37,16 +37,10 @@ AXES_TOLERANCE = 1e-6  # relative size of products of inertia in the inertial fr
 
 
 # -- inertia maths (pure) ---------------------------------------------------------------------------
-def rotation_matrix(q):
-    """Rows of the rotation matrix of a unit quaternion (x, y, z, w)."""
-    columns = [rotate(q, axis) for axis in ((1, 0, 0), (0, 1, 0), (0, 0, 1))]
-    return [[columns[c][r] for c in range(3)] for r in range(3)]
-
-
 def tensor_from_principal(diagonal, q):
     """(ixx, ixy, ixz, iyy, iyz, izz) in the link's axes of principal moments `diagonal` about axes
     turned by q: R diag R^T."""
-    r = rotation_matrix(q)
+    r = matrix(q)
     i = [[sum(r[a][k] * diagonal[k] * r[b][k] for k in range(3)) for b in range(3)] for a in range(3)]
     return i[0][0], i[0][1], i[0][2], i[1][1], i[1][2], i[2][2]
 
@@ -56,7 +50,7 @@ def principal_in_frame(tensor, q):
     (diagonal, largest product of inertia relative to the largest moment)."""
     ixx, ixy, ixz, iyy, iyz, izz = tensor
     i = [[ixx, ixy, ixz], [ixy, iyy, iyz], [ixz, iyz, izz]]
-    r = rotation_matrix(q)
+    r = matrix(q)
     d = [[sum(r[k][a] * i[k][m] * r[m][b] for k in range(3) for m in range(3)) for b in range(3)] for a in range(3)]
     scale = max(abs(d[0][0]), abs(d[1][1]), abs(d[2][2]), 1e-300)
     off = max(abs(d[0][1]), abs(d[0][2]), abs(d[1][2])) / scale
@@ -130,7 +124,7 @@ class GazeboProperties(object):
                 res.success, res.status_message = False, 'GetModelProperties: model does not exist'
                 return res
             res.body_names = WorldEntities.link_names(body)
-            kind, spec = body.source[0], body.source[1]
+            kind, spec = body.source.kind, body.source.model
             if kind == 'urdf':
                 res.geom_names = [g for link in res.body_names for g in urdf_geom_names(spec, link)]
                 # Gazebo's joints: every URDF joint not lumped away (its child stays a link of its own)
@@ -225,7 +219,7 @@ class GazeboProperties(object):
                 return res
             d = self.sim.world.link_dynamics(*link_address(body, link))
             res.gravity_mode = (body.name, link) not in self.no_gravity
-            spec = body.source[1].link(link) if body.static and body.source[0] == 'sdf' else None
+            spec = body.source.model.link(link) if body.static and body.source.kind == 'sdf' else None
         if spec is not None:  # PyBullet holds a static body with mass 0; Gazebo reports the SDF's inertial
             res.mass = spec.mass
             if spec.inertia is not None:

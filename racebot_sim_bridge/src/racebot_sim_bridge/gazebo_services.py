@@ -19,6 +19,7 @@ from . import frames, spawn_xml, urdf_model
 from .controller_manager import ControllerManagerServices
 from .gazebo_forces import GazeboForces
 from .gazebo_properties import GazeboProperties
+from .rotations import as_transform, as_xyz_rpy
 from .simulator import SpawnError
 from .world_entities import WorldEntities
 
@@ -41,12 +42,6 @@ def _pose_msg(pose):
 def _twist_msg(twist):
     """geometry_msgs/Twist of a (linear, angular) pair."""
     return Twist(linear=Vector3(*twist[0]), angular=Vector3(*twist[1]))
-
-
-def _six(transform):
-    """(x, y, z, roll, pitch, yaw) of a (position, quaternion) pair: an SDF <pose>."""
-    from .sdf_world import quaternion_to_rpy
-    return tuple(transform[0]) + tuple(quaternion_to_rpy(transform[1]))
 
 
 def _finite(*values):
@@ -187,7 +182,7 @@ class GazeboServices(object):
             self.rospy.logerr('SpawnModel: Failure - model name %s already exist.' % model.name)
             return srv.SpawnModelResponse(False, SPAWN_EXISTS)
         # the request's pose, then the model's own <pose> in it (updateSDFAttributes)
-        model.pose = _six(frames.in_world(pose, sdf_world.as_transform(model.pose)))
+        model.pose = as_xyz_rpy(frames.in_world(pose, as_transform(model.pose)))
         try:
             self.sim.world.add_sdf_model(model)
         except PhysicsError as err:

@@ -1,6 +1,7 @@
-"""Odometry maths: the Ackermann car's wheel odometry and the ground-truth twist in the body frame.
+"""Odometry maths: the Ackermann car's wheel odometry.
 
-Pure Python: no rospy, no pybullet (odometry_nodes.py wraps these in ROS nodes).
+Pure Python: no rospy, no pybullet (odometry_nodes.py wraps it in a ROS node; the ground truth's
+body-frame twist there is rotations.rotate_back).
 
 AckermannOdometry integrates the kinematic bicycle model of a car with rear-wheel speed and
 front steering: the rear axle centre moves at v = wheel radius x mean rear wheel speed, along the
@@ -13,7 +14,6 @@ along the arc. The pose reported is that of the child frame (base_footprint), wh
 """
 import math
 
-from .sdf_world import rotate
 
 # The racebot's model (racebot_description/urdf/ackermann/racecar.xacro).
 WHEEL_RADIUS = 0.032   # m, collision cylinder of every wheel
@@ -21,19 +21,6 @@ WHEELBASE = 0.26       # m, rear axle to steering hinges (2 x axle_x)
 REAR_AXLE_X = -0.13    # m, x of the rear wheels' axle in base_footprint
 REAR_WHEEL_JOINTS = ('left_rear_wheel_joint', 'right_rear_wheel_joint')
 STEERING_JOINTS = ('left_steering_hinge_joint', 'right_steering_hinge_joint')
-
-
-def yaw_to_quaternion(yaw):
-    return 0.0, 0.0, math.sin(yaw / 2.0), math.cos(yaw / 2.0)
-
-
-def quaternion_to_yaw(x, y, z, w):
-    return math.atan2(2.0 * (w * z + x * y), 1.0 - 2.0 * (y * y + z * z))
-
-
-def rotate_into(q, v):
-    """Vector v (world) expressed in the frame whose world orientation is the unit quaternion q."""
-    return rotate((-q[0], -q[1], -q[2], q[3]), v)  # the inverse rotation
 
 
 class AckermannOdometry(object):

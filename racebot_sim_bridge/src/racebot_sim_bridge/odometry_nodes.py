@@ -33,6 +33,7 @@ from nav_msgs.msg import Odometry
 from sensor_msgs.msg import JointState
 
 from . import odometry
+from .rotations import rotate_back, rpy_to_quaternion
 
 # Diagonal covariances (x, y, z, roll, pitch, yaw): ground truth is exact; the wheel estimate
 # drifts with slip (a few percent of the distance driven).
@@ -101,8 +102,8 @@ class GroundTruthOdometry(object):
         odom.child_frame_id = self.child_frame_id
         odom.pose.pose = pose
         odom.pose.covariance = diagonal([GROUND_TRUTH_VARIANCE] * 6)
-        lin = odometry.rotate_into(q, (twist.linear.x, twist.linear.y, twist.linear.z))
-        ang = odometry.rotate_into(q, (twist.angular.x, twist.angular.y, twist.angular.z))
+        lin = rotate_back(q, (twist.linear.x, twist.linear.y, twist.linear.z))  # world -> body axes
+        ang = rotate_back(q, (twist.angular.x, twist.angular.y, twist.angular.z))
         odom.twist.twist.linear.x, odom.twist.twist.linear.y, odom.twist.twist.linear.z = lin
         odom.twist.twist.angular.x, odom.twist.twist.angular.y, odom.twist.twist.angular.z = ang
         odom.twist.covariance = diagonal([GROUND_TRUTH_VARIANCE] * 6)
@@ -165,7 +166,7 @@ class WheelOdometry(object):
         odom.header.frame_id = self.frame_id
         odom.child_frame_id = self.child_frame_id
         odom.pose.pose.position.x, odom.pose.pose.position.y = x, y
-        q = odometry.yaw_to_quaternion(yaw)
+        q = rpy_to_quaternion(0.0, 0.0, yaw)
         o = odom.pose.pose.orientation
         o.x, o.y, o.z, o.w = q
         odom.pose.covariance = diagonal(WHEEL_POSE_VARIANCE)

@@ -28,10 +28,12 @@ import shutil
 import tempfile
 import xml.etree.ElementTree as ET
 from collections import namedtuple
+from dataclasses import dataclass
 
 import pybullet as pb
 
-from . import sdf_world, urdf_assets, urdf_lumping
+from . import urdf_assets, urdf_lumping
+from .rotations import as_transform
 
 # Mass and inertia given to links that declare no <inertial> (Gazebo drops such links' mass).
 NEGLIGIBLE_MASS = 1e-4
@@ -51,15 +53,32 @@ class PhysicsError(RuntimeError):
     """A request the physics world cannot carry out; the message says why."""
 
 
-class Body(object):
-    """A body in the world: its PyBullet id, links by name and movable joints by name."""
+@dataclass(frozen=True)
+class BodySource:
+    """What a body was built from, all another client needs to build a copy (picklable: the viewer and
+    the render worker get it through a pipe). kind 'sdf': `model` is the sdf_world.Model; kind 'urdf':
+    `model` is the urdf_model.RobotModel and `urdf_xml` its URDF, meshes resolved to files."""
+    kind: str
+    model: object
+    urdf_xml: str = None
 
-    def __init__(self, client, name, body_id, static, kind):
+
+class Body(object):
+    """A body in the world: its PyBullet id, links by name and movable joints by name.
+
+    `source`: the BodySource it was built from. `extra_bodies`: [(link name, PyBullet id)] of an SDF
+    model's links after the first (each link its own body; the first is `id`). `copy_key`: None until
+    world_copy.body_key gives the body its identity across a delete and respawn under the same name."""
+
+    def __init__(self, client, name, body_id, static, source, extra_bodies=()):
         self.client = client
         self.name = name
         self.id = body_id
         self.static = static
-        self.kind = kind  # 'urdf' or 'sdf'
+        self.source = source
+        self.kind = source.kind  # 'urdf' or 'sdf'
+        self.extra_bodies = list(extra_bodies)
+        self.copy_key = None
         dyn = pb.getDynamicsInfo(body_id, -1, physicsClientId=client)
         self._inertial = (tuple(dyn[3]), tuple(dyn[4]))  # base inertial frame in the link frame
         self.spawn_pose = self.pose()
@@ -156,10 +175,8 @@ class PhysicsWorld(object):
                                "plane or mesh of positive size)" % model.name)
         # A multi-link SDF model is kept as its first link's body plus extra bodies named model::link.
         first_link, first_id = ids[0]
-        body = Body(self.client, model.name, first_id, model.static, 'sdf')
+        body = Body(self.client, model.name, first_id, model.static, BodySource('sdf', model), extra_bodies=ids[1:])
         body.link_index = {first_link: -1}
-        body.extra_bodies = ids[1:]
-        body.source = ('sdf', model)  # what a viewer needs to build its own copy
         self.bodies[model.name] = body
         return body
 
@@ -168,7 +185,7 @@ class PhysicsWorld(object):
         static = model.static or link.mass is None or link.mass <= 0
         try:
             for col in link.collisions:
-                pos, orn = sdf_world.as_transform(col.pose)
+                pos, orn = as_transform(col.pose)
                 shape = self._collision_shape(col.shape, pos, orn, static)
                 if shape is not None:
                     shapes.append((shape, col))
@@ -207,7 +224,7 @@ class PhysicsWorld(object):
             s = col.shape
             if s.kind == 'plane':
                 continue
-            pos, orn = sdf_world.as_transform(col.pose)
+            pos, orn = as_transform(col.pose)
             kwargs['shapeTypes'].append({'box': pb.GEOM_BOX, 'cylinder': pb.GEOM_CYLINDER,
                                          'sphere': pb.GEOM_SPHERE, 'mesh': pb.GEOM_MESH}[s.kind])
             kwargs['fileNames'].append(s.filename or '')
@@ -256,13 +273,13 @@ class PhysicsWorld(object):
         c = self.client
         if len(visuals) == 1:
             vis = visuals[0]
-            pos, orn = sdf_world.as_transform(vis.pose)
+            pos, orn = as_transform(vis.pose)
             return pb.createVisualShape(rgbaColor=_rgba(vis), visualFramePosition=pos, visualFrameOrientation=orn,
                                         physicsClientId=c, **self._visual_geometry(vis.shape))
         kwargs = dict(shapeTypes=[], radii=[], halfExtents=[], lengths=[], fileNames=[], meshScales=[],
                       planeNormals=[], visualFramePositions=[], visualFrameOrientations=[])
         for vis in visuals:
-            pos, orn = sdf_world.as_transform(vis.pose)
+            pos, orn = as_transform(vis.pose)
             geometry = self._visual_geometry(vis.shape)
             kwargs['shapeTypes'].append(geometry['shapeType'])
             kwargs['radii'].append(geometry.get('radius', 0.0))
@@ -306,8 +323,8 @@ class PhysicsWorld(object):
                                   physicsClientId=self.client)
         except pb.error as err:
             raise PhysicsError("PyBullet could not load the URDF of '%s': %s" % (name, err))
-        body = Body(self.client, name, body_id, False, 'urdf')
-        body.source = ('urdf', urdf_model, urdf_xml)  # meshes resolved: a copy needs no package path
+        # urdf_xml has its meshes resolved: a copy needs no package path
+        body = Body(self.client, name, body_id, False, BodySource('urdf', urdf_model, urdf_xml))
         for link, index in body.link_index.items():
             # PyBullet's default link damping (0.04) has no counterpart in Gazebo: a free wheel would slow down.
             pb.changeDynamics(body_id, index, lateralFriction=min(link_friction(urdf_model, link), self.ground_mu),
@@ -323,14 +340,14 @@ class PhysicsWorld(object):
     def add_copy(self, name, source):
         """Builds here a copy of another client's body from its Body.source (a window's or a render
         worker's copy of the simulated world); returns the new Body."""
-        if source[0] == 'sdf':
-            return self.add_sdf_model(source[1])
-        return self.spawn_urdf(name, source[1], source[2])
+        if source.kind == 'sdf':
+            return self.add_sdf_model(source.model)
+        return self.spawn_urdf(name, source.model, source.urdf_xml)
 
     def remove(self, name):
         body = self.bodies.pop(name)
         pb.removeBody(body.id, physicsClientId=self.client)
-        for _, extra in getattr(body, 'extra_bodies', []):
+        for _, extra in body.extra_bodies:
             pb.removeBody(extra, physicsClientId=self.client)
 
     # -- state ----------------------------------------------------------------------------------
@@ -444,8 +461,8 @@ class PhysicsWorld(object):
     def reset_to_spawn(self, body):
         pos, orn = body.spawn_pose
         self.set_pose(body, pos, orn)
-        for link, extra in getattr(body, 'extra_bodies', []):  # an SDF model's other links, as spawned
-            pos, orn = body.source[1].world_pose_of(link)
+        for link, extra in body.extra_bodies:  # an SDF model's other links, as spawned
+            pos, orn = body.source.model.world_pose_of(link)
             self.set_base_state(extra, pos, orn)
         for joint in body.joints.values():
             pb.resetJointState(body.id, joint.index, body.initial_joint_positions.get(joint.name, 0.0), 0.0,

@@ -19,27 +19,26 @@ unusable (non-numeric, non-finite, zero or negative sizes) and models or meshes 
 found (the warning names the URI and every place searched) or read.  Only a missing file, text
 that is not XML and a document without ``<world>`` raise ``WorldError``.
 
-Poses are 6-tuples ``(x, y, z, roll, pitch, yaw)``; roll, pitch, yaw are fixed-axis rotations
-about X, then Y, then Z (R = Rz(yaw) Ry(pitch) Rx(roll)), as SDF and URDF define them.
-Quaternions are ``(x, y, z, w)``.
+Poses are 6-tuples ``(x, y, z, roll, pitch, yaw)`` as SDF writes them; the maths on them (and
+their conventions) is rotations.py's.
 """
 
 import math
 import os
 import xml.etree.ElementTree as ET
 from dataclasses import dataclass, field
+from typing import NamedTuple
 
 __all__ = [
     'WorldError', 'World', 'Physics', 'Light', 'sun_light', 'Model', 'Link', 'Collision', 'Visual', 'Shape',
-    'parse_world', 'load_world', 'compose', 'inverse', 'rpy_to_quaternion',
-    'quaternion_to_rpy', 'quaternion_multiply', 'rotate', 'as_transform',
-    'GAZEBO_MATERIALS', 'EMPTY_WORLD_SDF', 'ZERO_POSE',
+    'parse_world', 'load_world', 'GAZEBO_MATERIALS', 'EMPTY_WORLD_SDF', 'ZERO_POSE',
 ]
 
 ZERO_POSE = (0.0, 0.0, 0.0, 0.0, 0.0, 0.0)
 
 from . import meshes, model_path
 from .materials import GAZEBO_MATERIALS, gazebo_material_rgba  # GAZEBO_MATERIALS: re-exported
+from .rotations import as_xyz_rpy, compose, inverse
 
 # What Gazebo's worlds/empty.world holds, for world_name:=worlds/empty.world (the default of
 # empty_world.launch), which Gazebo finds in its own resource path.
@@ -57,87 +56,6 @@ _EMPTY_WORLD_NAMES = ('worlds/empty.world', 'empty.world')
 
 class WorldError(ValueError):
     """The world cannot be read at all (missing file, not XML, no <world>)."""
-
-
-# ---------------------------------------------------------------------------------------
-# Rotation maths
-# ---------------------------------------------------------------------------------------
-
-def rpy_to_quaternion(roll, pitch, yaw):
-    """Quaternion (x, y, z, w) of R = Rz(yaw) Ry(pitch) Rx(roll)."""
-    cr, sr = math.cos(roll / 2.0), math.sin(roll / 2.0)
-    cp, sp = math.cos(pitch / 2.0), math.sin(pitch / 2.0)
-    cy, sy = math.cos(yaw / 2.0), math.sin(yaw / 2.0)
-    return (sr * cp * cy - cr * sp * sy,
-            cr * sp * cy + sr * cp * sy,
-            cr * cp * sy - sr * sp * cy,
-            cr * cp * cy + sr * sp * sy)
-
-
-def quaternion_to_rpy(q):
-    """(roll, pitch, yaw) of a unit quaternion (x, y, z, w); inverse of rpy_to_quaternion."""
-    x, y, z, w = q
-    sin_pitch = max(-1.0, min(1.0, 2.0 * (w * y - z * x)))
-    roll = math.atan2(2.0 * (w * x + y * z), 1.0 - 2.0 * (x * x + y * y))
-    pitch = math.asin(sin_pitch)
-    yaw = math.atan2(2.0 * (w * z + x * y), 1.0 - 2.0 * (y * y + z * z))
-    return roll, pitch, yaw
-
-
-def quaternion_multiply(a, b):
-    """Hamilton product a * b of (x, y, z, w) quaternions (apply b, then a)."""
-    ax, ay, az, aw = a
-    bx, by, bz, bw = b
-    return (aw * bx + ax * bw + ay * bz - az * by,
-            aw * by - ax * bz + ay * bw + az * bx,
-            aw * bz + ax * by - ay * bx + az * bw,
-            aw * bw - ax * bx - ay * by - az * bz)
-
-
-def rotate(q, v):
-    """Vector v rotated by the unit quaternion q."""
-    x, y, z, w = q
-    # v' = v + w t + q_vec x t, with t = 2 (q_vec x v)
-    tx = 2.0 * (y * v[2] - z * v[1])
-    ty = 2.0 * (z * v[0] - x * v[2])
-    tz = 2.0 * (x * v[1] - y * v[0])
-    return (v[0] + w * tx + (y * tz - z * ty),
-            v[1] + w * ty + (z * tx - x * tz),
-            v[2] + w * tz + (x * ty - y * tx))
-
-
-def as_transform(pose):
-    """``(xyz, quaternion)`` from a 6-tuple pose or an ``(xyz, quaternion)`` pair."""
-    if len(pose) == 6:
-        return (tuple(float(c) for c in pose[:3]), rpy_to_quaternion(*pose[3:]))
-    xyz, quat = pose
-    return tuple(float(c) for c in xyz), tuple(float(c) for c in quat)
-
-
-def compose(pose_a, pose_b):
-    """Pose b (given in frame a) expressed in a's parent frame: ``a * b``.
-
-    Either argument may be a 6-tuple pose or an ``(xyz, quaternion)`` pair; the result is an
-    ``(xyz, quaternion xyzw)`` pair.
-    """
-    pa, qa = as_transform(pose_a)
-    pb, qb = as_transform(pose_b)
-    moved = rotate(qa, pb)
-    return ((pa[0] + moved[0], pa[1] + moved[1], pa[2] + moved[2]),
-            quaternion_multiply(qa, qb))
-
-
-def inverse(pose):
-    """The inverse transform, as an ``(xyz, quaternion)`` pair."""
-    p, q = as_transform(pose)
-    q_inv = (-q[0], -q[1], -q[2], q[3])
-    back = rotate(q_inv, p)
-    return (-back[0], -back[1], -back[2]), q_inv
-
-
-def _to_six(transform):
-    xyz, quat = transform
-    return tuple(xyz) + tuple(quaternion_to_rpy(quat))
 
 
 # ---------------------------------------------------------------------------------------
@@ -269,16 +187,34 @@ class World:
 # Parsing
 # ---------------------------------------------------------------------------------------
 
-class _Skip(Exception):
-    """An element's content is unusable; the message says why.  Caught where it is skipped."""
+class _Unusable(Exception):
+    """A value written in the file cannot be used (non-numeric, non-finite, out of range); the message
+    says which and why.  Raised by the value readers (_floats, _child_float, _child_bool, pose, the
+    size checks), caught where the element holding the value is skipped with one warning."""
 
 
-class _NotFound(_Skip):
-    """An included model is on no folder of the model path."""
+class _Geometry(NamedTuple):
+    """A usable <geometry>: its Shape and the colour its mesh file gives (None: a primitive, or a mesh
+    without one)."""
+    shape: Shape
+    mesh_rgba: tuple = None
 
 
-class _Repeated(_Skip):
-    """A mesh that already failed (and was warned about) once: skipped without a second warning."""
+class _MeshFile(NamedTuple):
+    """A mesh URI read once (per folder it is relative to): the converted file and its colour, or
+    `problem` (why it cannot be used; warned about the first time only)."""
+    obj_path: str = None
+    rgba: tuple = None
+    problem: str = None
+
+
+class _ModelFolder(NamedTuple):
+    """Where an <include>d model is: `path`, or None and `problem` (what is wrong, what to do).
+    `missing`: the model is on no folder of the model path; such includes are warned about once per
+    URI, all together, after the world is read."""
+    path: str = None
+    problem: str = None
+    missing: bool = False
 
 
 _UNSUPPORTED_GEOMETRY = {
@@ -317,16 +253,16 @@ _LINK_UNSUPPORTED = {
 
 
 def _floats(text, count, what):
-    """``count`` finite floats from whitespace-separated ``text``, else ``_Skip``."""
+    """``count`` finite floats from whitespace-separated ``text``, else ``_Unusable``."""
     parts = (text or '').split()
     if len(parts) != count:
-        raise _Skip('%s needs %d numbers, got %r' % (what, count, (text or '').strip()))
+        raise _Unusable('%s needs %d numbers, got %r' % (what, count, (text or '').strip()))
     try:
         values = tuple(float(p) for p in parts)
     except ValueError:
-        raise _Skip('%s must be numbers, got %r' % (what, text.strip())) from None
+        raise _Unusable('%s must be numbers, got %r' % (what, text.strip())) from None
     if not all(math.isfinite(v) for v in values):
-        raise _Skip('%s must be finite, got %r' % (what, text.strip()))
+        raise _Unusable('%s must be finite, got %r' % (what, text.strip()))
     return values
 
 
@@ -346,7 +282,7 @@ def _child_bool(elem, tag, default, what):
         return True
     if text in ('false', '0'):
         return False
-    raise _Skip('%s must be true or false, got %r' % (what, (child.text or '').strip()))
+    raise _Unusable('%s must be true or false, got %r' % (what, (child.text or '').strip()))
 
 
 def _quote(name):
@@ -360,7 +296,7 @@ class _WorldReader:
         self._search = search  # the model path, looked up on first use (it lists ROS packages)
         # relative mesh URIs: relative to the folder of the model being read, else the world file's
         self.base_dir = os.path.dirname(source) if os.path.isfile(source) else None
-        self._meshes = {}  # (uri, base_dir) -> (path, rgba) or the _Skip it gave: each mesh read and warned once
+        self._meshes = {}  # (uri, base_dir) -> _MeshFile: each mesh read and warned about once
         self._missing_models = {}  # model:// URI -> [message, names of the includes skipped]
 
     @property
@@ -371,6 +307,11 @@ class _WorldReader:
 
     def warn(self, where, message):
         self.warnings.append('%s: %s' % (where, message) if where else message)
+
+    def skipped(self, where, problem):
+        """Warns that the element at `where` is skipped because of `problem`; returns None, its value."""
+        self.warn(where, '%s; skipped' % problem)
+        return None
 
     # -- small pieces -----------------------------------------------------------------
 
@@ -388,7 +329,8 @@ class _WorldReader:
         return _floats(child.text, 6, 'pose')
 
     def shape(self, geometry, where):
-        """A Shape, or None (with one warning) when it cannot be simulated."""
+        """The _Geometry of a <geometry>, or None when it cannot be simulated: warned about here, once
+        (a mesh that failed for an earlier element is not warned about again)."""
         if geometry is None:
             self.warn(where, 'no <geometry>; skipped')
             return None
@@ -401,12 +343,16 @@ class _WorldReader:
                       % ', '.join(k.tag for k in kinds))
         elem = kinds[0]
         kind = elem.tag
-        if kind == 'mesh':
-            return self.mesh(elem)
-        if kind in _UNSUPPORTED_GEOMETRY or kind not in ('box', 'cylinder', 'sphere', 'plane'):
-            reason = _UNSUPPORTED_GEOMETRY.get(kind, 'unknown geometry <%s>' % kind)
-            self.warn(where, '%s; skipped' % reason)
-            return None
+        if kind not in ('box', 'cylinder', 'sphere', 'plane', 'mesh'):
+            return self.skipped(where, _UNSUPPORTED_GEOMETRY.get(kind, 'unknown geometry <%s>' % kind))
+        try:
+            return self.mesh(elem, where) if kind == 'mesh' else _Geometry(self.primitive(elem))
+        except _Unusable as err:
+            return self.skipped(where, err)
+
+    def primitive(self, elem):
+        """The Shape of a <box>, <cylinder>, <sphere> or <plane>; _Unusable naming a value that is not usable."""
+        kind = elem.tag
         if kind == 'box':
             size_elem = elem.find('size')
             size = (1.0, 1.0, 1.0) if size_elem is None else _floats(size_elem.text, 3,
@@ -428,42 +374,47 @@ class _WorldReader:
                                                                       'plane normal')
         norm = math.sqrt(sum(c * c for c in normal))
         if norm == 0.0:
-            raise _Skip('degenerate geometry: plane normal is the zero vector')
+            raise _Unusable('degenerate geometry: plane normal is the zero vector')
         size = (1.0, 1.0) if size_elem is None else _floats(size_elem.text, 2, 'plane size')
         self._positive(size, 'plane size')
         return Shape('plane', size=size, normal=tuple(c / norm for c in normal))
 
-    def mesh(self, elem):
-        """A mesh Shape with its file resolved and converted (meshes.convert); _Skip naming the
-        URI and where it was looked for when it cannot be used."""
+    def mesh(self, elem, where):
+        """The _Geometry of a <mesh>, its file resolved and converted (meshes.convert); None when the
+        file cannot be used: warned about (naming the URI and where it was looked for) the first
+        time only. _Unusable for an unusable value (no URI, a bad scale)."""
         uri = (elem.findtext('uri') or '').strip()
         if not uri:
-            raise _Skip('a <mesh> without <uri>; give <uri>model://NAME/meshes/FILE.dae</uri>')
+            raise _Unusable('a <mesh> without <uri>; give <uri>model://NAME/meshes/FILE.dae</uri>')
         scale_elem = elem.find('scale')
         scale = (1.0, 1.0, 1.0) if scale_elem is None else _floats(scale_elem.text, 3, 'mesh scale')
         self._positive(tuple(abs(c) for c in scale), 'mesh scale')
         if elem.find('submesh') is not None:
             self.warn('', 'mesh %s: <submesh> is not supported; the whole mesh is used' % uri)
         key = (uri, self.base_dir)
-        if key not in self._meshes:
-            try:
-                path = model_path.resolve_uri(uri, self.base_dir,
-                                              self.search if uri.startswith('model://') else None)
-                converted = meshes.convert(path)
-                self._meshes[key] = (converted.obj_path, converted.rgba)
-            except (model_path.ResolveError, meshes.MeshError) as err:
-                self._meshes[key] = _Skip(str(err))
-                raise self._meshes[key] from None
-        known = self._meshes[key]
-        if isinstance(known, _Skip):
-            raise _Repeated(str(known))
-        return Shape('mesh', filename=known[0], scale=scale, uri=uri), known[1]
+        known = self._meshes.get(key)
+        if known is None:
+            known = self._meshes[key] = self._read_mesh(uri)
+            if known.problem is not None:
+                return self.skipped(where, known.problem)
+        if known.problem is not None:
+            return None  # warned about when it was first read
+        return _Geometry(Shape('mesh', filename=known.obj_path, scale=scale, uri=uri), known.rgba)
+
+    def _read_mesh(self, uri):
+        """The _MeshFile of a mesh URI (relative ones: to the current base folder)."""
+        try:
+            path = model_path.resolve_uri(uri, self.base_dir, self.search if uri.startswith('model://') else None)
+            converted = meshes.convert(path)
+        except (model_path.ResolveError, meshes.MeshError) as err:
+            return _MeshFile(problem=str(err))
+        return _MeshFile(converted.obj_path, converted.rgba)
 
     @staticmethod
     def _positive(values, what):
         if not all(v > 0.0 for v in values):
-            raise _Skip('degenerate geometry: %s must be > 0, got %s'
-                        % (what, ' '.join('%g' % v for v in values)))
+            raise _Unusable('degenerate geometry: %s must be > 0, got %s'
+                            % (what, ' '.join('%g' % v for v in values)))
 
     @staticmethod
     def rgba(material):
@@ -483,47 +434,45 @@ class _WorldReader:
 
     # -- elements ---------------------------------------------------------------------
 
-    def _shape_and_colour(self, elem, where):
-        result = self.shape(elem.find('geometry'), where)
-        return result if isinstance(result, tuple) else (result, None)
-
     def collision(self, elem, where):
         name = elem.get('name', '')
         where = '%s collision %s' % (where, _quote(name))
         try:
             pose = self.pose(elem, where)
-            shape, _ = self._shape_and_colour(elem, where)
-            if shape is None:
-                return None
-            ode = elem.find('surface/friction/ode')
-            mu = mu2 = None
-            if ode is not None:
+        except _Unusable as err:
+            return self.skipped(where, err)
+        geometry = self.shape(elem.find('geometry'), where)
+        if geometry is None:
+            return None
+        mu = mu2 = None
+        ode = elem.find('surface/friction/ode')
+        if ode is not None:
+            try:
                 mu = _child_float(ode, 'mu', None, 'friction mu')
                 mu2 = _child_float(ode, 'mu2', None, 'friction mu2')
-                for label, value in (('mu', mu), ('mu2', mu2)):
-                    if value is not None and value < 0.0:
-                        raise _Skip('friction %s must be >= 0, got %g' % (label, value))
-        except _Skip as err:
-            if not isinstance(err, _Repeated):
-                self.warn(where, '%s; skipped' % err)
-            return None
-        return Collision(name, pose, shape, mu, mu2)
+            except _Unusable as err:
+                return self.skipped(where, err)
+            for label, value in (('mu', mu), ('mu2', mu2)):
+                if value is not None and value < 0.0:
+                    return self.skipped(where, 'friction %s must be >= 0, got %g' % (label, value))
+        return Collision(name, pose, geometry.shape, mu, mu2)
 
     def visual(self, elem, where):
         name = elem.get('name', '')
         where = '%s visual %s' % (where, _quote(name))
         try:
             pose = self.pose(elem, where)
-            shape, mesh_rgba = self._shape_and_colour(elem, where)
-            if shape is None:
-                return None
-            # an SDF <material> overrides the mesh's own, as in Gazebo
-            rgba = self.rgba(elem.find('material')) or mesh_rgba
-        except _Skip as err:
-            if not isinstance(err, _Repeated):
-                self.warn(where, '%s; skipped' % err)
+        except _Unusable as err:
+            return self.skipped(where, err)
+        geometry = self.shape(elem.find('geometry'), where)
+        if geometry is None:
             return None
-        return Visual(name, pose, shape, rgba)
+        try:
+            # an SDF <material> overrides the mesh's own, as in Gazebo
+            rgba = self.rgba(elem.find('material')) or geometry.mesh_rgba
+        except _Unusable as err:
+            return self.skipped(where, err)
+        return Visual(name, pose, geometry.shape, rgba)
 
     def link(self, elem, where, static=False):
         name = elem.get('name')
@@ -548,9 +497,8 @@ class _WorldReader:
                                 'iyy': 1.0, 'iyz': 0.0, 'izz': 1.0}
                     link.inertia = tuple(_child_float(inertia, key, default, key)
                                          for key, default in defaults.items())
-        except _Skip as err:
-            self.warn(where, '%s; skipped' % err)
-            return None
+        except _Unusable as err:
+            return self.skipped(where, err)
         for child in elem:
             if child.tag == 'collision':
                 collision = self.collision(child, where)
@@ -574,9 +522,8 @@ class _WorldReader:
         try:
             model = Model(name, pose=self.pose(elem, where),
                           static=_child_bool(elem, 'static', False, 'static'))
-        except _Skip as err:
-            self.warn(where, '%s; skipped' % err)
-            return None
+        except _Unusable as err:
+            return self.skipped(where, err)
         warnings_before = len(self.warnings)
         for child in elem:
             if child.tag == 'link':
@@ -618,28 +565,32 @@ class _WorldReader:
         if target in self._missing_models:
             self._missing_models[target][1].append(name or target)
             return None
+        folder = self.model_folder(target)
+        if folder.missing:
+            # one warning per missing model however often it is included, given with the world's others
+            self._missing_models[target] = [folder.problem, [name or target]]
+            return None
+        if folder.problem is not None:
+            return self.skipped(where, folder.problem)
         try:
-            folder = self.model_folder(target)
-            sdf_file = model_path.model_sdf_file(folder)
-            try:
-                root = ET.parse(sdf_file).getroot()
-            except (ET.ParseError, OSError) as err:
-                raise _Skip('%s cannot be read as XML: %s' % (sdf_file, err))
-            model_elem = root if root.tag == 'model' else root.find('model')
-            if model_elem is None:
-                raise _Skip('%s has no <model> (only models can be included)' % sdf_file)
+            sdf_file = model_path.model_sdf_file(folder.path)
+        except model_path.ResolveError as err:
+            return self.skipped(where, err)
+        try:
+            root = ET.parse(sdf_file).getroot()
+        except (ET.ParseError, OSError) as err:
+            return self.skipped(where, '%s cannot be read as XML: %s' % (sdf_file, err))
+        model_elem = root if root.tag == 'model' else root.find('model')
+        if model_elem is None:
+            return self.skipped(where, '%s has no <model> (only models can be included)' % sdf_file)
+        try:
             pose = self.pose(elem, where) if elem.find('pose') is not None else None
             static = _child_bool(elem, 'static', None, 'static')
-        except _NotFound as err:
-            # one warning per missing model however often it is included, given with the world's others
-            self._missing_models[target] = [str(err), [name or target]]
-            return None
-        except (_Skip, model_path.ResolveError) as err:
-            self.warn(where, '%s; skipped' % err)
-            return None
+        except _Unusable as err:
+            return self.skipped(where, err)
         if name:
             model_elem.set('name', name)  # before reading, so that its warnings name it
-        outer_base, self.base_dir = self.base_dir, folder
+        outer_base, self.base_dir = self.base_dir, folder.path
         try:
             model = self.model(model_elem)
         finally:
@@ -653,29 +604,30 @@ class _WorldReader:
         return model
 
     def model_folder(self, target):
-        """The folder of an included model: model://NAME on the model path, or a file:// or
-        plain path to the folder. _NotFound naming every place searched when it is not there."""
+        """The _ModelFolder of an included model: model://NAME on the model path, or a file:// or
+        plain path to the folder; when it is not there, the problem names every place searched."""
         if target.startswith('model://'):
             name = target[len('model://'):]  # the whole path, as Gazebo looks it up
             if not name:
-                raise _Skip('names no model; give <uri>model://NAME</uri>')
+                return _ModelFolder(problem='names no model; give <uri>model://NAME</uri>')
             folder, searched = model_path.find_model(name, self.search)
             if folder is None:
-                raise _NotFound("model '%s' not found; searched %s; add the folder holding %s/ to "
-                                'GAZEBO_MODEL_PATH (or put the model in ~/.gazebo/models)'
-                                % (name, ', '.join(searched) or '(an empty model path)', name.split('/')[0]))
+                return _ModelFolder(problem="model '%s' not found; searched %s; add the folder holding %s/ to "
+                                            'GAZEBO_MODEL_PATH (or put the model in ~/.gazebo/models)'
+                                            % (name, ', '.join(searched) or '(an empty model path)',
+                                               name.split('/')[0]), missing=True)
             if not os.path.isdir(folder):
-                raise _Skip('%s is a file, not a model folder; an <include> names the folder that holds '
-                            'model.config' % folder)
-            return folder
+                return _ModelFolder(problem='%s is a file, not a model folder; an <include> names the folder '
+                                            'that holds model.config' % folder)
+            return _ModelFolder(folder)
         path = target[len('file://'):] if target.startswith('file://') else os.path.expanduser(target)
         if '://' in path:
-            raise _Skip("unknown URI scheme; use model://NAME or file:///path/to/model")
+            return _ModelFolder(problem='unknown URI scheme; use model://NAME or file:///path/to/model')
         if not os.path.isabs(path):
             path = os.path.join(self.base_dir or os.getcwd(), path)
         if not os.path.isdir(path):
-            raise _Skip('no model folder at %s' % path)
-        return path
+            return _ModelFolder(problem='no model folder at %s' % path)
+        return _ModelFolder(path)
 
     def ground_plane(self, elem):
         name = (elem.findtext('name') or '').strip() or 'ground_plane'
@@ -683,9 +635,8 @@ class _WorldReader:
         try:
             pose = self.pose(elem, where)
             static = _child_bool(elem, 'static', True, 'static')
-        except _Skip as err:
-            self.warn(where, '%s; skipped' % err)
-            return None
+        except _Unusable as err:
+            return self.skipped(where, err)
         # Gazebo's ground_plane model: a static 100 m x 100 m plane, mu 100, mu2 50.
         def plane():
             return Shape('plane', size=(100.0, 100.0), normal=(0.0, 0.0, 1.0))
@@ -714,9 +665,8 @@ class _WorldReader:
                          colour('specular', default.specular), attenuation,
                          _floats(elem.findtext('direction'), 3, 'direction') if elem.find('direction') is not None
                          else default.direction)
-        except _Skip as err:
-            self.warn(where, '%s; skipped' % err)
-            return None
+        except _Unusable as err:
+            return self.skipped(where, err)
 
     def light_of_include(self, elem):
         """The sun of an <include> of model://sun (its <name> and <pose> win), else None."""
@@ -725,9 +675,8 @@ class _WorldReader:
         name = (elem.findtext('name') or '').strip() or 'sun'
         try:
             pose = self.pose(elem, 'include %s' % _quote(name)) if elem.find('pose') is not None else None
-        except _Skip as err:
-            self.warn('include %s' % _quote(name), '%s; skipped' % err)
-            return None
+        except _Unusable as err:
+            return self.skipped('include %s' % _quote(name), err)
         return sun_light(name, pose)
 
     def physics(self, world_elem):
@@ -748,19 +697,21 @@ class _WorldReader:
                 default = getattr(physics, tag)
                 try:
                     value = _child_float(chosen, tag, default, tag)
-                    if value < 0.0 or (value == 0.0 and not allow_zero):
-                        raise _Skip('%s must be %s, got %g'
-                                    % (tag, '>= 0' if allow_zero else '> 0', value))
-                    setattr(physics, tag, value)
-                except _Skip as err:
+                except _Unusable as err:
                     self.warn('physics', '%s; using the default %g' % (err, default))
+                    continue
+                if value < 0.0 or (value == 0.0 and not allow_zero):
+                    self.warn('physics', '%s must be %s, got %g; using the default %g'
+                              % (tag, '>= 0' if allow_zero else '> 0', value, default))
+                    continue
+                setattr(physics, tag, value)
         gravity = world_elem.find('gravity')
         if gravity is None and chosen is not None:
             gravity = chosen.find('gravity')  # SDF <= 1.5 kept it in <physics>
         if gravity is not None:
             try:
                 physics.gravity = _floats(gravity.text, 3, 'gravity')
-            except _Skip as err:
+            except _Unusable as err:
                 self.warn('world', '%s; using the default %s' % (err, physics.gravity))
         return physics
 
@@ -788,14 +739,14 @@ class _WorldReader:
                     if link_state.find('pose') is not None:
                         link_poses[link_state.get('name')] = self.pose(
                             link_state, '%s link %s' % (where, _quote(link_state.get('name'))))
-            except _Skip as err:
+            except _Unusable as err:
                 self.warn(where, '%s; the state is ignored for this model' % err)
                 continue
             model.pose = model_pose
             to_model = inverse(model_pose)
             for link in model.links:
                 if link.name in link_poses:
-                    link.pose = _to_six(compose(to_model, link_poses[link.name]))
+                    link.pose = as_xyz_rpy(compose(to_model, link_poses[link.name]))
 
     # -- the world --------------------------------------------------------------------
 

@@ -11,7 +11,7 @@ what is left: a kept fixed joint becomes one of PyBullet's fixed links, rigid in
 """
 import numpy as np
 
-from .sdf_world import compose, quaternion_to_rpy
+from .rotations import compose, matrix, quaternion_to_rpy
 
 __all__ = ['lump_fixed_links']
 
@@ -75,18 +75,11 @@ def _set_origin(elem, transform):
     origin.set('rpy', ' '.join(repr(float(v)) for v in quaternion_to_rpy(quaternion)))
 
 
-def _matrix(quaternion):
-    x, y, z, w = quaternion
-    return np.array([[1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)],
-                     [2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)],
-                     [2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)]])
-
-
 def _inertial_in(inertial, offset):
     """(mass, centre of mass, inertia tensor about it) of an urdf_model.Inertial, in the frame in
     which its link's frame sits at `offset` ((xyz, quaternion))."""
     xyz, quaternion = compose(offset, inertial.origin_xyz + inertial.origin_rpy)
-    rotation = _matrix(quaternion)
+    rotation = np.array(matrix(quaternion))
     tensor = np.array([[inertial.ixx, inertial.ixy, inertial.ixz],
                        [inertial.ixy, inertial.iyy, inertial.iyz],
                        [inertial.ixz, inertial.iyz, inertial.izz]])

@@ -16,7 +16,7 @@ import os
 import xml.etree.ElementTree as ET
 from dataclasses import dataclass, field
 
-from .sdf_world import compose
+from .rotations import compose
 
 __all__ = [
     'UrdfError', 'RobotModel', 'Link', 'Inertial', 'Geometry', 'Joint', 'Limit', 'Dynamics',

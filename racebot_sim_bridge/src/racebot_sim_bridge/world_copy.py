@@ -17,11 +17,11 @@ _SERIALS = itertools.count()
 
 def body_key(body):
     """Identifies a body across a delete and respawn under the same name (PyBullet may even give
-    the new body the old id): a serial number kept on the Body the first time it is asked for."""
-    key = getattr(body, 'copy_key', None)
-    if key is None:
-        key = body.copy_key = (body.name, next(_SERIALS))
-    return key
+    the new body the old id): a serial number kept on the Body (its copy_key) the first time it is
+    asked for."""
+    if body.copy_key is None:
+        body.copy_key = (body.name, next(_SERIALS))
+    return body.copy_key
 
 
 def snapshot(world):
@@ -29,7 +29,7 @@ def snapshot(world):
     client = world.client
     shot = {}
     for name, body in world.bodies.items():
-        ids = [body.id] + [extra for _, extra in getattr(body, 'extra_bodies', [])]
+        ids = [body.id] + [extra for _, extra in body.extra_bodies]
         poses = [pb.getBasePositionAndOrientation(i, physicsClientId=client) for i in ids]
         joints = list(body.joints.values())
         positions = tuple(s[0] for s in pb.getJointStates(body.id, [j.index for j in joints],
@@ -39,9 +39,8 @@ def snapshot(world):
 
 
 def sources(world):
-    """{name: (key, Body.source)} of every body that can be copied."""
-    return {name: (body_key(body), body.source) for name, body in world.bodies.items()
-            if getattr(body, 'source', None) is not None}
+    """{name: (key, Body.source)} of every body."""
+    return {name: (body_key(body), body.source) for name, body in world.bodies.items()}
 
 
 class WorldCopy(object):
@@ -75,7 +74,7 @@ class WorldCopy(object):
             copy = self.world.bodies.get(name)
             if copy is None or self.keys.get(name) != key:
                 continue
-            ids = [copy.id] + [extra for _, extra in getattr(copy, 'extra_bodies', [])]
+            ids = [copy.id] + [extra for _, extra in copy.extra_bodies]
             for body_id, (position, orientation) in zip(ids, poses):
                 pb.resetBasePositionAndOrientation(body_id, position, orientation, physicsClientId=client)
             if positions:  # one call for all joints: each call into a GUI client waits for its frame

@@ -12,7 +12,7 @@ Gazebo's Model::SetLinearVel / SetAngularVel give every link the same velocity.
 """
 from . import frames
 from .physics import Pose
-from .sdf_world import as_transform, inverse
+from .rotations import as_transform, inverse
 
 
 def _cross(a, b):
@@ -40,7 +40,7 @@ class WorldEntities(object):
 
     @staticmethod
     def link_names(body):
-        return list(body.link_index) + [link for link, _ in getattr(body, 'extra_bodies', [])]
+        return list(body.link_index) + [link for link, _ in body.extra_bodies]
 
     # -- state ------------------------------------------------------------------------------------
     def state(self, entity):
@@ -58,7 +58,7 @@ class WorldEntities(object):
         return pose, twist
 
     def link_state(self, body, link):
-        extra = dict(getattr(body, 'extra_bodies', []))
+        extra = dict(body.extra_bodies)
         if link in extra:
             return self.world.base_state(extra[link])
         return self.world.link_state(body, link)
@@ -73,14 +73,14 @@ class WorldEntities(object):
         old = self.model_state(body)[0]
         root = frames.in_world(pose, offset)
         self.world.set_base_state(body.id, root[0], root[1], twist[0], twist[1])
-        for _, body_id in getattr(body, 'extra_bodies', []):
+        for _, body_id in body.extra_bodies:
             link_pose = self.world.base_state(body_id)[0]
             moved = frames.in_world(pose, frames.relative_to(old, link_pose))
             self.world.set_base_state(body_id, moved[0], moved[1], twist[0], twist[1])
 
     def set_link_state(self, body, link, pose, twist):
         """Puts link `link` at `pose` (world) with `twist`; see the module's note for URDF links."""
-        extra = dict(getattr(body, 'extra_bodies', []))
+        extra = dict(body.extra_bodies)
         if link in extra:
             self.world.set_base_state(extra[link], pose[0], pose[1], twist[0], twist[1])
             return
@@ -108,10 +108,8 @@ class WorldEntities(object):
     @staticmethod
     def _root_link_in_model(body):
         """An SDF model's first link's pose in the model frame; None for URDF models (identity)."""
-        source = getattr(body, 'source', None)
-        if source is None or source[0] != 'sdf':
+        if body.source.kind != 'sdf':
             return None
-        model = source[1]
         first = next(iter(body.link_index))
-        return as_transform(model.link(first).pose)
+        return as_transform(body.source.model.link(first).pose)
 

@@ -13,7 +13,7 @@ import numpy as np
 from sensor_msgs.msg import CameraInfo, Image, Imu, LaserScan, PointCloud2
 
 from . import messages as msgs
-from ..sdf_world import quaternion_multiply, rpy_to_quaternion
+from ..rotations import quaternion_multiply, rpy_to_quaternion
 from .camera import PinholeCamera, mask_depth
 from .imu import ImuKinematics, quaternion_to_matrix
 from .mount import SensorMount

@@ -13,13 +13,12 @@ it (a 'priming' sample) rather than invent an acceleration.
 """
 import numpy as np
 
+from ..rotations import matrix
+
 
 def quaternion_to_matrix(q):
-    """3 x 3 rotation matrix of a unit quaternion (x, y, z, w)."""
-    x, y, z, w = q
-    return np.array([[1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)],
-                     [2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)],
-                     [2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)]])
+    """3 x 3 rotation matrix (numpy) of a unit quaternion (x, y, z, w)."""
+    return np.array(matrix(q))
 
 
 class ImuMeasurement(object):

@@ -9,7 +9,7 @@ No rospy here. Calls run on the physics client; callers hold the simulator's loc
 import numpy as np
 import pybullet as pb
 
-from .. import sdf_world
+from ..rotations import compose
 
 
 class SensorMount(object):
@@ -24,7 +24,7 @@ class SensorMount(object):
             raise KeyError("link %r (carrying %r) is not a link of the spawned body (links: %s)"
                            % (self.link, reference, ', '.join(sorted(body.link_index))))
         self.index = body.link_index[self.link]
-        self.offset = sdf_world.compose(model.pose_in_lumped_link(reference), sensor_pose)
+        self.offset = compose(model.pose_in_lumped_link(reference), sensor_pose)
 
     def _link(self, velocity):
         """(frame position, frame orientation, COM position, linear velocity at the COM, angular

@@ -8,7 +8,7 @@ for the TinyRenderer it is drawn analytically (see SceneColours).
 import numpy as np
 import pybullet as pb
 
-from .. import sdf_world
+from .. import rotations
 from .render import TINY, render
 
 
@@ -53,8 +53,7 @@ class SceneColours(object):
             key = (name, body.id)
             if key in self.done:
                 continue
-            source = getattr(body, 'source', None)
-            model = source[1] if source and source[0] == 'sdf' else by_name.get(name)
+            model = body.source.model if body.source.kind == 'sdf' else by_name.get(name)
             if model is not None:
                 self.colour_model(model, body)
             self.done.add(key)
@@ -68,7 +67,7 @@ class SceneColours(object):
         if body is None:
             return
         ids = {name: body.id for name, index in body.link_index.items() if index == -1}
-        ids.update(dict(getattr(body, 'extra_bodies', [])))
+        ids.update(dict(body.extra_bodies))
         for link in model.links:
             body_id = ids.get(link.name)
             if body_id is None:
@@ -89,7 +88,7 @@ class SceneColours(object):
 
     def _draw_analytically(self, model, link, collision, body_id, body_key):
         position, orientation = model.world_pose_of(link, collision)
-        normal = sdf_world.rotate(orientation, collision.shape.normal or (0.0, 0.0, 1.0))
+        normal = rotations.rotate(orientation, collision.shape.normal or (0.0, 0.0, 1.0))
         normal = np.asarray(normal) / np.linalg.norm(normal)
         point = np.asarray(position)
         # What the renderer draws for it: look at it from 1 cm away with a 1 degree field of view.
