@@ -64,6 +64,10 @@ def clock_publisher():
     import warnings
 
     class SendTimeout(rospy.SubscribeListener):
+        # No public rospy API gives a publisher's connections or a send timeout: the public
+        # SubscribeListener says when a subscriber connected; its socket is reached through the
+        # publisher's `impl` (rospy's topic implementation). Without that, a stopped subscriber
+        # would block the update loop for good once its socket buffers are full.
         def peer_subscribe(self, topic_name, topic_publish, peer_publish):
             for conn in list(getattr(pub.impl, 'connections', [])):
                 sock = getattr(conn, 'socket', None)
@@ -225,7 +229,7 @@ class WorldServer(object):
         self.clock_msg.clock = rospy.Time.from_sec(t)
         self.clock_pub.publish(self.clock_msg)
         if _OWN_SIM_TIME:
-            rospy.rostime._set_rostime(self.clock_msg.clock)
+            set_own_ros_time(self.clock_msg.clock)
 
     def run(self):
         self.publish_clock(force=True)
@@ -287,27 +291,21 @@ _OWN_SIM_TIME = False  # True when this node's ROS time is set by publish_clock 
 def init_clock_source(name):
     """rospy.init_node for the node that publishes /clock. With /use_sim_time set, rospy would
     subscribe this node to its own /clock: a receive thread, a second connection and a message to
-    deserialize for every one we send. Instead the node's ROS time (log stamps) is set where /clock
-    is published, to the same value, so it reads exactly what its subscribers read."""
+    deserialize for every one we send. disable_rostime=True (public; rostopic does the same) leaves
+    that out; the node's ROS time (its /rosout stamps) is then set where /clock is
+    published, to the same value, so it reads exactly what its subscribers read."""
     global _OWN_SIM_TIME
-    import rospy.impl.simtime as simtime
-    real_check = getattr(simtime, '_is_use_simtime', None)
-    if real_check is None or not hasattr(rospy.rostime, '_set_rostime'):  # another rospy: its own way
-        rospy.init_node(name, anonymous=False)
-        return
-    wanted = []
-
-    def no_self_subscription():
-        wanted.append(real_check())
-        return False
-    simtime._is_use_simtime = no_self_subscription
-    try:
-        rospy.init_node(name, anonymous=False)
-    finally:
-        simtime._is_use_simtime = real_check
-    if wanted and wanted[0]:
+    rospy.init_node(name, anonymous=False, disable_rostime=True)
+    if rospy.get_param('/use_sim_time', False):
         _OWN_SIM_TIME = True
-        rospy.rostime._set_rostime(rospy.Time(0))
+        set_own_ros_time(rospy.Time(0))
+
+
+def set_own_ros_time(stamp):
+    """This node's ROS time. No public rospy API sets it: rospy's only public way to sim time is the
+    /clock subscription init_node makes (see init_clock_source), so this calls the setter that
+    subscription's callback calls (rospy.rostime._set_rostime, also waking rospy.sleep waiters)."""
+    rospy.rostime._set_rostime(stamp)
 
 
 def main(argv=None, debugger=False):

@@ -29,6 +29,7 @@ spawner loaded into the new controller manager. ros_control's spawner would not 
 import argparse
 import os
 import sys
+import time
 
 DEFAULT_TIMEOUT = 30.0
 WATCH_PERIOD = 1.0  # wall seconds between checks that the controller manager is still the same
@@ -171,7 +172,6 @@ class Spawner(object):
 
     def wait_for_topic(self, topic):
         """Block until std_msgs/Bool True arrives on ``topic``; False on shutdown."""
-        import time
         from std_msgs.msg import Bool
         rospy = self.rospy
         state = {'heard': False, 'value': False}
@@ -321,7 +321,7 @@ class Spawner(object):
         rospy = self.rospy
         try:
             while not rospy.is_shutdown():
-                rospy.rostime.wallsleep(WATCH_PERIOD)
+                time.sleep(WATCH_PERIOD)  # wall time, as rospy.spin sleeps (its wallsleep is internal)
                 self._check_manager()
         except KeyboardInterrupt:  # as rospy.spin(): SIGINT shuts the node down, quietly
             rospy.signal_shutdown('keyboard interrupt')
