@@ -299,6 +299,15 @@ class GazeboApiTest(unittest.TestCase):
                                                          'timed out waiting for entity to appear in simulation under '
                                                          'the name ghost'),
         ]
+        # a package:// of a package that is not on the ROS package path refuses the URDF spawn (upstream's
+        # spawnURDFModel checks every package:// before anything else, the model's name included)
+        nopkg = ARM_URDF.format(extra='<link name="m"><visual><geometry><mesh filename="package://nopkg/m.stl"/>'
+                                      '</geometry></visual></link><joint name="j" type="fixed"><parent link="base"/>'
+                                      '<child link="m"/></joint>')
+        bad += [(self.spawn_urdf_model, nopkg, 'urdf reference package name does not exist: nopkg')]
+        res = self.spawn_urdf_model('arm', nopkg, '', pose(), '')
+        self.assertEqual((res.success, res.status_message),
+                         (False, 'urdf reference package name does not exist: nopkg'))
         for spawn, xml, status in bad:
             res = spawn('ghost', xml, '', pose(), '')
             self.assertEqual((res.success, res.status_message), (False, status), xml)
@@ -310,6 +319,12 @@ class GazeboApiTest(unittest.TestCase):
             res = spawn(name, xml, '', pose(), '')
             self.assertEqual((res.success, res.status_message), (False, SPAWN_EXISTS))
         self.assertEqual(sorted(self.get_world_properties().model_names), ['arm', 'box', 'ground_plane'])
+
+    def test_rendering_enabled_is_true_without_a_window(self):
+        # gazebo_ros hard-codes it (its world->GetRenderEngineEnabled() is commented out); no window here
+        res = self.get_world_properties()
+        self.assertTrue(res.success)
+        self.assertTrue(res.rendering_enabled)
 
     def test_zz_world_keeps_running(self):
         clock = integration_common.Latest('/clock', Clock)

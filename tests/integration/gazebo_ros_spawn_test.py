@@ -266,9 +266,11 @@ class GazeboRosSpawnTest(unittest.TestCase):
         self.run_world()
         plain = self.spawn('-urdf', '-file', self.files['mesh.urdf'], '-model', 'meshbox0', '-gazebo_namespace', GZ,
                            '-y', '-3', '-z', '0.5')
-        self.assertEqual(plain.wait_exit(), 0, plain.text)  # spawned without the mesh, which Gazebo leaves out too
-        wait_for(lambda: self.link_state('meshbox0::body', '').link_state.pose.position.z < -1.0,
-                 'meshbox0 without its collision mesh falling through the ground')
+        # package://h1_mesh_pkg is no ROS package: gazebo_ros refuses the spawn and spawn_model exits 1
+        self.assertEqual(plain.wait_exit(), 1, plain.text)
+        self.assertIn('Spawn status: urdf reference package name does not exist: h1_mesh_pkg', plain.text)
+        self.assertIn('Spawn service failed. Exiting.', plain.text)
+        self.assertNotIn('meshbox0', self.models())
         p = self.spawn('-urdf', '-file', self.files['mesh.urdf'], '-model', 'meshbox', '-gazebo_namespace', GZ,
                        '-y', '-5', '-z', '0.5', '-package_to_model')
         self.assertEqual(p.wait_exit(), 0, p.text)

@@ -15,7 +15,7 @@ from gazebo_msgs.msg import LinkState, LinkStates, ModelState, ModelStates
 from geometry_msgs.msg import Point, Pose, Quaternion, Twist, Vector3
 from std_srvs.srv import Empty, EmptyResponse
 
-from . import frames, spawn_xml, urdf_model
+from . import frames, model_path, spawn_xml, urdf_model
 from .controller_manager import ControllerManagerServices
 from .gazebo_forces import GazeboForces
 from .gazebo_properties import GazeboProperties
@@ -30,6 +30,7 @@ SPAWN_NOT_SDF_OR_URDF = ('GazeboRosApiPlugin SpawnModel Failure: input model_xml
                          'converted to Gazebo compatible format.')
 SPAWN_EXISTS = 'SpawnModel: Failure - entity already exists.'
 SPAWN_NO_FRAME = 'SpawnModel: reference reference_frame not found, did you forget to scope the link by model name?'
+SPAWN_NO_PACKAGE = 'urdf reference package name does not exist: '
 SPAWN_NOT_LOADED = ('SpawnModel: Entity pushed to spawn queue, but spawn service timed out waiting for entity to '
                     'appear in simulation under the name %s')
 
@@ -111,6 +112,12 @@ class GazeboServices(object):
             self.rospy.logerr('%s The model_xml must be a URDF document (root element <robot>); for SDF call '
                               'spawn_sdf_model' % SPAWN_INVALID_URDF)
             return srv.SpawnModelResponse(False, SPAWN_INVALID_URDF)
+        for package in spawn_xml.referenced_packages(req.model_xml):  # upstream checks these before all else
+            if model_path.package_dir(package) is None:
+                self.rospy.logerr("SpawnModel: %s names package://%s/..., and '%s' is not on the ROS package path; "
+                                  "source its workspace's setup.bash (or spawn_model -package_to_model for "
+                                  "model:// URIs)" % (req.model_name, package, package))
+                return srv.SpawnModelResponse(False, SPAWN_NO_PACKAGE + package)  # upstream also fails the call
         return self._spawn(req)
 
     def spawn_sdf_model(self, req):
@@ -271,7 +278,7 @@ class GazeboServices(object):
         res = srv.GetWorldPropertiesResponse()
         res.sim_time = self.sim.time
         res.model_names = self.sim.model_names()
-        res.rendering_enabled = bool(self.sim.rendering)
+        res.rendering_enabled = True  # gazebo_ros answers true whether or not a window renders
         res.success, res.status_message = True, 'GetWorldProperties: got properties'
         return res
 

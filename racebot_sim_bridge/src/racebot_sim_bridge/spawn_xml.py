@@ -4,7 +4,10 @@ Pure Python: no rospy, no pybullet. gazebo_ros_api_plugin (noetic) tells the for
 document's root element (<robot>: URDF; <sdf> or <gazebo>: SDF) and, when the request names a
 robot_namespace, gives every <plugin> that has no <robotNamespace> of its own one with that namespace.
 """
+import re
 import xml.etree.ElementTree as ET
+
+PACKAGE_PREFIX = 'package://'
 
 
 def root_tag(xml):
@@ -33,3 +36,20 @@ def add_robot_namespace(xml, namespace):
         if plugin.find('robotNamespace') is None:
             ET.SubElement(plugin, 'robotNamespace').text = namespace
     return ET.tostring(root, encoding='unicode')
+
+
+def referenced_packages(xml):
+    """The package names of the document's package:// URIs, in order, as spawn_urdf_model finds
+    them: comments left out, the name being the text up to the next '/'. A package:// with no '/'
+    after it ends the search (gazebo_ros logs 'Malformed package name?' and stops there too)."""
+    text = re.sub(r'<!--.*?-->', '', xml, flags=re.S)
+    names = []
+    start = text.find(PACKAGE_PREFIX)
+    while start != -1:
+        begin = start + len(PACKAGE_PREFIX)
+        end = text.find('/', begin)
+        if end == -1:
+            break
+        names.append(text[begin:end])
+        start = text.find(PACKAGE_PREFIX, end)
+    return names
