@@ -3,6 +3,6 @@ from setuptools import setup
 from catkin_pkg.python_setup import generate_distutils_setup
 
 setup(**generate_distutils_setup(
-    packages=['gazebo_ros'],
+    packages=['gazebo_ros', 'gazebo_ros.cfg'],
     package_dir={'': 'src'},
 ))

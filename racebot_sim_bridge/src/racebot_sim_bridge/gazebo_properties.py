@@ -89,6 +89,7 @@ class GazeboProperties(object):
         self.ode_config = msg.ODEPhysics(auto_disable_bodies=False, sor_pgs_precon_iters=0, sor_pgs_iters=50,
                                          sor_pgs_w=1.3, sor_pgs_rms_error_tol=0.0, contact_surface_layer=0.001,
                                          contact_max_correcting_vel=100.0, cfm=0.0, erp=0.2, max_contacts=20)
+        self.physics_listeners = []  # called with no arguments after set_physics_properties changed the world
         self.no_gravity = {}  # (model, link) -> Body whose link has gravity_mode false
         self.motors = {}  # (model, joint) -> (Body, vel, fmax): ODE's joint motor as set_joint_properties left it
         self._warned = set()
@@ -322,6 +323,8 @@ class GazeboProperties(object):
             if o.sor_pgs_iters > 0:
                 self.sim.world.set_solver(numSolverIterations=int(o.sor_pgs_iters))
             self.ode_config = o
+        for listener in self.physics_listeners:  # outside the lock: a listener reads the properties back
+            listener()
         res.success, res.status_message = True, 'physics engine updated'
         return res
 

@@ -172,10 +172,11 @@ class WorldServer(object):
         self.sensors = SensorManager(rospy, self.sim)  # before the services: every spawn gets its sensors
         # gazebo_ros advertises in its node's namespace (a node `gazebo` in ns /sim serves /sim/gazebo/...)
         # and, with ~enable_ros_network false, nothing but /clock.
-        self.services = self.metrics = None
+        self.services = self.metrics = self.reconfigure = None
         if rospy.get_param('~enable_ros_network', True):
             self.services = GazeboServices(rospy, self.sim, rospy.get_name())
             self.metrics = PerformanceMetricsPublisher(rospy, self.sim, self.sensors, self.services.ns)
+            self.reconfigure = physics_reconfigure(self.services.properties, self.services.ns)
         else:
             rospy.loginfo('ROS gazebo topics/services are disabled (~enable_ros_network is false)')
         self.clock_msg = Clock()
@@ -275,6 +276,8 @@ class WorldServer(object):
         if self.services is not None:
             self.services.shutdown()
             self.metrics.shutdown()
+        if self.reconfigure is not None:
+            self.reconfigure.shutdown()
         self.sensors.close()  # the render worker stops with us
         self.windows.close()  # each window is told, and closes
         try:
@@ -286,6 +289,18 @@ class WorldServer(object):
 
 
 _OWN_SIM_TIME = False  # True when this node's ROS time is set by publish_clock (see init_clock_source)
+
+
+def physics_reconfigure(properties, ns):
+    """gazebo_ros's physics dynamic_reconfigure server under `ns`, or None (said why) where our
+    gazebo_ros or dynamic_reconfigure's Python side is not installed."""
+    try:
+        from gazebo_ros.physics_reconfigure import PhysicsReconfigure
+        return PhysicsReconfigure(rospy, properties, ns)
+    except ImportError as err:
+        rospy.logwarn('no physics dynamic_reconfigure server (%s/set_parameters): %s; install '
+                      'python3-dynamic-reconfigure (make setup)' % (ns, err))
+        return None
 
 
 def init_clock_source(name):
