@@ -32,6 +32,10 @@ def ros_package_path(monkeypatch):
         paths = [str(REPO)] + paths
     # the robot package fixture's own launch file finds its package (last: it shadows nothing)
     monkeypatch.setenv('ROS_PACKAGE_PATH', os.pathsep.join(paths + [str(ROBOT_PACKAGE_FIXTURES)]))
+    # roslaunch keeps one RosPack for the process, made from the ROS_PACKAGE_PATH of its first $(find)
+    # (an earlier test's, in a whole run): no public call resets it, so start each check with none.
+    import roslaunch.substitution_args
+    monkeypatch.setattr(roslaunch.substitution_args, '_rospack', None)
 
 
 def test_there_are_launch_files():
