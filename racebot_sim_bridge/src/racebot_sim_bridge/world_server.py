@@ -228,7 +228,14 @@ class WorldServer(object):
                 self.last_clock_wall = now
         self.last_clock = t
         self.clock_msg.clock = rospy.Time.from_sec(t)
-        self.clock_pub.publish(self.clock_msg)
+        try:
+            self.clock_pub.publish(self.clock_msg)
+        except rospy.ROSException:
+            # rospy shut down between the loop's is_shutdown() and this publish (Ctrl-C, roslaunch's
+            # stop): the topic is closed and the loop ends at its next check; anything else is a fault
+            if not (rospy.is_shutdown() or rospy.core.is_shutdown_requested()):
+                raise
+            return
         if _OWN_SIM_TIME:
             set_own_ros_time(self.clock_msg.clock)
 
