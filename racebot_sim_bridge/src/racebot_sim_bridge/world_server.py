@@ -19,7 +19,8 @@ options, ignored] WORLD_FILE`. `-u` starts paused. Private parameters:
                                  (Gazebo: every update; 0 here means that too)
   ~command_trace (path, '')      measurements only (make bench): append to this file when each
                                  controller command arrives and when an update first applies it
-                                 (controllers.CommandTrace); '' = off, and then it costs nothing
+                                 (controllers.CommandTrace, the controllers' observer); '' = off:
+                                 one attribute test per update
 Services and topics live under the node's own name, as gazebo_ros's (node `gazebo`: /gazebo/...).
 Pacing is in wall time (this node drives ROS time, so rospy's timers cannot pace it): the world's
 real_time_update_rate updates per wall second, or as fast as possible when it is 0.
