@@ -126,12 +126,20 @@ class Spawner(object):
         rospy.loginfo('Controller Spawner: Waiting for service %s', resolved)
         told_about_clock = False
         while not rospy.is_shutdown():
+            # The timeout counts from when the simulator's time started, not from a wait that began
+            # before it: a /clock arriving near the end of one wait would leave the spawn of the robot
+            # (which brings the services) only the rest of that wait.
+            waited_before_clock = self._sim_time_not_started()
             try:
                 rospy.wait_for_service(resolved, timeout=self.timeout)
                 return True
             except rospy.ROSInterruptException:
                 return False
             except rospy.ROSException:
+                if waited_before_clock and not self._sim_time_not_started():
+                    rospy.loginfo('Controller Spawner: the simulator\'s time started; waiting up to %g s '
+                                  'more for %s', self.timeout, resolved)
+                    continue
                 if self._sim_time_not_started():
                     if not told_about_clock:
                         rospy.logwarn(
