@@ -10,7 +10,8 @@ subscribes to every sensor topic the car offers (laser, IMU, cameras, point clou
 scripted route through servo_commands (/ackermann_cmd_mux/output): figure eights, reverse arcs,
 speed changes and stops, chosen by sim time. It measures:
   - the resident memory (RSS) of the simulator (the /gazebo node) after a warm-up and at the end:
-    it must grow less than --max-growth percent (5). Each is the lowest of RSS_WINDOW samples taken
+    it must grow less than --max-growth percent (5). The warm-up lasts --warmup s of sim time and
+    until every sensor topic has delivered WARM_SENSOR_MESSAGES messages. Each is the lowest of RSS_WINDOW samples taken
     SAMPLE_WALL_PERIOD apart: a point cloud (10 MB, 5 % of the simulator) on its way out is there
     in about 40 % of the samples and gone in the next; a leak raises them all. With 3 samples 2 s
     apart, the three at the end all caught a cloud in about one run in 16 (a CI failure);
@@ -39,6 +40,10 @@ import time
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 ROOM_WORLD = os.path.join(ROOT, 'racebot_gazebo', 'worlds', 'room_mini.world')
 RSS_WINDOW = 12  # samples whose lowest RSS stands for the warm-up and for the end (see above)
+# The warm-up also lasts until every sensor topic has delivered this many messages: a pipeline's buffers
+# (frames, point clouds) exist only once it has run, and a loaded machine gives the cameras their first
+# frames late in sim time (a CI-like run read 175 MB at 20 s, 187.4 MB from 29 s to the end: +7 %).
+WARM_SENSOR_MESSAGES = 20
 CONTROLLERS = ['left_rear_wheel_velocity_controller', 'right_rear_wheel_velocity_controller',
                'left_front_wheel_velocity_controller', 'right_front_wheel_velocity_controller',
                'left_steering_hinge_position_controller', 'right_steering_hinge_position_controller',
@@ -124,6 +129,7 @@ class Soak(object):
         self.clock_regressions = []
         self.errors = []
         self.sensor_counts = {}
+        self.sensors_warm_at = None  # sim time (driven) when every sensor topic had its warm-up messages
         self.non_finite = {}
         self.launch = None
         self.failures = []
@@ -262,6 +268,10 @@ class Soak(object):
             with self.lock:
                 sim = self.clock or 0.0
             driven = sim - self.start_sim
+            if self.sensors_warm_at is None:
+                with self.lock:
+                    if all(n >= WARM_SENSOR_MESSAGES for n in self.sensor_counts.values()):
+                        self.sensors_warm_at = driven
             speed, steering = route_command(driven)
             self.command_msg.drive.speed, self.command_msg.drive.steering_angle = speed, steering
             self.command_pub.publish(self.command_msg)
@@ -290,6 +300,10 @@ class Soak(object):
         if end is not None:
             samples.append((round(self.driven, 3), end))
         self.samples = samples
+        if self.sensors_warm_at is None:
+            self.failures.append('not every sensor topic delivered %d messages (%s): no steady state to measure '
+                                 'memory from' % (WARM_SENSOR_MESSAGES, self.sensor_counts))
+        self.warmup = max(self.warmup, self.sensors_warm_at or 0.0)
         self.warm_rss, self.end_rss = rss_windows(samples, self.warmup)
 
     # -- verdict ----------------------------------------------------------------------------------
