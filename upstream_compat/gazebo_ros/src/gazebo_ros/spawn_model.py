@@ -136,14 +136,10 @@ def prepare_xml(text, to_model=False):
 
 
 def quaternion_from_euler(roll, pitch, yaw):
-    """(x, y, z, w) of fixed-axis roll, then pitch, then yaw (tf.transformations' default 'sxyz')."""
-    cr, sr = math.cos(roll / 2), math.sin(roll / 2)
-    cp, sp = math.cos(pitch / 2), math.sin(pitch / 2)
-    cy, sy = math.cos(yaw / 2), math.sin(yaw / 2)
-    return (sr * cp * cy - cr * sp * sy,
-            cr * sp * cy + sr * cp * sy,
-            cr * cp * sy - sr * sp * cy,
-            cr * cp * cy + sr * sp * sy)
+    """(x, y, z, w) of fixed-axis roll, then pitch, then yaw (tf.transformations' default 'sxyz'):
+    the simulator's own rotation maths (racebot_sim_bridge runs behind this gazebo_ros anyway)."""
+    from racebot_sim_bridge.rotations import rpy_to_quaternion
+    return rpy_to_quaternion(roll, pitch, yaw)
 
 
 class SpawnModelNode(object):
