@@ -59,6 +59,10 @@ class ShellCommand(object):
     def __init__(self, command, env, log_path, login=False):
         self.log_path = log_path
         self._log = open(log_path, 'w')
+        # A terminal shows roslaunch's lines as they come (line-buffered); into a file Python would hold
+        # them in an 8 kB buffer, and a line the test waits for (a node's "process has finished cleanly")
+        # could sit there until more output pushed it out (a fresh-root CI run timed out on it so).
+        env = dict(env, PYTHONUNBUFFERED='1')
         self.process = subprocess.Popen(['bash', '-lc' if login else '-c', command], env=env,
                                         stdout=self._log, stderr=subprocess.STDOUT, start_new_session=True)
 
