@@ -123,10 +123,6 @@ def truncate_effort(effort, velocity, effort_limit, velocity_limit):
     return effort
 
 
-def _finite(*values):
-    return all(math.isfinite(v) for v in values)
-
-
 class GazeboForces(object):
     """The four force services under `ns`, and the simulator hook that applies the jobs."""
 
@@ -156,7 +152,7 @@ class GazeboForces(object):
                 self.rospy.logerr('ApplyBodyWrench: body [%s] does not exist' % req.body_name)
                 res.success, res.status_message = False, 'ApplyBodyWrench: body does not exist'
                 return res
-            if not _finite(f.x, f.y, f.z, t.x, t.y, t.z, p.x, p.y, p.z):
+            if not frames.finite(f.x, f.y, f.z, t.x, t.y, t.z, p.x, p.y, p.z):
                 res.success = False
                 res.status_message = ('ApplyBodyWrench: wrench and reference_point must be finite numbers, got '
                                       'force (%g, %g, %g), torque (%g, %g, %g), point (%g, %g, %g)'

@@ -70,10 +70,6 @@ def urdf_geom_names(model, link):
     return names
 
 
-def _finite(*values):
-    return all(math.isfinite(v) for v in values)
-
-
 class GazeboProperties(object):
     """The property services under `ns`, and the step hook that cancels gravity where it is off."""
 
@@ -168,7 +164,7 @@ class GazeboProperties(object):
             body, joint = self._joint(req.joint_name)
             if body is None:
                 return self._fail(res, 'SetJointProperties: joint not found')
-            bad = [k for k, v in lists.items() if not _finite(*v)]
+            bad = [k for k, v in lists.items() if not frames.finite(*v)]
             if bad:
                 return self._fail(res, 'SetJointProperties: %s of joint [%s] must be finite numbers'
                                   % (', '.join(bad), req.joint_name))
@@ -245,7 +241,7 @@ class GazeboProperties(object):
                 res.success = False
                 res.status_message = 'SetLinkProperties: link not found, did you forget to scope the link by model name?'
                 return res
-            if not _finite(req.mass, *(tensor + com)) or req.mass <= 0:
+            if not frames.finite(req.mass, *(tensor + com)) or req.mass <= 0:
                 return self._fail(res, 'SetLinkProperties: mass must be a positive number and com and inertia '
                                        'finite (got mass %r) for link [%s]' % (req.mass, req.link_name))
             if body.static:
@@ -307,10 +303,10 @@ class GazeboProperties(object):
         if not (math.isfinite(req.max_update_rate) and req.max_update_rate >= 0):
             return self._fail(res, 'SetPhysicsProperties: max_update_rate must be >= 0 updates per second (0: as '
                                    'fast as possible), got %r' % req.max_update_rate)
-        if not _finite(*g):
+        if not frames.finite(*g):
             return self._fail(res, 'SetPhysicsProperties: gravity must be finite, got (%r, %r, %r)' % g)
         o = req.ode_config
-        if not _finite(o.sor_pgs_w, o.sor_pgs_rms_error_tol, o.contact_surface_layer, o.contact_max_correcting_vel,
+        if not frames.finite(o.sor_pgs_w, o.sor_pgs_rms_error_tol, o.contact_surface_layer, o.contact_max_correcting_vel,
                        o.cfm, o.erp):
             return self._fail(res, 'SetPhysicsProperties: ode_config values must be finite')
         with self.sim.lock:
@@ -357,7 +353,7 @@ class GazeboProperties(object):
                 res.success = False
                 res.status_message = 'setLightProperties: Requested light %s not found!' % req.light_name
                 return res
-            if not _finite(*values):
+            if not frames.finite(*values):
                 return self._fail(res, 'setLightProperties: colours, attenuation, direction and pose of light %s '
                                        'must be finite' % req.light_name)
             orientation = frames.normalised((q.x, q.y, q.z, q.w))

@@ -8,7 +8,6 @@ World::EntityByName finds them (frames.resolve); '', 'world', 'map' and '/map' a
 Where upstream has no check (non-finite numbers, an empty model name) the answer is ours and says
 what to change.
 """
-import math
 
 from gazebo_msgs import srv
 from gazebo_msgs.msg import LinkState, LinkStates, ModelState, ModelStates
@@ -45,16 +44,12 @@ def _twist_msg(twist):
     return Twist(linear=Vector3(*twist[0]), angular=Vector3(*twist[1]))
 
 
-def _finite(*values):
-    return all(math.isfinite(v) for v in values)
-
-
 def _pose_in(msg):
     """(position, unit quaternion) of a geometry_msgs/Pose, a zero quaternion read as the identity
     (as ignition's Normalize makes it); None if a number is not finite."""
     p, q = msg.position, msg.orientation
     orientation = frames.normalised((q.x, q.y, q.z, q.w))
-    if orientation is None or not _finite(p.x, p.y, p.z):
+    if orientation is None or not frames.finite(p.x, p.y, p.z):
         return None
     return (p.x, p.y, p.z), orientation
 
@@ -62,7 +57,7 @@ def _pose_in(msg):
 def _twist_in(msg):
     """(linear, angular) of a geometry_msgs/Twist; None if a number is not finite."""
     lin, ang = (msg.linear.x, msg.linear.y, msg.linear.z), (msg.angular.x, msg.angular.y, msg.angular.z)
-    return (lin, ang) if _finite(*lin + ang) else None
+    return (lin, ang) if frames.finite(*lin + ang) else None
 
 
 class GazeboServices(object):
@@ -338,7 +333,7 @@ class GazeboServices(object):
             if len(req.joint_names) != len(req.joint_positions):
                 return srv.SetModelConfigurationResponse(
                     False, 'SetModelConfiguration: joint name and position list have different lengths')
-            if not _finite(*req.joint_positions):
+            if not frames.finite(*req.joint_positions):
                 return srv.SetModelConfigurationResponse(False, self._err(
                     'SetModelConfiguration: Failure - joint positions of model [%s] must be finite, got %s'
                     % (req.model_name, list(req.joint_positions))))
