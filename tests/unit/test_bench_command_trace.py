@@ -11,7 +11,7 @@ from racebot_sim_bridge import urdf_model
 from racebot_sim_bridge.controllers import (CommandObserver, CommandTrace, EffortForwardController,
                                             JointPositionController, JointVelocityController,
                                             PositionForwardController, VelocityForwardController,
-                                            VelocityJointPositionController, _CommandController)
+                                            VelocityJointPositionController, CommandController)
 from racebot_sim_bridge.hardware import RobotHW
 
 NS = '/robot'
@@ -164,7 +164,7 @@ def test_traced_controllers_keep_their_own_methods(trace):
         c = make(cls, joint, extra, io)
         assert not {'update', '_on_command', 'starting'} & set(vars(c)), cls
         callback = io.subscribers[c.topic('command')].callback
-        assert callback.__self__ is c and callback.__func__ is _CommandController._on_command
+        assert callback.__self__ is c and callback.__func__ is CommandController._on_command
 
 
 class Counting(CommandObserver):

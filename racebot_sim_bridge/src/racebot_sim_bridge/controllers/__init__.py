@@ -1,0 +1,29 @@
+"""The ros_controllers this simulator offers, with ros_control's parameters, topics and semantics.
+
+A controller is built from its parameters (the dict under `<ns>/<name>` on the parameter server),
+the robot's hardware (hardware.RobotHW) and an I/O object that makes publishers and subscribers
+(`io.RosIO` for the real thing; tests pass their own). Construction is ros_control's init():
+it raises ControllerInitError with a message that says what is wrong and what to do.
+
+Types:
+  joint_state_controller/JointStateController
+  effort_controllers/JointEffortController, JointVelocityController, JointPositionController
+  velocity_controllers/JointVelocityController, JointPositionController
+  position_controllers/JointPositionController
+
+One module per ros_controllers package; each lists its classes in TYPES, and CONTROLLER_TYPES
+(type name -> class) is what the controller manager loads from. A new controller type is a class
+with `type_name`, `interface` and ros_control's init (constructor) / starting / update / stopping,
+added to its module's TYPES and to MODULES below.
+"""
+from . import effort_controllers, joint_state, position_controllers, velocity_controllers
+from .base import (LIMIT_WARN_TOLERANCE, STATE_PUBLISH_EVERY, CommandController, Controller,  # noqa: F401
+                   ControllerInitError, PidCommandController, shortest_angular_distance_with_limits)
+from .effort_controllers import EffortForwardController, JointPositionController, JointVelocityController  # noqa: F401
+from .io import CommandObserver, CommandTrace, RosIO  # noqa: F401
+from .joint_state import JointStateController  # noqa: F401
+from .position_controllers import PositionForwardController  # noqa: F401
+from .velocity_controllers import VelocityForwardController, VelocityJointPositionController  # noqa: F401
+
+MODULES = (joint_state, effort_controllers, velocity_controllers, position_controllers)
+CONTROLLER_TYPES = {c.type_name: c for m in MODULES for c in getattr(m, 'TYPES', ())}
