@@ -98,7 +98,9 @@ class Simulator(object):
         # on_delete(robot) before it goes, after_step(time) after every physics step; all under `lock`.
         # before_physics(time) runs after the robots' writes, just before the physics step, with the
         # time the step ends at (Gazebo's sim time at WorldUpdateBegin): apply_body_wrench & co.
+        # on_reset() after reset_world / reset_simulation (model plugins' Reset).
         self.on_spawn = []
+        self.on_reset = []
         self.on_delete = []
         self.after_step = []
         self.before_physics = []
@@ -245,6 +247,8 @@ class Simulator(object):
                 self.world.reset_to_spawn(body)
             for r in self.robots.values():
                 r.last_update = 0.0
+            for hook in self.on_reset:
+                hook()
 
     # -- queries ------------------------------------------------------------------------------
     def model_names(self):

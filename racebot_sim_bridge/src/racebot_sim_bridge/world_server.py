@@ -38,6 +38,7 @@ from .controllers import CommandTrace, RosIO
 from .gazebo_services import GazeboServices
 from .performance_metrics import PerformanceMetricsPublisher
 from .physics import PhysicsError
+from .plugins.manager import PluginManager
 from .sensors import SensorManager
 from .simulator import Simulator
 from .viewer import SYNC_PERIOD as VIEWER_SYNC_PERIOD, AttachedWindows
@@ -171,6 +172,7 @@ class WorldServer(object):
         self.states_period = self._rate_param('~states_publish_rate', 100.0)
         self.clock_pub = clock_publisher()
         self.sensors = SensorManager(rospy, self.sim)  # before the services: every spawn gets its sensors
+        self.plugins = PluginManager(rospy, self.sim)  # and its model plugins (diff drive, p3d, ...)
         # gazebo_ros advertises in its node's namespace (a node `gazebo` in ns /sim serves /sim/gazebo/...)
         # and, with ~enable_ros_network false, nothing but /clock.
         self.services = self.metrics = self.reconfigure = None
@@ -287,6 +289,7 @@ class WorldServer(object):
         if self.reconfigure is not None:
             self.reconfigure.shutdown()
         self.sensors.close()  # the render worker stops with us
+        self.plugins.close()
         self.windows.close()  # each window is told, and closes
         try:
             if rospy.get_param('~gzclient_address', None) == self.windows.address:  # not a successor's
