@@ -27,12 +27,10 @@ def scene(renderer):
         world.close()
         pytest.skip('no EGL driver on this machine: %s' % description)
     c = world.client
-    floor = pb.createVisualShape(pb.GEOM_BOX, halfExtents=[10, 10, 0.01], rgbaColor=[0.5, 0.5, 0.5, 1],
-                                 physicsClientId=c)
-    pb.createMultiBody(0, -1, floor, basePosition=[0, 0, -0.01], physicsClientId=c)
-    wall = pb.createVisualShape(pb.GEOM_BOX, halfExtents=[0.05, 1.0, 0.5], rgbaColor=[0.5, 0.8, 0.3, 1],
-                                physicsClientId=c)
-    pb.createMultiBody(0, -1, wall, basePosition=[3, 0, 0.5], physicsClientId=c)
+    floor = c.createVisualShape(pb.GEOM_BOX, halfExtents=[10, 10, 0.01], rgbaColor=[0.5, 0.5, 0.5, 1])
+    c.createMultiBody(0, -1, floor, basePosition=[0, 0, -0.01])
+    wall = c.createVisualShape(pb.GEOM_BOX, halfExtents=[0.05, 1.0, 0.5], rgbaColor=[0.5, 0.8, 0.3, 1])
+    c.createMultiBody(0, -1, wall, basePosition=[3, 0, 0.5])
     return world, description
 
 

@@ -363,9 +363,9 @@ def test_a_static_mesh_collides_with_its_exact_concave_shape(isolated, physics):
         sdf_world.Collision('c', sdf_world.ZERO_POSE, sdf_world.Shape('mesh', filename=path, scale=(1, 1, 1)))])])
     world = physics()
     world.add_sdf_model(model)
-    through = pb.rayTest((0, -3, 0.5), (0, 3, 0.5), physicsClientId=world.client)[0]
+    through = world.client.rayTest((0, -3, 0.5), (0, 3, 0.5))[0]
     assert through[0] != -1 and abs(through[3][1] - 0.9) < 1e-3  # stops at the U's closed side, not its opening
-    wall = pb.rayTest((-3, 0, 0.5), (0, 0, 0.5), physicsClientId=world.client)[0]
+    wall = world.client.rayTest((-3, 0, 0.5), (0, 0, 0.5))[0]
     assert abs(wall[3][0] - (-1.1)) < 1e-3
 
 
@@ -385,8 +385,7 @@ def test_a_robot_with_mesh_wheels_and_body_rests_on_its_wheels(isolated, physics
         heights[label] = body.frame_pose().position[2]
         if label == 'meshes':
             assert 'package://' not in body.source.urdf_xml
-            shapes = pb.getCollisionShapeData(body.id, body.link_index['left_rear_wheel'],
-                                              physicsClientId=world.client)
+            shapes = world.client.getCollisionShapeData(body.id, body.link_index['left_rear_wheel'])
             assert shapes[0][2] == pb.GEOM_MESH
     # the convex hull of a 48-sided wheel is at most 0.2 % smaller in radius than the cylinder
     assert abs(heights['meshes'] - heights['primitives']) < 0.002, heights
@@ -402,7 +401,7 @@ def test_visuals_false_builds_no_visual_shapes(isolated, physics):
     for visuals, red in ((True, True), (False, False)):
         world = physics(visuals=visuals)
         body = world.add_sdf_model(model)
-        data = pb.getVisualShapeData(body.id, physicsClientId=world.client)
+        data = world.client.getVisualShapeData(body.id)
         assert (tuple(data[0][7]) == (1.0, 0.0, 0.0, 1.0)) is red
 
 
@@ -414,8 +413,8 @@ sources = pickle.load(open(sys.argv[1], 'rb'))
 world = PhysicsWorld()
 for name, source in sources.items():
     body = world.add_copy(name, source)  # as the viewer and the render worker build theirs
-    data = pb.getVisualShapeData(body.id, physicsClientId=world.client)
-    shapes = pb.getCollisionShapeData(body.id, -1, physicsClientId=world.client)
+    data = world.client.getVisualShapeData(body.id)
+    shapes = world.client.getCollisionShapeData(body.id, -1)
     print(name, shapes[0][2] == pb.GEOM_MESH, tuple(round(c, 3) for c in data[0][7]))
 '''
 
@@ -463,8 +462,8 @@ def test_each_visual_of_a_link_keeps_its_colour_in_a_camera_image(isolated, phys
     world = physics()
     world.add_sdf_model(sdf_world.Model('two', pose=(2, 0, 0, 0, 0, 0), static=True, links=[link]))
     SceneColours(world).refresh()
-    view = pb.computeViewMatrix([0, 0, 0], [1, 0, 0], [0, 0, 1], physicsClientId=world.client)
-    proj = pb.computeProjectionMatrixFOV(60, 1, 0.05, 10, physicsClientId=world.client)
+    view = world.client.computeViewMatrix([0, 0, 0], [1, 0, 0], [0, 0, 1])
+    proj = world.client.computeProjectionMatrixFOV(60, 1, 0.05, 10)
     rgb, _ = render(world, 64, 64, view, proj)
     left, right = rgb[32, 20].astype(int), rgb[32, 44].astype(int)  # +y (the red box) is on the image's left
     assert left[0] > 100 and left[2] < 60, left
@@ -496,6 +495,6 @@ def test_a_world_of_included_dynamic_mesh_cones_stands_on_the_ground(isolated, m
         body = world.bodies['cone_%d' % i]
         frame = body.frame_pose()
         assert abs(frame.position[2]) < 0.005 and abs(frame.position[0] - i) < 0.005, frame
-        hit = pb.rayTest((i - 0.5, 1, 0.1), (i, 1, 0.1), physicsClientId=world.client)[0]  # from between two cones
+        hit = world.client.rayTest((i - 0.5, 1, 0.1), (i, 1, 0.1))[0]  # from between two cones
         # the cone's radius at 0.1 m height is 0.15 * (1 - 0.1 / 0.5) = 0.12 m (hull of 32 sides: within 1 cm)
         assert hit[0] == body.id and abs(hit[3][0] - (i - 0.12)) < 0.01, hit

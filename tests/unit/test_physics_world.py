@@ -62,7 +62,7 @@ def car(world, racebot_model, racebot_xml):
 
 
 def dynamics(world, body, link):
-    return pb.getDynamicsInfo(body.id, body.link_index[link], physicsClientId=world.client)
+    return world.client.getDynamicsInfo(body.id, body.link_index[link])
 
 
 def total_mass(world, body):
@@ -236,7 +236,7 @@ def test_slippery_ground_limits_wheel_friction(make_world, racebot_model, racebo
     assert world.ground_mu == pytest.approx(0.3)
     body = world.spawn_urdf('racebot', racebot_model, racebot_xml)
     ground = world.bodies['ice']
-    assert pb.getDynamicsInfo(ground.id, -1, physicsClientId=world.client)[1] == pytest.approx(1.0)
+    assert world.client.getDynamicsInfo(ground.id, -1)[1] == pytest.approx(1.0)
     for wheel in WHEEL_LINKS:
         assert dynamics(world, body, wheel)[1] == pytest.approx(0.3)  # Bullet multiplies: 0.3 x 1
 
@@ -289,7 +289,7 @@ def test_a_body_declares_where_it_came_from_and_its_extra_bodies(make_world, car
     pair = w.bodies['pair']
     assert pair.source == BodySource('sdf', pair.source.model, None) and pair.source.model.name == 'pair'
     assert [link for link, _ in pair.extra_bodies] == ['b'] and pair.copy_key is None
-    assert pb.getBasePositionAndOrientation(pair.extra_bodies[0][1], physicsClientId=w.client)[0] == (2, 0, 0)
+    assert w.client.getBasePositionAndOrientation(pair.extra_bodies[0][1])[0] == (2, 0, 0)
     assert (car.source.kind, car.source.model, car.extra_bodies) == ('urdf', racebot_model, [])
     assert '<robot' in car.source.urdf_xml
     with pytest.raises(TypeError):

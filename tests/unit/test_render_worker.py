@@ -10,7 +10,6 @@ import socket
 import time
 
 import numpy as np
-import pybullet as pb
 import pytest
 
 from racebot_sim_bridge.physics import PhysicsWorld
@@ -124,7 +123,7 @@ def test_a_frame_shows_the_world_at_its_stamp(racebot_xml, closing):
     step_until(sim, lambda: requested, 'a frame request', sim.step_size)
     with sim.lock:
         stamp_of_request = requested[-1]
-        pb.resetBasePositionAndOrientation(box.id, [1.2, -0.25, 0.1], [0, 0, 0, 1], physicsClientId=sim.world.client)
+        sim.world.client.resetBasePositionAndOrientation(box.id, [1.2, -0.25, 0.1], [0, 0, 0, 1])
 
     def stamped(t):
         return [m for m in images if abs(m.header.stamp.to_sec() - t) < 1e-9]
@@ -238,11 +237,11 @@ def test_the_copy_follows_a_respawn_under_the_same_name():
         copy.sync(sources(world))
         world.remove('red_box')
         body = world.add_sdf_model(sdf_world.parse_world(RED_BOX.format(x=1, y=0, z=0.1, s=0.6)).models[0])
-        pb.resetBasePositionAndOrientation(body.id, [2.0, 1.0, 0.5], [0, 0, 0, 1], physicsClientId=world.client)
+        world.client.resetBasePositionAndOrientation(body.id, [2.0, 1.0, 0.5], [0, 0, 0, 1])
         copy.sync(sources(world))
         copy.prune(set(world.bodies))
         copy.pose(snapshot(world))
-        lo, hi = pb.getAABB(other.bodies['red_box'].id, physicsClientId=other.client)
+        lo, hi = other.client.getAABB(other.bodies['red_box'].id)
         assert hi[0] - lo[0] == pytest.approx(0.6, abs=0.05)  # the new model, not the old
         assert (np.array(lo) + np.array(hi)) / 2 == pytest.approx([2.0, 1.0, 0.5], abs=1e-3)
     finally:

@@ -4,7 +4,6 @@ import math
 import xml.etree.ElementTree as ET
 
 import numpy as np
-import pybullet as pb
 import pytest
 
 from racebot_sim_bridge import rotations
@@ -126,7 +125,7 @@ def test_pybullet_keeps_a_preserved_link_rigid_on_its_parent():
     try:
         body = world.spawn_urdf('r', parse_urdf(xml), xml)
         assert sorted(body.link_names()) == ['arm', 'base', 'wheel'] and sorted(body.joints) == ['wheel_joint']
-        pb.resetBaseVelocity(body.id, (0.0, 0.0, 0.0), (1.0, 2.0, 3.0), physicsClientId=world.client)
+        world.client.resetBaseVelocity(body.id, (0.0, 0.0, 0.0), (1.0, 2.0, 3.0))
         for _ in range(500):  # falling and tumbling for half a second
             world.step()
         base, _ = world.link_state(body, 'base')

@@ -38,7 +38,7 @@ class Ceiling(object):
         if missing:
             raise common.BenchError('the racebot model has no joints %s' % sorted(missing))
         self.body_id = body.id
-        self.client = self.world.client
+        self.client = self.world.client.id  # the id itself: the ceiling is bare PyBullet calls, no bound functions
         self.indices = [body.joints[n].index for n in sorted(GAINS)]
         self.kp = [GAINS[n][0] for n in sorted(GAINS)]
         self.kd = [GAINS[n][1] for n in sorted(GAINS)]

@@ -1,7 +1,8 @@
 """One PyBullet physics client: the world's static and dynamic bodies, spawned robots, stepping.
 
-No ROS here. Every PyBullet call carries this client's id, so several worlds can live in one
-process (tests do that). Bodies are addressed by model name; joints and links by their URDF names.
+No ROS here. PhysicsWorld owns its client through a pybullet_client.PybulletClient (`world.client`),
+whose functions carry the client's id, so several worlds can live in one process (tests do that).
+Bodies are addressed by model name; joints and links by their URDF names.
 
 Gazebo behaviours reproduced here, because the car drives differently without them:
 - fixed-joint children are merged into their parent link as Gazebo lumps them (urdf_lumping.py, not
@@ -33,6 +34,7 @@ from dataclasses import dataclass
 import pybullet as pb
 
 from . import urdf_assets, urdf_lumping
+from .pybullet_client import PybulletClient
 from .rotations import as_transform
 
 # Mass and inertia given to links that declare no <inertial> (Gazebo drops such links' mass).
@@ -64,7 +66,8 @@ class BodySource:
 
 
 class Body(object):
-    """A body in the world: its PyBullet id, links by name and movable joints by name.
+    """A body in the world: its PyBullet id, links by name and movable joints by name. `client`: the
+    PybulletClient of the world it is in.
 
     `source`: the BodySource it was built from. `extra_bodies`: [(link name, PyBullet id)] of an SDF
     model's links after the first (each link its own body; the first is `id`). `copy_key`: None until
@@ -79,15 +82,15 @@ class Body(object):
         self.kind = source.kind  # 'urdf' or 'sdf'
         self.extra_bodies = list(extra_bodies)
         self.copy_key = None
-        dyn = pb.getDynamicsInfo(body_id, -1, physicsClientId=client)
+        dyn = client.getDynamicsInfo(body_id, -1)
         self._inertial = (tuple(dyn[3]), tuple(dyn[4]))  # base inertial frame in the link frame
         self.spawn_pose = self.pose()
         self.initial_joint_positions = {}
-        base_name = pb.getBodyInfo(body_id, physicsClientId=client)[0].decode()
+        base_name = client.getBodyInfo(body_id)[0].decode()
         self.link_index = {base_name: -1}
         self.joints = {}
-        for j in range(pb.getNumJoints(body_id, physicsClientId=client)):
-            info = pb.getJointInfo(body_id, j, physicsClientId=client)
+        for j in range(client.getNumJoints(body_id)):
+            info = client.getJointInfo(body_id, j)
             link = info[12].decode()
             self.link_index[link] = j
             if info[2] == pb.JOINT_FIXED:
@@ -98,7 +101,7 @@ class Body(object):
 
     def pose(self):
         """The base's centre-of-mass pose (what PyBullet's base calls take and give)."""
-        pos, orn = pb.getBasePositionAndOrientation(self.id, physicsClientId=self.client)
+        pos, orn = self.client.getBasePositionAndOrientation(self.id)
         return Pose(tuple(pos), tuple(orn))
 
     def frame_pose(self):
@@ -114,7 +117,7 @@ class Body(object):
         return Pose(tuple(p), tuple(o))
 
     def twist(self):
-        lin, ang = pb.getBaseVelocity(self.id, physicsClientId=self.client)
+        lin, ang = self.client.getBaseVelocity(self.id)
         return Twist(tuple(lin), tuple(ang))
 
     def link_names(self):
@@ -122,24 +125,25 @@ class Body(object):
 
 
 class PhysicsWorld(object):
-    """Owns one PyBullet client. `gui=True` opens PyBullet's own window (needs a display).
-    `visuals=False` builds no visual shapes (no meshes to draw, no colours): for a client that
-    only steps physics and casts rays while another client draws."""
+    """Owns one PyBullet client (`client`, a pybullet_client.PybulletClient). `gui=True` opens
+    PyBullet's own window (needs a display). `visuals=False` builds no visual shapes (no meshes to
+    draw, no colours): for a client that only steps physics and casts rays while another client draws."""
 
     def __init__(self, step_size=0.001, gravity=(0.0, 0.0, -9.8), gui=False, visuals=True):
         if not (step_size > 0 and math.isfinite(step_size)):
             raise PhysicsError('physics step size must be a positive number of seconds, got %r' % (step_size,))
         self.gui = gui
         self.visuals = visuals
-        self.client = pb.connect(pb.GUI if gui else pb.DIRECT)
-        if self.client < 0:
-            raise PhysicsError('could not start PyBullet (%s mode)' % ('GUI' if gui else 'DIRECT'))
+        try:
+            self.client = PybulletClient(pb.GUI if gui else pb.DIRECT)
+        except pb.error as err:
+            raise PhysicsError(str(err))
         if gui:
-            pb.configureDebugVisualizer(pb.COV_ENABLE_GUI, 0, physicsClientId=self.client)
+            self.client.configureDebugVisualizer(pb.COV_ENABLE_GUI, 0)
         self.step_size = step_size
         self.gravity = tuple(gravity)
-        pb.setGravity(*self.gravity, physicsClientId=self.client)
-        pb.setTimeStep(step_size, physicsClientId=self.client)
+        self.client.setGravity(*self.gravity)
+        self.client.setTimeStep(step_size)
         self.bodies = {}
         self.ground_mu = 1.0
         self._tmpdir = tempfile.mkdtemp(prefix='racebot_urdf_')
@@ -199,22 +203,21 @@ class PhysicsWorld(object):
         world_pos, world_orn = model.world_pose_of(link)
         mass = 0.0 if static else link.mass
         col_id = shapes[0][0] if len(shapes) == 1 else self._compound(link, static) if shapes else -1
-        body = pb.createMultiBody(baseMass=mass, baseCollisionShapeIndex=col_id, baseVisualShapeIndex=vis_id,
-                                  basePosition=world_pos, baseOrientation=world_orn,
-                                  physicsClientId=self.client)
+        body = self.client.createMultiBody(baseMass=mass, baseCollisionShapeIndex=col_id, baseVisualShapeIndex=vis_id,
+                                           basePosition=world_pos, baseOrientation=world_orn)
         if len(visuals) > 1:  # createVisualShapeArray takes no colours: one call per shape
             for i, vis in enumerate(visuals):
-                pb.changeVisualShape(body, -1, shapeIndex=i, rgbaColor=_rgba(vis), physicsClientId=self.client)
+                self.client.changeVisualShape(body, -1, shapeIndex=i, rgbaColor=_rgba(vis))
         if not static and link.inertia is not None:
             ixx, _, _, iyy, _, izz = link.inertia
-            pb.changeDynamics(body, -1, localInertiaDiagonal=(ixx, iyy, izz), physicsClientId=self.client)
+            self.client.changeDynamics(body, -1, localInertiaDiagonal=(ixx, iyy, izz))
         mus = [c.mu for _, c in shapes if c.mu is not None]
         is_ground = any(c.shape.kind == 'plane' for _, c in shapes)
         if is_ground and mus:
             self.ground_mu = min(mus)
         # Static world surfaces get 1 so that Bullet's product equals the robot side's min(mu).
         friction = 1.0 if static else (min(mus) if mus else 1.0)
-        pb.changeDynamics(body, -1, lateralFriction=friction, physicsClientId=self.client)
+        self.client.changeDynamics(body, -1, lateralFriction=friction)
         return body
 
     def _compound(self, link, static):
@@ -238,28 +241,25 @@ class PhysicsWorld(object):
             kwargs['collisionFrameOrientations'].append(orn)
         if not kwargs['shapeTypes']:
             return -1
-        return pb.createCollisionShapeArray(physicsClientId=self.client, **kwargs)
+        return self.client.createCollisionShapeArray(**kwargs)
 
     def _collision_shape(self, shape, pos, orn, static):
         c = self.client
         if shape.kind == 'mesh':
-            return pb.createCollisionShape(pb.GEOM_MESH, fileName=shape.filename, meshScale=list(shape.scale),
-                                           flags=_mesh_flags(static), collisionFramePosition=pos,
-                                           collisionFrameOrientation=orn, physicsClientId=c)
+            return c.createCollisionShape(pb.GEOM_MESH, fileName=shape.filename, meshScale=list(shape.scale),
+                                          flags=_mesh_flags(static), collisionFramePosition=pos,
+                                          collisionFrameOrientation=orn)
         if shape.kind == 'box':
-            return pb.createCollisionShape(pb.GEOM_BOX, halfExtents=[x / 2.0 for x in shape.size],
-                                           collisionFramePosition=pos, collisionFrameOrientation=orn,
-                                           physicsClientId=c)
+            return c.createCollisionShape(pb.GEOM_BOX, halfExtents=[x / 2.0 for x in shape.size],
+                                          collisionFramePosition=pos, collisionFrameOrientation=orn)
         if shape.kind == 'cylinder':
-            return pb.createCollisionShape(pb.GEOM_CYLINDER, radius=shape.radius, height=shape.length,
-                                           collisionFramePosition=pos, collisionFrameOrientation=orn,
-                                           physicsClientId=c)
+            return c.createCollisionShape(pb.GEOM_CYLINDER, radius=shape.radius, height=shape.length,
+                                          collisionFramePosition=pos, collisionFrameOrientation=orn)
         if shape.kind == 'sphere':
-            return pb.createCollisionShape(pb.GEOM_SPHERE, radius=shape.radius, collisionFramePosition=pos,
-                                           physicsClientId=c)
+            return c.createCollisionShape(pb.GEOM_SPHERE, radius=shape.radius, collisionFramePosition=pos)
         if shape.kind == 'plane':
-            return pb.createCollisionShape(pb.GEOM_PLANE, planeNormal=list(shape.normal or (0, 0, 1)),
-                                           collisionFramePosition=pos, physicsClientId=c)
+            return c.createCollisionShape(pb.GEOM_PLANE, planeNormal=list(shape.normal or (0, 0, 1)),
+                                          collisionFramePosition=pos)
         return None
 
     @staticmethod
@@ -274,8 +274,8 @@ class PhysicsWorld(object):
         if len(visuals) == 1:
             vis = visuals[0]
             pos, orn = as_transform(vis.pose)
-            return pb.createVisualShape(rgbaColor=_rgba(vis), visualFramePosition=pos, visualFrameOrientation=orn,
-                                        physicsClientId=c, **self._visual_geometry(vis.shape))
+            return c.createVisualShape(rgbaColor=_rgba(vis), visualFramePosition=pos, visualFrameOrientation=orn,
+                                       **self._visual_geometry(vis.shape))
         kwargs = dict(shapeTypes=[], radii=[], halfExtents=[], lengths=[], fileNames=[], meshScales=[],
                       planeNormals=[], visualFramePositions=[], visualFrameOrientations=[])
         for vis in visuals:
@@ -290,7 +290,7 @@ class PhysicsWorld(object):
             kwargs['planeNormals'].append([0.0, 0.0, 1.0])
             kwargs['visualFramePositions'].append(list(pos))
             kwargs['visualFrameOrientations'].append(list(orn))
-        return pb.createVisualShapeArray(physicsClientId=c, **kwargs)
+        return c.createVisualShapeArray(**kwargs)
 
     @staticmethod
     def _visual_geometry(shape):
@@ -319,21 +319,19 @@ class PhysicsWorld(object):
             f.write(prepare_urdf_for_bullet(urdf_xml, urdf_model, self.visuals))
         flags = pb.URDF_USE_INERTIA_FROM_FILE | pb.URDF_MAINTAIN_LINK_ORDER | pb.URDF_USE_IMPLICIT_CYLINDER
         try:
-            body_id = pb.loadURDF(path, basePosition=position, baseOrientation=orientation, flags=flags,
-                                  physicsClientId=self.client)
+            body_id = self.client.loadURDF(path, basePosition=position, baseOrientation=orientation, flags=flags)
         except pb.error as err:
             raise PhysicsError("PyBullet could not load the URDF of '%s': %s" % (name, err))
         # urdf_xml has its meshes resolved: a copy needs no package path
         body = Body(self.client, name, body_id, False, BodySource('urdf', urdf_model, urdf_xml))
         for link, index in body.link_index.items():
             # PyBullet's default link damping (0.04) has no counterpart in Gazebo: a free wheel would slow down.
-            pb.changeDynamics(body_id, index, lateralFriction=min(link_friction(urdf_model, link), self.ground_mu),
-                              physicsClientId=self.client)
+            friction = min(link_friction(urdf_model, link), self.ground_mu)
+            self.client.changeDynamics(body_id, index, lateralFriction=friction)
             # separate call: PyBullet ignores the friction when damping comes in the same call
-            pb.changeDynamics(body_id, index, linearDamping=0.0, angularDamping=0.0, physicsClientId=self.client)
+            self.client.changeDynamics(body_id, index, linearDamping=0.0, angularDamping=0.0)
         for joint in body.joints.values():
-            pb.setJointMotorControl2(body_id, joint.index, pb.VELOCITY_CONTROL, force=0.0,
-                                     physicsClientId=self.client)
+            self.client.setJointMotorControl2(body_id, joint.index, pb.VELOCITY_CONTROL, force=0.0)
         self.bodies[name] = body
         return body
 
@@ -346,117 +344,114 @@ class PhysicsWorld(object):
 
     def remove(self, name):
         body = self.bodies.pop(name)
-        pb.removeBody(body.id, physicsClientId=self.client)
+        self.client.removeBody(body.id)
         for _, extra in body.extra_bodies:
-            pb.removeBody(extra, physicsClientId=self.client)
+            self.client.removeBody(extra)
 
     # -- state ----------------------------------------------------------------------------------
     def joint_states(self, body, indices):
-        states = pb.getJointStates(body.id, indices, physicsClientId=self.client)
+        states = self.client.getJointStates(body.id, indices)
         return [JointState(s[0], s[1]) for s in states]
 
     def joint_states_raw(self, body, indices):
         """PyBullet's own tuples (position, velocity, reaction forces, applied torque) of the joints:
         the update loop's read, without building a JointState per joint."""
-        return pb.getJointStates(body.id, indices, physicsClientId=self.client)
+        return self.client.getJointStates(body.id, indices)
 
     def apply_efforts(self, body, indices, efforts):
         """Torques (or forces) for one step: PyBullet clears them after every stepSimulation."""
-        pb.setJointMotorControlArray(body.id, indices, pb.TORQUE_CONTROL, forces=efforts,
-                                     physicsClientId=self.client)
+        self.client.setJointMotorControlArray(body.id, indices, pb.TORQUE_CONTROL, forces=efforts)
 
     def drive_velocities(self, body, indices, velocities, max_forces):
-        pb.setJointMotorControlArray(body.id, indices, pb.VELOCITY_CONTROL, targetVelocities=velocities,
-                                     forces=max_forces, physicsClientId=self.client)
+        self.client.setJointMotorControlArray(body.id, indices, pb.VELOCITY_CONTROL, targetVelocities=velocities,
+                                              forces=max_forces)
 
     def drive_positions(self, body, indices, positions, max_forces):
-        pb.setJointMotorControlArray(body.id, indices, pb.POSITION_CONTROL, targetPositions=positions,
-                                     forces=max_forces, physicsClientId=self.client)
+        self.client.setJointMotorControlArray(body.id, indices, pb.POSITION_CONTROL, targetPositions=positions,
+                                              forces=max_forces)
 
     def set_joint_position(self, body, joint_name, position, velocity=0.0):
         joint = body.joints[joint_name]
-        pb.resetJointState(body.id, joint.index, position, velocity, physicsClientId=self.client)
+        self.client.resetJointState(body.id, joint.index, position, velocity)
 
     def set_pose(self, body, position, orientation, linear=(0, 0, 0), angular=(0, 0, 0)):
-        pb.resetBasePositionAndOrientation(body.id, position, orientation, physicsClientId=self.client)
-        pb.resetBaseVelocity(body.id, linear, angular, physicsClientId=self.client)
+        self.client.resetBasePositionAndOrientation(body.id, position, orientation)
+        self.client.resetBaseVelocity(body.id, linear, angular)
 
     def link_state(self, body, link):
         """World pose and twist of a link (the base's for index -1)."""
         index = body.link_index[link]
         if index < 0:
             return body.frame_pose(), body.twist()
-        s = pb.getLinkState(body.id, index, computeLinkVelocity=1, computeForwardKinematics=1,
-                            physicsClientId=self.client)
+        s = self.client.getLinkState(body.id, index, computeLinkVelocity=1, computeForwardKinematics=1)
         return Pose(tuple(s[4]), tuple(s[5])), Twist(tuple(s[6]), tuple(s[7]))
 
     def base_state(self, body_id):
         """World pose and twist of one PyBullet body's base, by id (an SDF model's extra link body)."""
-        pos, orn = pb.getBasePositionAndOrientation(body_id, physicsClientId=self.client)
-        lin, ang = pb.getBaseVelocity(body_id, physicsClientId=self.client)
+        pos, orn = self.client.getBasePositionAndOrientation(body_id)
+        lin, ang = self.client.getBaseVelocity(body_id)
         return Pose(tuple(pos), tuple(orn)), Twist(tuple(lin), tuple(ang))
 
     def set_base_state(self, body_id, position, orientation, linear=(0, 0, 0), angular=(0, 0, 0)):
         """Puts one PyBullet body's base (by id) at a pose with a twist."""
-        pb.resetBasePositionAndOrientation(body_id, position, orientation, physicsClientId=self.client)
-        pb.resetBaseVelocity(body_id, linear, angular, physicsClientId=self.client)
+        self.client.resetBasePositionAndOrientation(body_id, position, orientation)
+        self.client.resetBaseVelocity(body_id, linear, angular)
 
     def apply_joint_effort(self, body, joint_name, effort):
         joint = body.joints[joint_name]
-        pb.setJointMotorControl2(body.id, joint.index, pb.TORQUE_CONTROL, force=effort,
-                                 physicsClientId=self.client)
+        self.client.setJointMotorControl2(body.id, joint.index, pb.TORQUE_CONTROL, force=effort)
 
     # -- dynamics and external forces (gazebo_ros's properties and force services) ----------------
     # A link is addressed (PyBullet body id, link index): an SDF model's extra link is a body of its own.
     def link_dynamics(self, body_id, index):
         """LinkDynamics of a link: mass, inertia diagonal, inertial frame in the link frame."""
-        d = pb.getDynamicsInfo(body_id, index, physicsClientId=self.client)
+        d = self.client.getDynamicsInfo(body_id, index)
         return LinkDynamics(d[0], tuple(d[2]), tuple(d[3]), tuple(d[4]))
 
     def set_link_mass(self, body_id, index, mass, inertia_diagonal):
         # Two calls: PyBullet recomputes the inertia from the collision shapes when the mass changes.
-        pb.changeDynamics(body_id, index, mass=mass, physicsClientId=self.client)
-        pb.changeDynamics(body_id, index, localInertiaDiagonal=list(inertia_diagonal), physicsClientId=self.client)
+        self.client.changeDynamics(body_id, index, mass=mass)
+        self.client.changeDynamics(body_id, index, localInertiaDiagonal=list(inertia_diagonal))
 
     def com_position(self, body_id, index):
         """World position of a link's centre of mass."""
         if index < 0:
-            return tuple(pb.getBasePositionAndOrientation(body_id, physicsClientId=self.client)[0])
-        return tuple(pb.getLinkState(body_id, index, computeForwardKinematics=1, physicsClientId=self.client)[0])
+            return tuple(self.client.getBasePositionAndOrientation(body_id)[0])
+        return tuple(self.client.getLinkState(body_id, index, computeForwardKinematics=1)[0])
 
     def apply_wrench(self, body_id, index, force, torque):
         """A world-frame force at the link's centre of mass and a world-frame torque, for one step."""
         if any(force):
-            pb.applyExternalForce(body_id, index, list(force), self.com_position(body_id, index), pb.WORLD_FRAME,
-                                  physicsClientId=self.client)
+            at = self.com_position(body_id, index)
+            self.client.applyExternalForce(body_id, index, list(force), at, pb.WORLD_FRAME)
         if any(torque):
-            pb.applyExternalTorque(body_id, index, list(torque), pb.WORLD_FRAME, physicsClientId=self.client)
+            self.client.applyExternalTorque(body_id, index, list(torque), pb.WORLD_FRAME)
 
     def set_joint_dynamics(self, body, joint_name, damping=None, lower=None, upper=None):
         """A joint's viscous damping and position limits (None: unchanged)."""
         joint = body.joints[joint_name]
         if damping is not None:
-            pb.changeDynamics(body.id, joint.index, jointDamping=damping, physicsClientId=self.client)
+            self.client.changeDynamics(body.id, joint.index, jointDamping=damping)
         if lower is not None or upper is not None:
-            pb.changeDynamics(body.id, joint.index, jointLowerLimit=joint.lower if lower is None else lower,
-                              jointUpperLimit=joint.upper if upper is None else upper, physicsClientId=self.client)
+            self.client.changeDynamics(body.id, joint.index, jointLowerLimit=joint.lower if lower is None else lower,
+                                       jointUpperLimit=joint.upper if upper is None else upper)
             body.joints[joint_name] = joint._replace(lower=joint.lower if lower is None else lower,
                                                      upper=joint.upper if upper is None else upper)
 
     def set_gravity(self, gravity):
         self.gravity = tuple(gravity)
-        pb.setGravity(*self.gravity, physicsClientId=self.client)
+        self.client.setGravity(*self.gravity)
 
     def set_step_size(self, step_size):
         self.step_size = step_size
-        pb.setTimeStep(step_size, physicsClientId=self.client)
+        self.client.setTimeStep(step_size)
 
     def set_solver(self, **params):
         """Constraint solver parameters by PyBullet's names (numSolverIterations, erp, globalCFM)."""
-        pb.setPhysicsEngineParameter(physicsClientId=self.client, **params)
+        self.client.setPhysicsEngineParameter(**params)
 
     def step(self):
-        pb.stepSimulation(physicsClientId=self.client)
+        self.client.stepSimulation()
 
     def reset_to_spawn(self, body):
         pos, orn = body.spawn_pose
@@ -465,23 +460,17 @@ class PhysicsWorld(object):
             pos, orn = body.source.model.world_pose_of(link)
             self.set_base_state(extra, pos, orn)
         for joint in body.joints.values():
-            pb.resetJointState(body.id, joint.index, body.initial_joint_positions.get(joint.name, 0.0), 0.0,
-                               physicsClientId=self.client)
+            self.client.resetJointState(body.id, joint.index, body.initial_joint_positions.get(joint.name, 0.0), 0.0)
 
     def follow_with_camera(self, body, distance=1.5, yaw_offset=0.0, pitch=-30.0):
         if not self.gui:
             return
         pos, orn = body.pose()
         yaw = math.degrees(pb.getEulerFromQuaternion(orn)[2]) - 90.0 + yaw_offset
-        pb.resetDebugVisualizerCamera(distance, yaw, pitch, pos, physicsClientId=self.client)
+        self.client.resetDebugVisualizerCamera(distance, yaw, pitch, pos)
 
     def close(self):
-        if self.client >= 0:
-            try:
-                pb.disconnect(physicsClientId=self.client)
-            except pb.error:
-                pass
-            self.client = -1
+        self.client.close()
         shutil.rmtree(self._tmpdir, ignore_errors=True)
 
 

@@ -51,11 +51,11 @@ class Window(object):
         if bodies:
             # Every call into a GUI client waits for its next frame: building the room that way took
             # ~7 s (llvmpipe, niced). With drawing off while bodies are built, it is one frame.
-            pb.configureDebugVisualizer(pb.COV_ENABLE_RENDERING, 0, physicsClientId=self.world.client)
+            self.world.client.configureDebugVisualizer(pb.COV_ENABLE_RENDERING, 0)
             try:
                 self.copy.sync(bodies)
             finally:
-                pb.configureDebugVisualizer(pb.COV_ENABLE_RENDERING, 1, physicsClientId=self.world.client)
+                self.world.client.configureDebugVisualizer(pb.COV_ENABLE_RENDERING, 1)
         self.copy.prune(set(names))
         for name in [n for n in self.shown if n not in names]:
             del self.shown[name]

@@ -10,8 +10,6 @@ copy too.
 """
 import itertools
 
-import pybullet as pb
-
 _SERIALS = itertools.count()
 
 
@@ -30,10 +28,9 @@ def snapshot(world):
     shot = {}
     for name, body in world.bodies.items():
         ids = [body.id] + [extra for _, extra in body.extra_bodies]
-        poses = [pb.getBasePositionAndOrientation(i, physicsClientId=client) for i in ids]
+        poses = [client.getBasePositionAndOrientation(i) for i in ids]
         joints = list(body.joints.values())
-        positions = tuple(s[0] for s in pb.getJointStates(body.id, [j.index for j in joints],
-                                                          physicsClientId=client)) if joints else ()
+        positions = tuple(s[0] for s in client.getJointStates(body.id, [j.index for j in joints])) if joints else ()
         shot[name] = (body_key(body), poses, positions)
     return shot
 
@@ -76,8 +73,7 @@ class WorldCopy(object):
                 continue
             ids = [copy.id] + [extra for _, extra in copy.extra_bodies]
             for body_id, (position, orientation) in zip(ids, poses):
-                pb.resetBasePositionAndOrientation(body_id, position, orientation, physicsClientId=client)
+                client.resetBasePositionAndOrientation(body_id, position, orientation)
             if positions:  # one call for all joints: each call into a GUI client waits for its frame
                 indices = [joint.index for joint in copy.joints.values()][:len(positions)]
-                pb.resetJointStatesMultiDof(copy.id, indices, [[p] for p in positions[:len(indices)]],
-                                            physicsClientId=client)
+                client.resetJointStatesMultiDof(copy.id, indices, [[p] for p in positions[:len(indices)]])

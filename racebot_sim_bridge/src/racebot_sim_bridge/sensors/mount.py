@@ -35,8 +35,8 @@ class SensorMount(object):
             com = body.pose()
             lin, ang = body.twist() if velocity else ((0.0, 0.0, 0.0), (0.0, 0.0, 0.0))
             return frame.position, frame.orientation, com.position, lin, ang
-        s = pb.getLinkState(body.id, self.index, computeLinkVelocity=1 if velocity else 0,
-                            computeForwardKinematics=1, physicsClientId=client)
+        s = client.getLinkState(body.id, self.index, computeLinkVelocity=1 if velocity else 0,
+                                computeForwardKinematics=1)
         lin, ang = (s[6], s[7]) if velocity else ((0.0, 0.0, 0.0), (0.0, 0.0, 0.0))
         return s[4], s[5], s[0], lin, ang
 

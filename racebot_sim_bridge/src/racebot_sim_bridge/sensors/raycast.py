@@ -1,6 +1,5 @@
 """The laser's measurement: one PyBullet rayTestBatch for all beams, on the physics client."""
 import numpy as np
-import pybullet as pb
 
 MAX_RAYS_PER_BATCH = 16384  # PyBullet's limit for one rayTestBatch call
 
@@ -13,8 +12,7 @@ def cast_rays(world, starts, ends):
     hit = np.zeros(len(starts), dtype=bool)
     for first in range(0, len(starts), MAX_RAYS_PER_BATCH):
         last = first + MAX_RAYS_PER_BATCH
-        results = pb.rayTestBatch(starts[first:last], ends[first:last], numThreads=1,
-                                  physicsClientId=world.client)
+        results = world.client.rayTestBatch(starts[first:last], ends[first:last], numThreads=1)
         fractions[first:last] = [r[2] for r in results]
         hit[first:last] = [r[0] >= 0 for r in results]
     return fractions, hit

@@ -47,9 +47,9 @@ def render(world, width, height, view_matrix, projection_matrix, renderer=TINY):
 
 
 def _render(world, width, height, view_matrix, projection_matrix, renderer):
-    w, h, rgba, depth, _ = pb.getCameraImage(width, height, view_matrix, projection_matrix, shadow=0,
-                                             renderer=RENDERER_FLAGS[renderer], flags=pb.ER_NO_SEGMENTATION_MASK,
-                                             physicsClientId=world.client)
+    w, h, rgba, depth, _ = world.client.getCameraImage(width, height, view_matrix, projection_matrix, shadow=0,
+                                                       renderer=RENDERER_FLAGS[renderer],
+                                                       flags=pb.ER_NO_SEGMENTATION_MASK)
     rgb = np.asarray(rgba, dtype=np.uint8).reshape(h, w, 4)[:, :, :3]
     return rgb, np.asarray(depth, dtype=np.float32).reshape(h, w)
 
@@ -84,8 +84,8 @@ def render_tiled(world, width, height, view_matrix, projection_matrix, renderer,
 
 
 def load_egl(client):
-    """Loads PyBullet's EGL renderer plugin into `client` (DIRECT, no bodies yet) and switches its
-    shadow-map pass off (egl_shadow_map). Returns what the plugin says of the OpenGL driver (e.g.
+    """Loads PyBullet's EGL renderer plugin into `client` (a PybulletClient, DIRECT, no bodies yet) and
+    switches its shadow-map pass off (egl_shadow_map). Returns what the plugin says of the OpenGL driver (e.g.
     'Mesa/X.org, llvmpipe (LLVM 15.0.6, 256 bits)') and of the shadow map when it stays on.
     Raises RendererError when it does not load.
 
@@ -98,11 +98,10 @@ def load_egl(client):
     if loader is None:
         raise RendererError('PyBullet has no eglRenderer plugin')
     if threading.active_count() > 1:
-        plugin = pb.loadPlugin(loader.get_filename(), '_eglRendererPlugin', physicsClientId=client)
+        plugin = client.loadPlugin(loader.get_filename(), '_eglRendererPlugin')
         said = 'Renderer = driver not read (other threads share stdout)'
     else:
-        said, plugin = stdout_of(lambda: pb.loadPlugin(loader.get_filename(), '_eglRendererPlugin',
-                                                       physicsClientId=client))
+        said, plugin = stdout_of(lambda: client.loadPlugin(loader.get_filename(), '_eglRendererPlugin'))
     if plugin < 0:
         raise RendererError('the EGL plugin did not load (no EGL driver: install libegl1 libegl-mesa0 '
                             'libgl1-mesa-dri for Mesa)')
@@ -133,17 +132,16 @@ def renderer_draws_correctly(world, renderer):
     """Renders a red cube 1 m in front of a 16 x 16 camera and checks colour and depth: a driver
     can load and still draw black or garbage. Adds and removes its own body."""
     half = 0.1
-    visual = pb.createVisualShape(pb.GEOM_BOX, halfExtents=[half] * 3, rgbaColor=[0.9, 0.1, 0.1, 1.0],
-                                  physicsClientId=world.client)
-    collision = pb.createCollisionShape(pb.GEOM_BOX, halfExtents=[half] * 3, physicsClientId=world.client)
-    box = pb.createMultiBody(0.0, collision, visual, basePosition=[1.0, 0.0, 50.0], physicsClientId=world.client)
+    visual = world.client.createVisualShape(pb.GEOM_BOX, halfExtents=[half] * 3, rgbaColor=[0.9, 0.1, 0.1, 1.0])
+    collision = world.client.createCollisionShape(pb.GEOM_BOX, halfExtents=[half] * 3)
+    box = world.client.createMultiBody(0.0, collision, visual, basePosition=[1.0, 0.0, 50.0])
     try:
         camera = PinholeCamera(16, 16, 0.6, 0.05, 10.0)
         view = camera.view_matrix([0.0, 0.0, 50.0], np.eye(3))
         rgb, buffer = render(world, 16, 16, view, camera.projection_matrix(), renderer)
         depth = camera.linear_depth(buffer)
     finally:
-        pb.removeBody(box, physicsClientId=world.client)
+        world.client.removeBody(box)
     centre = rgb[7:9, 7:9].astype(int).mean(axis=(0, 1))
     corner = rgb[0, 0].astype(int)
     red = centre[0] > 120 and centre[0] > centre[1] + 60 and centre[0] > centre[2] + 60

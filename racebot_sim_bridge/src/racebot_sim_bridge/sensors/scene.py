@@ -74,13 +74,14 @@ class SceneColours(object):
                 continue
             rgba = next((v.rgba for v in link.visuals if v.rgba), None)
             plane = next((c for c in link.collisions if c.shape.kind == 'plane'), None)
-            if plane is None and (rgba is None or getattr(self.world, "visuals", False)):  # visuals: coloured when built
+            # a world built with visuals has its colours already
+            if plane is None and (rgba is None or getattr(self.world, "visuals", False)):
                 continue
             kwargs = dict(rgbaColor=list(rgba or (0.8, 0.8, 0.8, 1.0)))
             if plane is not None:
                 kwargs['textureUniqueId'] = -1  # PyBullet's checker texture is not the world's ground
             try:
-                pb.changeVisualShape(body_id, -1, physicsClientId=self.world.client, **kwargs)
+                self.world.client.changeVisualShape(body_id, -1, **kwargs)
             except pb.error:
                 continue  # a body without any drawable shape: nothing to colour
             if plane is not None and not self.world.gui:
@@ -97,9 +98,9 @@ class SceneColours(object):
         if np.linalg.norm(up) < 1e-6:
             up = np.cross(normal, [0.0, 1.0, 0.0])
         client = self.world.client
-        view = pb.computeViewMatrix(eye.tolist(), point.tolist(), up.tolist(), physicsClientId=client)
-        proj = pb.computeProjectionMatrixFOV(1.0, 1.0, 0.001, 1.0, physicsClientId=client)
+        view = client.computeViewMatrix(eye.tolist(), point.tolist(), up.tolist())
+        proj = client.computeProjectionMatrixFOV(1.0, 1.0, 0.001, 1.0)
         rgb, _ = render(self.world, 4, 4, view, proj, self.renderer)
         colour = rgb[2, 2].copy()
-        pb.changeVisualShape(body_id, -1, rgbaColor=[0.0, 0.0, 0.0, 0.0], physicsClientId=client)
+        client.changeVisualShape(body_id, -1, rgbaColor=[0.0, 0.0, 0.0, 0.0])
         self.planes.append(GroundPlane(body_key, point, normal, colour))
