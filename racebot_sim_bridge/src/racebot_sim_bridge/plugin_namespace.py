@@ -10,6 +10,7 @@ Pure Python. Three rules meet here (gazebo_ros_pkgs noetic-devel):
   laser, gpu_laser, camera, depth camera (GetRobotNamespace): no element -> ''; an empty element ->
   the model name. The camera family's node handle is robotNamespace + '/' + cameraName.
   imu_sensor: element -> its text + '/'; none -> '/<model name>/'.
+  range, bumper: element -> its text + '/' (so an empty one is the root); none -> ''.
 - a ros::NodeHandle(ns) resolves a relative ns in the node's namespace (the world server's, '/'
   when it runs at the root); '' is the node's namespace itself.
 """
@@ -41,10 +42,12 @@ def sensor_namespace(kind, own, requested, model_name, camera_name='', node_name
     text = after_spawn(own, requested)
     if kind == 'imu':
         return resolve('/%s/' % model_name if text is None else text + '/', node_namespace)
+    if kind in ('range', 'bumper'):
+        return resolve('' if text is None else text + '/', node_namespace)
     if text is None:
         text = ''
     elif text == '':
         text = model_name
-    if kind in ('camera', 'depth'):
+    if kind in ('camera', 'depth', 'multicamera'):
         return resolve('%s/%s' % (text, camera_name), node_namespace)
     return resolve(text, node_namespace)

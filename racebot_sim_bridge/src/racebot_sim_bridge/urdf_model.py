@@ -192,6 +192,7 @@ class CameraSpec:
     noise_type: str = 'none'
     noise_mean: float = 0.0
     noise_stddev: float = 0.0
+    pose: tuple = (0.0, 0.0, 0.0, 0.0, 0.0, 0.0)  # <camera><pose> in the sensor (a multicamera's cameras)
 
 
 @dataclass
@@ -215,6 +216,8 @@ class SensorSpec:
     camera: CameraSpec = None
     imu: ImuSpec = None
     plugins: list = field(default_factory=list)
+    cameras: list = field(default_factory=list)             # every <camera> (a multicamera has several)
+    contact_collisions: list = field(default_factory=list)  # <contact><collision> names (contact sensors)
 
 
 @dataclass
@@ -723,9 +726,12 @@ class _UrdfReader:
             ray = elem.find('lidar')
         if ray is not None:
             spec.ray = self.ray(ray, what)
-        camera = elem.find('camera')
-        if camera is not None:
-            spec.camera = self.camera(camera, what)
+        spec.cameras = [self.camera(camera, what) for camera in elem.findall('camera')]
+        if spec.cameras:
+            spec.camera = spec.cameras[0]
+        contact = elem.find('contact')
+        if contact is not None:
+            spec.contact_collisions = [(c.text or '').strip() for c in contact.findall('collision')]
         imu = elem.find('imu')
         if imu is not None or kind == 'imu':
             spec.imu = self.imu(imu, what)
@@ -784,6 +790,9 @@ class _UrdfReader:
         self._fill(spec, elem, [('horizontal_fov', 'horizontal_fov'),
                                 ('clip_near', 'clip/near'), ('clip_far', 'clip/far')], what)
         spec.format = _child_text(elem, 'image/format') or spec.format
+        text = _child_text(elem, 'pose')
+        if text:
+            spec.pose = _vector(text, 6, what + ' <pose>')
         if spec.width < 1 or spec.height < 1:
             raise UrdfError('%s image must be at least 1 x 1 pixels, got %d x %d'
                             % (what, spec.width, spec.height))

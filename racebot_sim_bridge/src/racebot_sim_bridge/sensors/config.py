@@ -6,8 +6,12 @@ Pure Python: no rospy, no pybullet. `sensor_config(spec)` reads a urdf_model.Sen
 | plugin (filename)                              | kind   | topics                                        |
 | gazebo_ros_laser, gazebo_ros_gpu_laser         | laser  | topicName                                     |
 | gazebo_ros_camera                              | camera | cameraName/{imageTopicName,cameraInfoTopicName} |
-| gazebo_ros_openni_kinect, gazebo_ros_depth_camera | depth | cameraName/{imageTopicName, cameraInfoTopicName, depthImageTopicName, depthImageCameraInfoTopicName, pointCloudTopicName} |
+| gazebo_ros_openni_kinect, gazebo_ros_depth_camera | depth | cameraName/{imageTopicName, cameraInfoTopicName,
+|     depthImageTopicName, depthImageCameraInfoTopicName, pointCloudTopicName} |
 | gazebo_ros_imu_sensor                          | imu    | topicName                                     |
+| gazebo_ros_range                               | range  | topicName                                     |
+| gazebo_ros_bumper                              | bumper | bumperTopicName                               |
+| gazebo_ros_multicamera                         | multicamera | cameraName/{left,right}/{image..., cameraInfo...} |
 
 Relative topic names resolve in the plugin's namespace as Gazebo sets it: its own <robotNamespace>,
 else the spawn request's robot_namespace, else each plugin's default (../plugin_namespace.py has
@@ -18,9 +22,10 @@ a leading slash (tf2 rejects one). The update rate is the sensor's <update_rate>
 by the plugin's own rate where the plugin throttles (gazebo_ros_camera's updateRate,
 gazebo_ros_imu_sensor's updateRateHZ); 0 means every world update, as in Gazebo.
 """
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 from ..plugin_namespace import sensor_namespace
+from ..rotations import as_xyz_rpy, compose
 
 KINDS = {
     'gazebo_ros_laser': 'laser',
@@ -29,6 +34,9 @@ KINDS = {
     'gazebo_ros_openni_kinect': 'depth',
     'gazebo_ros_depth_camera': 'depth',
     'gazebo_ros_imu_sensor': 'imu',
+    'gazebo_ros_range': 'range',
+    'gazebo_ros_bumper': 'bumper',
+    'gazebo_ros_multicamera': 'multicamera',
 }
 # Which sensor types each kind of plugin can sit in.
 SENSOR_TYPES = {
@@ -36,6 +44,9 @@ SENSOR_TYPES = {
     'camera': ('camera',),
     'depth': ('depth',),
     'imu': ('imu',),
+    'range': ('ray', 'gpu_ray'),
+    'bumper': ('contact',),
+    'multicamera': ('multicamera',),
 }
 
 
@@ -105,8 +116,12 @@ def sensor_config(spec, spawn_namespace='', model_name='', node_namespace='/'):
                                 % (what, plugin.filename, kind, spec.type, ' or '.join(SENSOR_TYPES[kind])))
     if kind in ('camera', 'depth') and spec.camera is None:
         raise SensorConfigError('%s: the sensor has no <camera> block' % what)
-    if kind == 'laser' and spec.ray is None:
+    if kind in ('laser', 'range') and spec.ray is None:
         raise SensorConfigError('%s: the sensor has no <ray> block' % what)
+    if kind == 'multicamera':
+        return _multicamera_config(spec, plugin, what, spawn_namespace, model_name, node_namespace)
+    if kind in ('range', 'bumper'):
+        return _range_or_bumper_config(kind, spec, plugin, what, spawn_namespace, model_name, node_namespace)
     params = plugin.params
     warnings = []
     own_ns = params.get('robotNamespace')
@@ -155,6 +170,10 @@ def sensor_config(spec, spawn_namespace='', model_name='', node_namespace='/'):
             config.topics['depth_info'] = join_topic(ns, params.get('depthImageCameraInfoTopicName')
                                                      or 'depth/camera_info')
             config.topics['points'] = join_topic(ns, params.get('pointCloudTopicName') or 'points')
+            if 'depthImageInfoTopicName' in params and 'depthImageCameraInfoTopicName' not in params:
+                warnings.append('%s: <depthImageInfoTopicName> is not read by %s (it reads '
+                                '<depthImageCameraInfoTopicName>); depth camera_info goes to %s, as upstream'
+                                % (what, plugin.filename, config.topics['depth_info']))
             config.params['cutoff'] = _number(params, 'pointCloudCutoff', 0.4, warnings, what)
             config.params['cutoff_max'] = _number(params, 'pointCloudCutoffMax', 5.0, warnings, what)
         for key in ('focalLength', 'Cx', 'Cy', 'CxPrime'):
@@ -170,3 +189,90 @@ def _throttled(sensor_rate, plugin_rate):
     """The rate a plugin publishes at: the sensor's, or the plugin's own if that is lower."""
     rates = [r for r in (sensor_rate, plugin_rate) if r and r > 0]
     return min(rates) if rates else 0.0
+
+
+def unsupported_plugins(spec):
+    """Filenames of a urdf_model.SensorSpec's plugins that racebot does not simulate."""
+    return [p.filename for p in spec.plugins if plugin_kind(p.filename) is None]
+
+
+def _frame(params, default):
+    """A plugin's frameName as tf::resolve leaves it with no tf_prefix: without a leading slash."""
+    text = params.get('frameName')
+    return (default if text is None else text).strip().lstrip('/')
+
+
+def _range_or_bumper_config(kind, spec, plugin, what, spawn_namespace, model_name, node_namespace):
+    """gazebo_ros_range (a ray sensor to sensor_msgs/Range) and gazebo_ros_bumper (a contact sensor
+    to gazebo_msgs/ContactsState): parameters and defaults as their Load() reads them."""
+    params = plugin.params
+    warnings = []
+    ns = sensor_namespace(kind, params.get('robotNamespace'), spawn_namespace, model_name, '', node_namespace)
+    if kind == 'bumper':
+        if not spec.contact_collisions or not all(spec.contact_collisions):
+            raise SensorConfigError("%s: the contact sensor needs <contact><collision>NAME</collision></contact> "
+                                    "naming one of its link's collisions" % what)
+        config = SensorConfig(spec.name, kind, spec.reference, _frame(params, 'world'), spec.update_rate,
+                              warnings=warnings)
+        config.topics['bumper'] = join_topic(ns, params.get('bumperTopicName') or 'bumper_states')
+        config.params['collisions'] = list(spec.contact_collisions)
+        return config
+    topic = params.get('topicName')
+    if topic == '':
+        return None  # gazebo_ros_range advertises nothing for an empty <topicName>
+    radiation = params.get('radiation')
+    if radiation is None:
+        radiation = 'ultrasound'
+        warnings.append('%s has no <radiation>; ultrasound, as gazebo_ros_range defaults' % what)
+    elif radiation not in ('ultrasound', 'infrared'):
+        warnings.append("%s: <radiation> %r is neither 'ultrasound' nor 'infrared'; published as INFRARED, as "
+                        "gazebo_ros_range does with any text but 'ultrasound'" % (what, radiation))
+    if params.get('fov') is None:
+        warnings.append('%s has no <fov>; field_of_view 0.05 rad, as gazebo_ros_range defaults' % what)
+    config = SensorConfig(spec.name, kind, spec.reference, _frame(params, '/world'), spec.update_rate,
+                          warnings=warnings)
+    config.topics['range'] = join_topic(ns, '/range' if topic is None else topic)
+    config.params['radiation'] = radiation
+    config.params['fov'] = _number(params, 'fov', 0.05, warnings, what)
+    config.params['gaussian_noise'] = _number(params, 'gaussianNoise', 0.0, warnings, what)
+    config.params['update_rate'] = _number(params, 'updateRate', 0.0, warnings, what)
+    return config
+
+
+# gazebo_ros_multicamera gives a camera whose name holds 'left' the namespace suffix /left and no
+# baseline, one whose name holds 'right' /right and the plugin's hackBaseline (P[3] = -f * it).
+STEREO_SIDES = (('left', False), ('right', True))
+
+
+def _multicamera_config(spec, plugin, what, spawn_namespace, model_name, node_namespace):
+    """A SensorConfig of kind 'multicamera' whose params['parts'] are (camera SensorSpec, camera
+    SensorConfig) pairs: each <camera> as the gazebo_ros_camera that gazebo_ros_multicamera makes
+    of it, under <cameraName>/left or <cameraName>/right, posed at the sensor's pose + its own."""
+    if not spec.cameras:
+        raise SensorConfigError('%s: the multicamera sensor has no <camera> block' % what)
+    warnings = []
+    parts = []
+    camera_name = (plugin.params.get('cameraName') or '').strip()
+    for camera in spec.cameras:
+        side = next(((name, baseline) for name, baseline in STEREO_SIDES if name in camera.name), None)
+        if side is None:
+            warnings.append("%s: camera '%s' has neither 'left' nor 'right' in its name, so "
+                            'gazebo_ros_multicamera publishes nothing for it' % (what, camera.name))
+            continue
+        params = dict(plugin.params, cameraName='%s/%s' % (camera_name, side[0]))
+        params['hackBaseline'] = (plugin.params.get('hackBaseline') or '0') if side[1] else '0'
+        part_spec = replace(spec, type='camera', camera=camera, cameras=[camera],
+                            pose=as_xyz_rpy(compose(spec.pose, camera.pose)),
+                            plugins=[replace(plugin, filename='libgazebo_ros_camera.so', params=params)])
+        part = sensor_config(part_spec, spawn_namespace, model_name, node_namespace)
+        if part is not None:
+            parts.append((part_spec, part))
+    config = SensorConfig(spec.name, 'multicamera', spec.reference, '', spec.update_rate, warnings=warnings)
+    for part_spec, part in parts:
+        config.topics.update({'%s/%s' % (part_spec.camera.name, role): topic for role, topic in part.topics.items()})
+        warnings.extend(part.warnings)
+        part.warnings = []
+    if parts:
+        config.frame_id = parts[0][1].frame_id
+    config.params['parts'] = parts
+    return config

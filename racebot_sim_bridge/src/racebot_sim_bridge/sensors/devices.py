@@ -10,19 +10,23 @@ when it is ready, still stamped with the sim time whose poses it shows.
 import time as walltime
 
 import numpy as np
-from sensor_msgs.msg import CameraInfo, Image, Imu, LaserScan, PointCloud2
+from gazebo_msgs.msg import ContactsState
+from sensor_msgs.msg import CameraInfo, Image, Imu, LaserScan, PointCloud2, Range
 
 from . import messages as msgs
 from ..rotations import quaternion_multiply, rpy_to_quaternion
 from .camera import PinholeCamera, mask_depth
+from .contact import group_contacts, urdf_collision_shapes
+from .contact_points import CollisionNames, link_com, read_contacts
 from .imu import ImuKinematics, quaternion_to_matrix
 from .mount import SensorMount
 from .noise import make_noise
 from .ray import ScanGeometry
+from .range_reading import radiation_type, range_reading, ray_lengths
 from .raycast import cast_rays
 from .render import TINY, CameraFrames
 from .render_worker import FrameBuffers, InFlight
-from .schedule import RateMeter, UpdateSchedule
+from .schedule import FrameThrottle, RateMeter, UpdateSchedule
 
 
 # Frames of one camera the worker may hold at once. With one, the worker sat idle after each frame
@@ -271,4 +275,79 @@ class ImuSensor(Sensor):
         self.meter.tick()
 
 
-SENSOR_CLASSES = {'laser': LaserSensor, 'camera': CameraSensor, 'depth': DepthCameraSensor, 'imu': ImuSensor}
+class RangeSensor(Sensor):
+    """gazebo_ros_range: the ray sensor's shortest ray as sensor_msgs/Range (range_reading.py)."""
+    main_topic = 'range'
+
+    def __init__(self, manager, robot, spec, config):
+        super(RangeSensor, self).__init__(manager, robot, spec, config)
+        self.geometry = ScanGeometry(spec.ray)
+        self.throttle = FrameThrottle(config.params['update_rate'])
+        stddev = config.params['gaussian_noise']
+        self.noise = make_noise('gaussian', 0.0, stddev, manager.noise_enabled) if stddev > 0 else None
+        self.radiation = radiation_type(config.params['radiation'])
+        self.advertise('range', Range, 1)
+
+    def update(self, time, stamp):
+        if not self.throttle.passes(time) or not self.listened():
+            return
+        position, orientation = self.mount.pose()
+        starts, ends = self.geometry.endpoints(position, quaternion_to_matrix(orientation))
+        fractions, hit = cast_rays(self.sim.world, starts, ends)
+        g = self.geometry
+        sample = float(self.noise.apply(0.0)) if self.noise is not None else 0.0
+        reading = range_reading(ray_lengths(fractions, hit, g.range_min, g.range_max), g.range_max, sample)
+        self.publishers['range'].publish(msgs.range_message(
+            stamp, self.config.frame_id, self.radiation, self.config.params['fov'], g.range_min, g.range_max,
+            reading))
+        self.meter.tick()
+
+
+class BumperSensor(Sensor):
+    """gazebo_ros_bumper: the contacts of the sensor's <contact><collision>s as
+    gazebo_msgs/ContactsState, every sensor update (an empty list when nothing touches)."""
+    main_topic = 'bumper'
+
+    def __init__(self, manager, robot, spec, config):
+        super(BumperSensor, self).__init__(manager, robot, spec, config)
+        self.body_id = robot.body.id
+        self.model_name = robot.name
+        self.link = self.mount.link
+        self.shapes = urdf_collision_shapes(robot.model, self.link)
+        known = [shape.name for shape in self.shapes]
+        missing = [name for name in config.params['collisions'] if name not in known]
+        if missing:
+            raise ValueError('<contact><collision> %s names no collision of link %r; Gazebo names them %s'
+                             % (', '.join(repr(m) for m in missing), self.link,
+                                ', '.join(repr(k) for k in known) or '(it has none)'))
+        self.wanted = set(config.params['collisions'])
+        self.names = CollisionNames(self.sim.world)
+        self.bodies_seen = None
+        self.advertise('bumper', ContactsState, 1)
+
+    def update(self, time, stamp):
+        if not self.listened():
+            return
+        world = self.sim.world
+        bodies = tuple(id(b) for b in world.bodies.values())
+        if bodies != self.bodies_seen:  # a body came or went: PyBullet ids may have been reused
+            self.names.forget()
+            self.bodies_seen = bodies
+        index = self.mount.index
+        points = read_contacts(world, self.names, self.body_id, index, self.shapes, self.model_name, self.link,
+                               self.wanted)
+        com, orientation = link_com(world.client, self.body_id, index)
+        groups = group_contacts(points, com, orientation)
+        self.publishers['bumper'].publish(msgs.contacts_state(stamp, self.config.frame_id, groups, stamp.to_sec()))
+        self.meter.tick()
+
+
+def make_sensors(manager, robot, spec, config):
+    """[Sensor] for a SensorConfig: one, or one camera per side of a multicamera."""
+    if config.kind == 'multicamera':
+        return [CameraSensor(manager, robot, part_spec, part) for part_spec, part in config.params['parts']]
+    return [SENSOR_CLASSES[config.kind](manager, robot, spec, config)]
+
+
+SENSOR_CLASSES = {'laser': LaserSensor, 'camera': CameraSensor, 'depth': DepthCameraSensor, 'imu': ImuSensor,
+                  'range': RangeSensor, 'bumper': BumperSensor}

@@ -33,8 +33,8 @@ import math
 import threading
 import time as walltime
 
-from .config import SensorConfigError, sensor_config
-from .devices import SENSOR_CLASSES
+from .config import SensorConfigError, sensor_config, unsupported_plugins
+from .devices import make_sensors
 from .render import RENDERER_CHOICES, RENDERER_NAMES, TINY
 from .render_worker import RenderWorker
 from .scene import SceneColours
@@ -43,6 +43,7 @@ from ..world_copy import snapshot
 
 DEFAULT_RENDER_BUDGET = 0.5
 DEFAULT_REPORT_PERIOD = 10.0
+SUPPORTED_TABLE = "see 'Supported plugins, sensors and controllers' in racebot_sim_bridge's README"
 
 
 class RospyLog(object):
@@ -103,17 +104,23 @@ class SensorManager(object):
                 self.rospy.logwarn('%s: %s; not simulated' % (robot.name, err))
                 continue
             if config is None:
-                self.rospy.loginfo("%s: sensor '%s' has no gazebo_ros plugin we simulate; it publishes nothing"
-                                   % (robot.name, spec.name))
+                unsupported = unsupported_plugins(spec)
+                if unsupported:  # said once, at spawn
+                    self.rospy.logwarn("%s: sensor '%s' (type %s): plugin %s is not simulated by racebot, so it "
+                                       'publishes nothing (the rest of the robot works); %s'
+                                       % (robot.name, spec.name, spec.type, ', '.join(unsupported), SUPPORTED_TABLE))
+                elif spec.plugins:
+                    self.rospy.loginfo("%s: sensor '%s' publishes nothing: its plugin has an empty topic name"
+                                       % (robot.name, spec.name))
                 continue
             try:
-                sensor = SENSOR_CLASSES[config.kind](self, robot, spec, config)
+                sensors = make_sensors(self, robot, spec, config)
             except (KeyError, ValueError) as err:
                 self.rospy.logwarn("%s: sensor '%s' cannot be simulated: %s" % (robot.name, spec.name, err))
                 continue
             for w in config.warnings:
                 self.rospy.logwarn('%s: %s' % (robot.name, w))
-            created.append(sensor)
+            created.extend(sensors)
             self.rospy.loginfo("%s: %s sensor '%s' on %s at %s, frame %s: %s" % (
                 robot.name, config.kind, spec.name, spec.reference,
                 '%g Hz' % config.rate if config.rate > 0 else 'every update', config.frame_id,

@@ -12,9 +12,15 @@ genpy.Time), the frame id and numpy data.
   is_dense False when any point is NaN. (The Gazebo plugin writes r and b the other way round,
   which shows swapped colours in RViz; this follows PCL.)
 - Imu (gazebo_ros_imu_sensor): covariances diagonal with the plugin's gaussianNoise squared.
+- Range (gazebo_ros_range): radiation type, field_of_view (the plugin's fov), min/max range of
+  the ray sensor, the reading (range_reading.py).
+- ContactsState (gazebo_ros_bumper): one ContactState per pair of collisions (contact.py), info
+  a debug line naming both and the time, as the plugin writes one.
 """
 import numpy as np
-from sensor_msgs.msg import CameraInfo, Image, Imu, LaserScan, PointCloud2, PointField
+from gazebo_msgs.msg import ContactState, ContactsState
+from geometry_msgs.msg import Vector3, Wrench
+from sensor_msgs.msg import CameraInfo, Image, Imu, LaserScan, PointCloud2, PointField, Range
 from std_msgs.msg import Header
 
 
@@ -85,3 +91,27 @@ def imu(stamp, frame_id, orientation, angular_velocity, linear_acceleration, noi
     msg.angular_velocity_covariance = list(diagonal)
     msg.linear_acceleration_covariance = list(diagonal)
     return msg
+
+
+def range_message(stamp, frame_id, radiation, field_of_view, min_range, max_range, reading):
+    return Range(header=header(stamp, frame_id), radiation_type=radiation, field_of_view=field_of_view,
+                 min_range=min_range, max_range=max_range, range=reading)
+
+
+def _wrench(force, torque):
+    return Wrench(force=Vector3(*force), torque=Vector3(*torque))
+
+
+def contacts_state(stamp, frame_id, groups, time):
+    """`groups`: [contact.ContactGroup]; `time`: the contacts' sim time in seconds (for info)."""
+    states = []
+    for i, g in enumerate(groups):
+        info = 'Debug:  i:(%d/%d)     my geom:%s   other geom:%s         time:%.9f\n' % (
+            i, len(groups), g.collision1, g.collision2, time)
+        states.append(ContactState(
+            info=info, collision1_name=g.collision1, collision2_name=g.collision2,
+            wrenches=[_wrench(f, t) for f, t in zip(g.forces, g.torques)],
+            total_wrench=_wrench(g.total_force, g.total_torque),
+            contact_positions=[Vector3(*p) for p in g.positions],
+            contact_normals=[Vector3(*n) for n in g.normals], depths=list(g.depths)))
+    return ContactsState(header=header(stamp, frame_id), states=states)

@@ -113,3 +113,23 @@ class RenderBudget(object):
         """Charges the wall time a render took."""
         if not self.unlimited:
             self.credit -= seconds
+
+
+class FrameThrottle(object):
+    """A gazebo_ros plugin's own updateRate on top of its sensor's updates: an update is passed on
+    when at least 1 / rate of sim time has gone by since the last one passed, else dropped whole
+    (a 20 Hz sensor under a 15 Hz plugin rate publishes every other update: 10 Hz), as
+    gazebo_ros_range and gazebo_ros_camera_utils compare `now - last_update_time >= update_period`.
+    A rate of 0 (or less) passes every update. Time going back (a reset) starts over."""
+
+    def __init__(self, rate):
+        self.period = 1.0 / rate if rate and rate > 0 and math.isfinite(rate) else 0.0
+        self.last = None
+
+    def passes(self, time):
+        if self.last is not None and time < self.last - TIME_EPS:
+            self.last = None
+        if self.last is not None and time - self.last < self.period - TIME_EPS:
+            return False
+        self.last = time
+        return True
