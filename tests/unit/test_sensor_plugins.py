@@ -11,6 +11,7 @@ from racebot_sim_bridge.rotations import rpy_to_quaternion
 from racebot_sim_bridge.sensors import messages as msgs
 from racebot_sim_bridge.sensors.camera import PinholeCamera, mask_depth
 from racebot_sim_bridge.sensors.config import SensorConfigError, sensor_config, unsupported_plugins
+from racebot_sim_bridge.sensors.contact_points import read_contacts
 from racebot_sim_bridge.sensors.contact import (ContactPoint, NamedShape, group_contacts, nearest_shape,
                                                 surface_distance, urdf_collision_shapes)
 from racebot_sim_bridge.sensors.range_reading import INFRARED, ULTRASOUND, radiation_type, range_reading, ray_lengths
@@ -77,6 +78,10 @@ def test_range_parameters_and_defaults():
     plugin = '<plugin name="p" filename="libgazebo_ros_range.so"><topicName>ir</topicName></plugin>'
     assert sensor_config(_sensor(RAY, plugin), '/fleet', 'r').topics == {'range': '/fleet/ir'}
     assert sensor_config(_sensor(RAY, plugin), '', 'r').topics == {'range': '/ir'}
+    # an empty <robotNamespace>: its text + '/' is the root (a laser would take the model name)
+    plugin = ('<plugin name="p" filename="libgazebo_ros_range.so"><topicName>ir</topicName><robotNamespace>'
+              '</robotNamespace></plugin>')
+    assert sensor_config(_sensor(RAY, plugin), '/fleet', 'r').topics == {'range': '/ir'}
     # an empty <topicName>: gazebo_ros_range advertises nothing
     assert sensor_config(_sensor(RAY, '<plugin name="p" filename="libgazebo_ros_range.so"><topicName>'
                                       '</topicName></plugin>'), '', 'r') is None
@@ -165,6 +170,49 @@ def test_contacts_grouped_per_pair_with_wrenches_in_the_link_frame():
     assert 'my geom:m::l::a' in s.info and 'other geom:box::link::collision' in s.info
     assert s.total_wrench.force.y == pytest.approx(20.0) and len(s.wrenches) == 2
     assert (s.contact_positions[1].z, s.contact_normals[0].x, s.depths[1]) == (1.0, -1.0, 0.002)
+
+
+class FakeClient(object):
+    """getContactPoints' answer for read_contacts, and a link frame at the origin."""
+
+    def __init__(self, points):
+        self.points = points
+
+    def getContactPoints(self, bodyA, linkIndexA):
+        return self.points
+
+    def getLinkState(self, body, link, computeForwardKinematics=0):
+        return ((0.0, 0.0, 0.0), (0, 0, 0, 1), None, None, (0.0, 0.0, 0.0), (0.0, 0.0, 0.0, 1.0))
+
+
+class FakeNames(object):
+    def name(self, body, link, point):
+        return 'other%d::link%d::collision' % (body, link)
+
+
+def _bullet_point(on_a, distance, normal_force, friction1=0.0, friction2=0.0, body_b=7):
+    """A getContactPoints tuple: the normal on B points +z (into A, above it)."""
+    return (0, 1, body_b, 0, -1, on_a, on_a, (0.0, 0.0, 1.0), distance, normal_force,
+            friction1, (1.0, 0.0, 0.0), friction2, (0.0, 1.0, 0.0))
+
+
+def test_pybullet_contact_points_converted():
+    class World(object):
+        client = FakeClient([
+            _bullet_point((0.0, 0.0, 0.0), -0.002, 5.0, friction1=-1.0, friction2=0.5),  # touching the base
+            _bullet_point((0.22, 0.0, 0.05), -0.001, 2.0),                              # on the bumper
+            _bullet_point((0.0, 0.1, 0.0), 0.003, 0.0),                                 # near, not touching
+        ])
+    base = NamedShape('base_collision', 'box', size=(0.4, 0.3, 0.1), position=(0.0, 0.0, 0.05))
+    bumper = NamedShape('bumper_collision', 'box', size=(0.02, 0.28, 0.06), position=(0.21, 0.0, 0.05))
+    points = read_contacts(World(), FakeNames(), 1, 0, [base, bumper], 'm', 'l', {'base_collision'})
+    assert len(points) == 1  # the bumper's point is not wanted; the near one does not touch
+    p = points[0]
+    assert (p.collision1, p.collision2) == ('m::l::base_collision', 'other7::link-1::collision')
+    assert p.depth == pytest.approx(0.002) and p.normal == (0.0, 0.0, 1.0)
+    assert p.force == pytest.approx((-1.0, 0.5, 5.0))  # normal force along the normal + the two frictions
+    both = read_contacts(World(), FakeNames(), 1, 0, [base, bumper], 'm', 'l', {'base_collision', 'bumper_collision'})
+    assert [q.collision1 for q in both] == ['m::l::base_collision', 'm::l::bumper_collision']
 
 
 # -- gazebo_ros_multicamera ---------------------------------------------------------------------

@@ -1,0 +1,125 @@
+"""The range, bumper, multicamera and openni_kinect plugins on a real Simulator (PyBullet DIRECT) with
+the rospy stand-in of test_sensors_sim: no master. The test robot (tests/fixtures/sensor_plugins)
+stands on a ground plane, its front 1 m from a static box."""
+import math
+from pathlib import Path
+
+import numpy as np
+import pybullet as pb
+import pytest
+
+from racebot_sim_bridge import sdf_world
+from racebot_sim_bridge.sensors import SensorManager
+from racebot_sim_bridge.simulator import Simulator
+
+from test_sensors_sim import FakeRospy, Log, NullIO, listen, run
+
+ROBOT = Path(__file__).resolve().parents[1] / 'fixtures' / 'sensor_plugins' / 'robot.urdf'
+SONAR_X = 0.22      # the sonar's x in the robot (sonar_joint)
+BOX_FACE = 1.22     # the box's near face: 1 m ahead of the sonar
+BOX_SIZE = 0.4
+WORLD = """<sdf version="1.6"><world name="default">
+<model name="ground_plane"><static>true</static><link name="link"><collision name="collision"><geometry>
+<plane><normal>0 0 1</normal><size>100 100</size></plane></geometry></collision></link></model>
+<model name="obstacle"><static>true</static><pose>{x} 0 {h} 0 0 0</pose><link name="link">
+<collision name="collision"><geometry><box><size>{s} {s} {s}</size></box></geometry></collision>
+<visual name="visual"><geometry><box><size>{s} {s} {s}</size></box></geometry></visual></link></model>
+</world></sdf>""".format(x=BOX_FACE + BOX_SIZE / 2, h=BOX_SIZE / 2, s=BOX_SIZE)
+BUMPER = 'sensor_robot::base_link::base_link_fixed_joint_lump__bumper_link_collision_1'
+
+
+@pytest.fixture
+def world(tmp_path):
+    path = tmp_path / 'box.world'
+    path.write_text(WORLD)
+    sim = Simulator(sdf_world.load_world(str(path)), NullIO(), Log(), lambda path: None)
+    fake = FakeRospy({'~sensors/report_period': 0, '~sensors/render_budget': 1.0, '~sensors/noise': False,
+                      '~sensors/render_worker': False})
+    manager = SensorManager(fake, sim)
+    robot = sim.spawn_urdf('sensor_robot', ROBOT.read_text(), '/', (0.0, 0.0, 0.0))
+    frame = robot.body.com_pose_for_frame((0.0, 0.0, 0.0), (0, 0, 0, 1))
+    sim.world.set_pose(robot.body, frame.position, frame.orientation)
+    yield sim, fake, manager, robot
+    sim.close()
+
+
+def test_topics_and_one_warning_for_the_plugin_not_simulated(world):
+    sim, fake, manager, robot = world
+    assert sorted(fake.publishers) == sorted([
+        '/sonar', '/bumper', '/stereo/left/image_raw', '/stereo/left/camera_info', '/stereo/right/image_raw',
+        '/stereo/right/camera_info', '/kinect/rgb/image_raw', '/kinect/rgb/camera_info', '/kinect/depth/image_raw',
+        '/kinect/depth/camera_info', '/kinect/depth/points'])
+    warned = [msg for level, msg in fake.logs if level == 'warn' and 'libgazebo_ros_block_laser.so' in msg]
+    assert len(warned) == 1
+    assert "'block_laser'" in warned[0]
+    assert "see 'Supported plugins, sensors and controllers' in racebot_sim_bridge's README" in warned[0]
+
+
+def test_sonar_reads_the_distance_to_the_box(world):
+    sim, fake, manager, robot = world
+    listen(fake, '/sonar')
+    run(sim, 0.3)
+    messages = fake.publishers['/sonar'].messages
+    assert 5 <= len(messages) <= 7  # 20 Hz over 0.3 s
+    m = messages[-1]
+    assert m.header.frame_id == 'sonar_link' and m.radiation_type == m.ULTRASOUND
+    assert (m.field_of_view, m.min_range, m.max_range) == pytest.approx((0.2, 0.02, 4.0))
+    assert m.range == pytest.approx(BOX_FACE - SONAR_X, abs=0.01)
+
+
+def test_sonar_reads_range_max_when_nothing_is_ahead(world):
+    sim, fake, manager, robot = world
+    sim.world.remove('obstacle')
+    listen(fake, '/sonar')
+    run(sim, 0.1)
+    assert fake.publishers['/sonar'].messages[-1].range == pytest.approx(4.0)
+
+
+def test_bumper_free_then_pushed_into_the_box(world):
+    sim, fake, manager, robot = world
+    listen(fake, '/bumper')
+    run(sim, 0.2)
+    free = fake.publishers['/bumper'].messages
+    assert len(free) >= 9 and all(m.states == [] for m in free)  # the base rests on the ground: not the bumper
+    assert free[-1].header.frame_id == 'bumper_link'
+    body = robot.body.id
+    sim.before_physics.append(lambda t: sim.world.client.applyExternalForce(body, -1, (30.0, 0.0, 0.0),
+                                                                            (0.0, 0.0, 0.0), pb.LINK_FRAME))
+    run(sim, 1.5)
+    m = fake.publishers['/bumper'].messages[-1]
+    pairs = [(s.collision1_name, s.collision2_name) for s in m.states]
+    assert pairs == [(BUMPER, 'obstacle::link::collision')]
+    s = m.states[0]
+    assert all(n.x < -0.99 for n in s.contact_normals)               # out of the box, into the bumper
+    assert all(abs(p.x - BOX_FACE) < 0.01 for p in s.contact_positions)
+    assert all(d >= 0.0 for d in s.depths) and len(s.wrenches) == len(s.depths)
+    # at rest, pushed with 30 N: the box and the ground's static friction (at most mu m g ~ 10 N) hold it,
+    # so the box pushes back (-x, in base_link's frame, which is the world's here) with 20 to 30 N
+    assert -31.0 < s.total_wrench.force.x < -19.0
+
+
+def test_stereo_pair_both_images_and_the_baseline(world):
+    sim, fake, manager, robot = world
+    listen(fake, '/stereo/left/image_raw', '/stereo/right/image_raw')
+    run(sim, 0.25)
+    infos = {side: fake.publishers['/stereo/%s/camera_info' % side].messages for side in ('left', 'right')}
+    images = {side: fake.publishers['/stereo/%s/image_raw' % side].messages for side in ('left', 'right')}
+    assert all(len(images[side]) >= 2 and len(infos[side]) >= 2 for side in ('left', 'right'))
+    f = 64 / (2 * math.tan(0.5))
+    assert infos['left'][-1].P[3] == 0.0 and infos['right'][-1].P[3] == pytest.approx(-f * 0.07)
+    left, right = (np.frombuffer(images[s][-1].data, np.uint8).reshape(48, 64, 3) for s in ('left', 'right'))
+    assert images['left'][-1].header.frame_id == 'stereo_link'
+    assert not np.array_equal(left, right)  # 7 cm apart, they see the box from two places
+
+
+def test_kinect_point_cloud_of_the_box(world):
+    sim, fake, manager, robot = world
+    listen(fake, '/kinect/depth/points', '/kinect/depth/image_raw')
+    run(sim, 0.15)
+    cloud = fake.publishers['/kinect/depth/points'].messages[-1]
+    points = np.frombuffer(cloud.data, np.uint8).reshape(-1, cloud.point_step)[:, :12].copy().view('<f4')
+    finite = points[np.isfinite(points).all(axis=1)]
+    assert len(finite) > 100 and not cloud.is_dense
+    centre = points.reshape(48, 64, 3)[23:25, 31:33].reshape(-1, 3)
+    assert centre[:, 2] == pytest.approx(BOX_FACE - 0.1, abs=0.02)  # the kinect is at x 0.1
+    assert (finite[:, 2] > 0.5).all() and (finite[:, 2] < 3.0).all()  # pointCloudCutoff .. pointCloudCutoffMax
