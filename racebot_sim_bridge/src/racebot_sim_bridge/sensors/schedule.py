@@ -11,6 +11,7 @@ Pure Python: no rospy, no pybullet.
   a slow machine. s >= 1 renders every due frame, slowing the whole simulation instead.
 """
 import math
+import threading
 
 TIME_EPS = 1e-9
 
@@ -42,34 +43,43 @@ class UpdateSchedule(object):
 
 
 class RateMeter(object):
-    """Counts events between `snapshot` calls; rates over sim time and wall time."""
+    """Counts events between `snapshot` calls; rates over sim time and wall time.
+
+    Thread-safe: a camera ticks on the render worker's reader thread, other sensors tick and skip
+    on the physics thread, snapshots come from the diagnostics timer. `+=` is a read and a write
+    that another thread may come between (a lost count), and a snapshot must read the counts once
+    (or the ticks in between are counted in two snapshots): all under one lock."""
 
     def __init__(self):
         self.count = 0
         self.skipped = 0
         self.total = 0
         self._since = None  # (sim time, wall time, count, skipped) at the last snapshot
+        self._lock = threading.Lock()
 
     def tick(self):
-        self.count += 1
-        self.total += 1
+        with self._lock:
+            self.count += 1
+            self.total += 1
 
     def skip(self):
-        self.skipped += 1
+        with self._lock:
+            self.skipped += 1
 
     def snapshot(self, sim_time, wall_time):
         """(sim Hz, wall Hz, skipped) since the previous snapshot; None for the first call or
         when no sim time has passed."""
-        previous = self._since
-        self._since = (sim_time, wall_time, self.count, self.skipped)
+        with self._lock:
+            count, skipped = self.count, self.skipped
+            previous = self._since
+            self._since = (sim_time, wall_time, count, skipped)
         if previous is None:
             return None
         sim0, wall0, count0, skipped0 = previous
-        n = self.count - count0
         dsim, dwall = sim_time - sim0, wall_time - wall0
         if dsim <= 0.0 or dwall <= 0.0:
             return None
-        return n / dsim, n / dwall, self.skipped - skipped0
+        return (count - count0) / dsim, (count - count0) / dwall, skipped - skipped0
 
 
 class RenderBudget(object):
