@@ -92,6 +92,7 @@ class OdometryTest(unittest.TestCase):
     def _on_tf(cls, msg):
         for t in msg.transforms:
             key = (t.header.frame_id.lstrip('/'), t.child_frame_id.lstrip('/'))
+            # rospy has no public accessor for a message's sender; its own rospy_tutorials read this header
             cls.tf_publishers.setdefault(key, set()).add(msg._connection_header['callerid'])
 
     @classmethod

@@ -134,6 +134,7 @@ class RobotPackageTest(unittest.TestCase):
         self.assertEqual(argv[0], 'python', argv)
         self.assertEqual(os.path.basename(argv[1]), 'drive.py', argv)
         self.assertIn('/src/demo_diffbot/scripts/', argv[1], argv)
+        # the sender: rospy has no public accessor; its own rospy_tutorials read the connection header
         self.launched(lambda: any(m._connection_header['callerid'] == '/drive' and m.data == 4.0
                                   for m in list(self.commands)), 'drive.py\'s wheel command (4.0 rad/s)')
 
