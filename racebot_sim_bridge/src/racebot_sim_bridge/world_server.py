@@ -1,20 +1,31 @@
-"""The world server node (our gzserver + gazebo_ros; windows attach to it: gzclient.py): `rosrun racebot_sim_bridge world_server WORLD`.
+"""The world server node, our gzserver + gazebo_ros: `rosrun racebot_sim_bridge world_server WORLD`.
 
-Command line (as gzserver's, via empty_world.launch): `[-u] [--verbose] [-e ENGINE] [other gzserver
-options, ignored] WORLD_FILE`. `-u` starts paused. Private parameters:
+Loads WORLD (an SDF file, looked up as gzserver does and in this package) into a Simulator and runs
+its update loop. Around it, as gazebo_ros's node does: /clock; the services and topics of
+gazebo_services (/gazebo/spawn_urdf_model, get/set_model_state, ..., model_states and link_states);
+/gazebo/performance_metrics (performance_metrics); the physics dynamic_reconfigure server
+(/gazebo/set_parameters, gazebo_ros.physics_reconfigure); every spawned model's sensors (sensors,
+SensorManager) and model plugins (plugins.manager, PluginManager). Windows are separate processes
+that attach to it (gzclient.py; viewer.AttachedWindows).
+
+Command line (as gzserver's, via empty_world.launch): `[-u|--pause] [--verbose] [-e ENGINE] [other
+gzserver options, ignored with a log line] WORLD_FILE`. `-u` starts paused; `-e` other than ode and
+`-r` (recording) are said to have no meaning here. Private parameters:
   ~gzclient_address (set here)   the Unix socket windows attach through (viewer.AttachedWindows):
                                  `rosrun gazebo_ros gzclient` reads it; removed at shutdown
   ~gui (bool)                    no longer opens a window: the window is gzclient, a node of its own
                                  (empty_world.launch's gazebo_gui); true is said once in the log
   ~pub_clock_frequency (Hz, 0)   if > 0, /clock at most this often in sim time (gazebo_ros's
                                  /gazebo/pub_clock_frequency); 0 = every world update, as Gazebo
-  ~enable_ros_network (bool, true)  false: no services or state topics, only /clock (gazebo_ros's)
+  ~enable_ros_network (bool, true)  false: none of gazebo_ros's services, state topics, performance
+                                 metrics or reconfigure server (as gazebo_ros); /clock, sensors and
+                                 model plugins still publish
   ~fast_clock_wall_period (s, 0.001)  as fast as possible only (real_time_update_rate 0): /clock at
                                  most once per this many wall seconds, carrying the latest update's
                                  time, so subscribers see sim time advance in steps of about
                                  real-time factor x 1 ms; 0 = every update. In real-time mode every
                                  update is published, as Gazebo does. A pause or a reset is
-                                 published at once.
+                                 published at once; while paused /clock repeats every 0.2 wall s.
   ~states_publish_rate (Hz, 100) /gazebo/model_states and link_states in sim time when subscribed
                                  (Gazebo: every update; 0 here means that too)
   ~command_trace (path, '')      measurements only (make bench): append to this file when each
@@ -22,8 +33,10 @@ options, ignored] WORLD_FILE`. `-u` starts paused. Private parameters:
                                  (controllers.CommandTrace, the controllers' observer); '' = off:
                                  one attribute test per update
 Services and topics live under the node's own name, as gazebo_ros's (node `gazebo`: /gazebo/...).
-Pacing is in wall time (this node drives ROS time, so rospy's timers cannot pace it): the world's
-real_time_update_rate updates per wall second, or as fast as possible when it is 0.
+/use_sim_time is set true when nobody has set it (gazebo_ros does). This node drives ROS time, so
+it does not subscribe to its own /clock (init_clock_source) and rospy's timers cannot pace it:
+pacing is in wall time, the world's real_time_update_rate updates per wall second, or as fast as
+possible when it is 0. /clock is published synchronously from the loop (clock_publisher).
 """
 import math
 import os
