@@ -63,7 +63,7 @@ def test_sonar_reads_the_distance_to_the_box(world):
     assert 5 <= len(messages) <= 7  # 20 Hz over 0.3 s
     m = messages[-1]
     assert m.header.frame_id == 'sonar_link' and m.radiation_type == m.ULTRASOUND
-    assert (m.field_of_view, m.min_range, m.max_range) == pytest.approx((0.2, 0.02, 4.0))
+    assert (m.field_of_view, m.min_range, m.max_range) == pytest.approx((0.5, 0.02, 4.0))
     assert m.range == pytest.approx(BOX_FACE - SONAR_X, abs=0.01)
 
 
