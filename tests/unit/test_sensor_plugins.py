@@ -12,8 +12,9 @@ from racebot_sim_bridge.sensors import messages as msgs
 from racebot_sim_bridge.sensors.camera import PinholeCamera, mask_depth
 from racebot_sim_bridge.sensors.config import SensorConfigError, sensor_config, unsupported_plugins
 from racebot_sim_bridge.sensors.contact_points import read_contacts
-from racebot_sim_bridge.sensors.contact import (ContactPoint, NamedShape, group_contacts, nearest_shape,
-                                                surface_distance, urdf_collision_shapes)
+from racebot_sim_bridge.sensors.contact import (ContactPoint, NamedShape, contact_collision_after_lumping,
+                                                group_contacts, nearest_shape, surface_distance,
+                                                urdf_collision_shapes)
 from racebot_sim_bridge.sensors.range_reading import INFRARED, ULTRASOUND, radiation_type, range_reading, ray_lengths
 from racebot_sim_bridge.sensors.schedule import FrameThrottle
 
@@ -82,6 +83,8 @@ def test_range_parameters_and_defaults():
     plugin = ('<plugin name="p" filename="libgazebo_ros_range.so"><topicName>ir</topicName><robotNamespace>'
               '</robotNamespace></plugin>')
     assert sensor_config(_sensor(RAY, plugin), '/fleet', 'r').topics == {'range': '/ir'}
+    with pytest.raises(SensorConfigError, match="type 'gpu_ray'"):  # upstream needs a RaySensor
+        sensor_config(_sensor(RAY.replace('"ray"', '"gpu_ray"'), plugin), '', 'r')
     # an empty <topicName>: gazebo_ros_range advertises nothing
     assert sensor_config(_sensor(RAY, '<plugin name="p" filename="libgazebo_ros_range.so"><topicName>'
                                       '</topicName></plugin>'), '', 'r') is None
@@ -115,6 +118,15 @@ def test_collision_names_as_sdformat_gives_them(model):
     assert [s.name for s in urdf_collision_shapes(m, 'b')] == [
         'b_fixed_joint_lump__shell_collision', 'b_collision_1', 'b_fixed_joint_lump__tip_collision_2',
         'b_fixed_joint_lump__c_collision_3']
+
+
+def test_a_lumped_links_own_collision_name_is_rewritten_as_sdformat_does(model):
+    # the sensor's link is lumped into base_link: its default name becomes one no collision has
+    assert contact_collision_after_lumping(model, 'bumper_link', 'bumper_link_collision') == \
+        'base_link_collision_bumper_link'
+    lumped = 'base_link_fixed_joint_lump__bumper_link_collision_1'
+    assert contact_collision_after_lumping(model, 'bumper_link', lumped) == lumped
+    assert contact_collision_after_lumping(model, 'base_link', 'base_link_collision') == 'base_link_collision'
 
 
 def test_bumper_parameters_and_defaults():

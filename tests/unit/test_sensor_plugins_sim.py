@@ -28,19 +28,31 @@ WORLD = """<sdf version="1.6"><world name="default">
 BUMPER = 'sensor_robot::base_link::base_link_fixed_joint_lump__bumper_link_collision_1'
 
 
-@pytest.fixture
-def world(tmp_path):
+def make_world(tmp_path, urdf):
     path = tmp_path / 'box.world'
     path.write_text(WORLD)
     sim = Simulator(sdf_world.load_world(str(path)), NullIO(), Log(), lambda path: None)
     fake = FakeRospy({'~sensors/report_period': 0, '~sensors/render_budget': 1.0, '~sensors/noise': False,
                       '~sensors/render_worker': False})
     manager = SensorManager(fake, sim)
-    robot = sim.spawn_urdf('sensor_robot', ROBOT.read_text(), '/', (0.0, 0.0, 0.0))
+    robot = sim.spawn_urdf('sensor_robot', urdf, '/', (0.0, 0.0, 0.0))
     frame = robot.body.com_pose_for_frame((0.0, 0.0, 0.0), (0, 0, 0, 1))
     sim.world.set_pose(robot.body, frame.position, frame.orientation)
+    return sim, fake, manager, robot
+
+
+@pytest.fixture
+def world(tmp_path):
+    sim, fake, manager, robot = make_world(tmp_path, ROBOT.read_text())
     yield sim, fake, manager, robot
     sim.close()
+
+
+def push_into_the_box(sim, robot, seconds=1.5):
+    body = robot.body.id
+    sim.before_physics.append(lambda t: sim.world.client.applyExternalForce(body, -1, (30.0, 0.0, 0.0),
+                                                                            (0.0, 0.0, 0.0), pb.LINK_FRAME))
+    run(sim, seconds)
 
 
 def test_topics_and_one_warning_for_the_plugin_not_simulated(world):
@@ -82,10 +94,7 @@ def test_bumper_free_then_pushed_into_the_box(world):
     free = fake.publishers['/bumper'].messages
     assert len(free) >= 9 and all(m.states == [] for m in free)  # the base rests on the ground: not the bumper
     assert free[-1].header.frame_id == 'bumper_link'
-    body = robot.body.id
-    sim.before_physics.append(lambda t: sim.world.client.applyExternalForce(body, -1, (30.0, 0.0, 0.0),
-                                                                            (0.0, 0.0, 0.0), pb.LINK_FRAME))
-    run(sim, 1.5)
+    push_into_the_box(sim, robot)
     m = fake.publishers['/bumper'].messages[-1]
     pairs = [(s.collision1_name, s.collision2_name) for s in m.states]
     assert pairs == [(BUMPER, 'obstacle::link::collision')]
@@ -123,3 +132,18 @@ def test_kinect_point_cloud_of_the_box(world):
     centre = points.reshape(48, 64, 3)[23:25, 31:33].reshape(-1, 3)
     assert centre[:, 2] == pytest.approx(BOX_FACE - 0.1, abs=0.02)  # the kinect is at x 0.1
     assert (finite[:, 2] > 0.5).all() and (finite[:, 2] < 3.0).all()  # pointCloudCutoff .. pointCloudCutoffMax
+
+
+def test_a_bumper_naming_its_lumped_links_own_collision_reports_nothing_with_a_warning(tmp_path):
+    lumped = 'base_link_fixed_joint_lump__bumper_link_collision_1'
+    sim, fake, manager, robot = make_world(tmp_path, ROBOT.read_text().replace(lumped, 'bumper_link_collision'))
+    try:
+        warned = [msg for level, msg in fake.logs if level == 'warn' and "sensor 'bumper'" in msg]
+        assert len(warned) == 1
+        assert "'base_link_collision_bumper_link'" in warned[0] and repr(lumped) in warned[0]
+        listen(fake, '/bumper')
+        push_into_the_box(sim, robot)
+        messages = fake.publishers['/bumper'].messages
+        assert len(messages) > 50 and all(m.states == [] for m in messages)  # as Gazebo's: nothing matches
+    finally:
+        sim.close()

@@ -44,7 +44,7 @@ SENSOR_TYPES = {
     'camera': ('camera',),
     'depth': ('depth',),
     'imu': ('imu',),
-    'range': ('ray', 'gpu_ray'),
+    'range': ('ray',),  # gazebo_ros_range needs a RaySensor: a gpu_ray is refused (gzthrow upstream)
     'bumper': ('contact',),
     'multicamera': ('multicamera',),
 }

@@ -16,7 +16,7 @@ from sensor_msgs.msg import CameraInfo, Image, Imu, LaserScan, PointCloud2, Rang
 from . import messages as msgs
 from ..rotations import quaternion_multiply, rpy_to_quaternion
 from .camera import PinholeCamera, mask_depth
-from .contact import group_contacts, urdf_collision_shapes
+from .contact import contact_collision_after_lumping, group_contacts, urdf_collision_shapes
 from .contact_points import CollisionNames, link_com, read_contacts
 from .imu import ImuKinematics, quaternion_to_matrix
 from .mount import SensorMount
@@ -315,12 +315,16 @@ class BumperSensor(Sensor):
         self.link = self.mount.link
         self.shapes = urdf_collision_shapes(robot.model, self.link)
         known = [shape.name for shape in self.shapes]
-        missing = [name for name in config.params['collisions'] if name not in known]
-        if missing:
-            raise ValueError('<contact><collision> %s names no collision of link %r; Gazebo names them %s'
-                             % (', '.join(repr(m) for m in missing), self.link,
-                                ', '.join(repr(k) for k in known) or '(it has none)'))
-        self.wanted = set(config.params['collisions'])
+        self.wanted = set()
+        for written in config.params['collisions']:
+            name = contact_collision_after_lumping(robot.model, spec.reference, written)
+            self.wanted.add(name)
+            if name not in known:  # Gazebo's bumper would report nothing, silently: say why once
+                config.warnings.append(
+                    "sensor '%s': <contact><collision> %r%s names no collision of link %r, so the bumper reports "
+                    'no contact, as in Gazebo; Gazebo names its collisions %s'
+                    % (spec.name, written, '' if name == written else ' (which sdformat rewrites to %r)' % name,
+                       self.link, ', '.join(repr(k) for k in known) or '(it has none)'))
         self.names = CollisionNames(self.sim.world)
         self.bodies_seen = None
         self.advertise('bumper', ContactsState, 1)
