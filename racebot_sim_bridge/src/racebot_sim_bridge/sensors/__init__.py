@@ -1,4 +1,5 @@
-"""The simulated sensors: what gazebo_ros's laser, camera, depth camera and IMU plugins publish.
+"""The simulated sensors: what gazebo_ros's laser, camera, multicamera, depth camera (openni_kinect),
+IMU, range and bumper plugins publish.
 
 The pipeline, module by module:
   config.py        which sensors, topics, frames and rates a URDF's <sensor> blocks declare
@@ -11,6 +12,9 @@ The pipeline, module by module:
   render_worker.py the worker process that renders frames off the physics thread, from a
                    ../world_copy.py posed at the frame's sim time; render_process.py: its main
   imu.py, noise.py what an IMU measures; Gazebo's noise models
+  range_reading.py range: gazebo_ros_range's reading of the ray casts
+  contact.py       bumper: Gazebo's collision names, contact groups and wrenches;
+                   contact_points.py: PyBullet's contact points of a link
   messages.py      the ROS messages, filled as gazebo_ros fills them
   devices.py       one class per plugin, running the pipeline for its sensor
   manager.py       SensorManager: sensors of every spawned robot, hooked into the Simulator
