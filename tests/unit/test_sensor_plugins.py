@@ -12,9 +12,9 @@ from racebot_sim_bridge.sensors import messages as msgs
 from racebot_sim_bridge.sensors.camera import PinholeCamera, mask_depth
 from racebot_sim_bridge.sensors.config import SensorConfigError, sensor_config, unsupported_plugins
 from racebot_sim_bridge.sensors.contact_points import read_contacts
-from racebot_sim_bridge.sensors.contact import (ContactPoint, NamedShape, contact_collision_after_lumping,
-                                                group_contacts, nearest_shape, surface_distance,
-                                                urdf_collision_shapes)
+from racebot_sim_bridge.sensors.contact import (CollisionKind, ContactPoint, NamedShape,
+                                                contact_collision_after_lumping, friction_reversed, group_contacts,
+                                                nearest_shape, surface_distance, urdf_collision_shapes)
 from racebot_sim_bridge.sensors.range_reading import INFRARED, ULTRASOUND, radiation_type, range_reading, ray_lengths
 from racebot_sim_bridge.sensors.schedule import FrameThrottle
 
@@ -193,6 +193,12 @@ class FakeClient(object):
     def getContactPoints(self, bodyA, linkIndexA):
         return self.points
 
+    def getCollisionShapeData(self, body, link):
+        return [(body, link, 3)]  # one box: a plain convex shape
+
+    def getDynamicsInfo(self, body, link):
+        return (1.0,)
+
     def getLinkState(self, body, link, computeForwardKinematics=0):
         return ((0.0, 0.0, 0.0), (0, 0, 0, 1), None, None, (0.0, 0.0, 0.0), (0.0, 0.0, 0.0, 1.0))
 
@@ -225,6 +231,19 @@ def test_pybullet_contact_points_converted():
     assert p.force == pytest.approx((-1.0, 0.5, 5.0))  # normal force along the normal + the two frictions
     both = read_contacts(World(), FakeNames(), 1, 0, [base, bumper], 'm', 'l', {'base_collision', 'bumper_collision'})
     assert [q.collision1 for q in both] == ['m::l::base_collision', 'm::l::bumper_collision']
+
+
+def test_which_way_round_bullet_keeps_a_pair():
+    def kind(order, compound=False, concave=False):
+        return CollisionKind(order, compound, concave)
+    ours = kind((5, 0))
+    assert friction_reversed(ours, kind((1, -1)))                       # convex pair: the older one first
+    assert not friction_reversed(ours, kind((9, -1)))
+    assert not friction_reversed(ours, kind((1, -1), concave=True))     # a plane or static mesh: never first
+    assert friction_reversed(ours, kind((9, -1), compound=True))        # a compound before a convex
+    assert not friction_reversed(kind((5, 0), compound=True), kind((1, -1)))
+    assert friction_reversed(kind((5, 0), compound=True), kind((1, -1), compound=True))
+    assert friction_reversed(ours, kind((5, -1)))                       # the same body: its base first
 
 
 # -- gazebo_ros_multicamera ---------------------------------------------------------------------

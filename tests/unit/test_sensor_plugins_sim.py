@@ -12,6 +12,10 @@ from racebot_sim_bridge import sdf_world
 from racebot_sim_bridge.sensors import SensorManager
 from racebot_sim_bridge.simulator import Simulator
 
+from racebot_sim_bridge.pybullet_client import PybulletClient
+from racebot_sim_bridge.sensors.contact import NamedShape
+from racebot_sim_bridge.sensors.contact_points import read_contacts
+from test_sensor_plugins import FakeNames
 from test_sensors_sim import FakeRospy, Log, NullIO, listen, run
 
 ROBOT = Path(__file__).resolve().parents[1] / 'fixtures' / 'sensor_plugins' / 'robot.urdf'
@@ -147,3 +151,54 @@ def test_a_bumper_naming_its_lumped_links_own_collision_reports_nothing_with_a_w
         assert len(messages) > 50 and all(m.states == [] for m in messages)  # as Gazebo's: nothing matches
     finally:
         sim.close()
+
+
+def _box_urdf(tmp_path, collisions):
+    """A 1 kg link of 0.2 m boxes, the first at its origin, any others stacked on top."""
+    cols = ''.join('<collision><origin xyz="0 0 %g"/><geometry><box size="0.2 0.2 0.2"/></geometry></collision>'
+                   % (0.3 * i) for i in range(collisions))
+    path = tmp_path / ('slider%d.urdf' % collisions)
+    path.write_text('<robot name="r"><link name="b"><inertial><mass value="1"/><inertia ixx="0.01" ixy="0" '
+                    'ixz="0" iyy="0.01" iyz="0" izz="0.01"/></inertial>%s</link></robot>' % cols)
+    return str(path)
+
+
+@pytest.mark.parametrize('ground', ['box', 'compound', 'plane'])
+@pytest.mark.parametrize('collisions', [1, 2])
+@pytest.mark.parametrize('ground_first', [True, False])
+def test_friction_on_a_sliding_link_opposes_its_motion(tmp_path, ground, collisions, ground_first):
+    """read_contacts on real PyBullet: a link sliding +x over the ground feels friction along -x,
+    whichever way round Bullet keeps the pair."""
+    class World(object):
+        client = PybulletClient()
+    world = World()
+    c = world.client
+    try:
+        def make_ground():
+            if ground == 'plane':
+                return c.createMultiBody(0, c.createCollisionShape(pb.GEOM_PLANE))
+            if ground == 'box':
+                shape = c.createCollisionShape(pb.GEOM_BOX, halfExtents=[5, 5, 0.1])
+            else:
+                shape = c.createCollisionShapeArray([pb.GEOM_BOX, pb.GEOM_BOX], halfExtents=[[5, 5, 0.1], [0.1] * 3],
+                                                    collisionFramePositions=[[0, 0, 0], [3, 3, 0.5]])
+            return c.createMultiBody(0, shape, basePosition=[0, 0, -0.1])
+        if ground_first:
+            make_ground()
+        body = c.loadURDF(_box_urdf(tmp_path, collisions), [0, 0, 0.1])
+        if not ground_first:
+            make_ground()
+        c.setGravity(0, 0, -9.8)
+        for _ in range(100):
+            c.stepSimulation()
+        c.resetBaseVelocity(body, [1.0, 0.0, 0.0])
+        c.stepSimulation()
+        shape = NamedShape('b_collision', 'box', size=(0.2, 0.2, 0.2))
+        points = read_contacts(world, FakeNames(), body, -1, [shape], 'r', 'b', {'b_collision'})
+        assert points
+        force = np.sum([p.force for p in points], axis=0)
+        assert force[2] == pytest.approx(9.8, rel=0.3)    # the ground holds it up
+        # sliding friction backwards: mu m g = 0.25 x 9.8 N (PyBullet's default 0.5 on each side, multiplied)
+        assert force[0] == pytest.approx(-0.25 * 9.8, rel=0.2)
+    finally:
+        c.close()

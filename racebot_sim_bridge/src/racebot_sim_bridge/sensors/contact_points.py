@@ -5,14 +5,16 @@ contact points of the last step: getContactPoints(bodyA=robot, linkIndexA=link) 
 the normal on the other body pointing into ours, the distance (negative: penetration), the
 normal force and two friction forces along their directions. A point counts as a contact when the
 bodies touch (distance <= 0) or push (normal force > 0), as an ODE contact would.
-The force on our link is normal force x normal + each friction force along its direction, as
-PyBullet reports them: for a pair PyBullet keeps the other way round, the friction part's sign is
-reversed (PyBullet does not say which way round it keeps a pair); the normal part is exact.
+The force on our link is normal force x normal + each friction force along its direction. PyBullet
+turns the normal towards our link but not the friction directions: they are as Bullet keeps the
+pair, so their sign is turned here when Bullet keeps the other body first (contact.friction_reversed,
+from each side's creation order and shape: CollisionKinds read once per link).
 """
 import numpy as np
 import pybullet as pb
 
-from .contact import ContactPoint, nearest_shape, sdf_collision_shapes, urdf_collision_shapes
+from .contact import (CollisionKind, ContactPoint, friction_reversed, nearest_shape, sdf_collision_shapes,
+                      urdf_collision_shapes)
 from ..rotations import rotate_back
 
 
@@ -85,10 +87,38 @@ def link_com(client, body_id, link_index):
     return np.asarray(s[0]), tuple(s[5])
 
 
-def read_contacts(world, names, body_id, link_index, shapes, model_name, link_name, wanted):
+def collision_kind(client, body_id, link_index):
+    """The CollisionKind of a body's link (see contact.friction_reversed)."""
+    shapes = client.getCollisionShapeData(body_id, link_index)
+    mass = client.getDynamicsInfo(body_id, link_index)[0]
+    concave = bool(shapes) and all(s[2] == pb.GEOM_PLANE or (s[2] == pb.GEOM_MESH and mass == 0.0) for s in shapes)
+    return CollisionKind((body_id, link_index), len(shapes) > 1, concave)
+
+
+class CollisionKinds(object):
+    """collision_kind per (body, link), read once; forget() when bodies change."""
+
+    def __init__(self, client):
+        self.client = client
+        self._kinds = {}
+
+    def __call__(self, body_id, link_index):
+        key = (body_id, link_index)
+        kind = self._kinds.get(key)
+        if kind is None:
+            kind = self._kinds[key] = collision_kind(self.client, body_id, link_index)
+        return kind
+
+    def forget(self):
+        self._kinds.clear()
+
+
+def read_contacts(world, names, body_id, link_index, shapes, model_name, link_name, wanted, kinds=None):
     """[ContactPoint] on (body_id, link_index) whose own collision (nearest of `shapes`, the
-    link's NamedShapes) is in `wanted` (Gazebo collision names, without model::link::)."""
+    link's NamedShapes) is in `wanted` (Gazebo collision names, without model::link::). `kinds`: a
+    CollisionKinds of the world (made here when not given)."""
     points = world.client.getContactPoints(bodyA=body_id, linkIndexA=link_index)
+    kinds = kinds if kinds is not None else CollisionKinds(world.client)
     if not points:
         return []
     frame = None
@@ -105,7 +135,10 @@ def read_contacts(world, names, body_id, link_index, shapes, model_name, link_na
         if own is None or own.name not in wanted:
             continue
         normal = np.asarray(p[7], dtype=np.float64)
-        force = normal_force * normal + p[10] * np.asarray(p[11]) + p[12] * np.asarray(p[13])
+        friction = p[10] * np.asarray(p[11]) + p[12] * np.asarray(p[13])
+        if friction_reversed(kinds(body_id, link_index), kinds(p[2], p[4])):
+            friction = -friction
+        force = normal_force * normal + friction
         out.append(ContactPoint('%s::%s::%s' % (model_name, link_name, own.name),
                                 names.name(p[2], p[4], p[6]), tuple(p[5]), tuple(normal),
                                 max(0.0, -distance), tuple(force)))

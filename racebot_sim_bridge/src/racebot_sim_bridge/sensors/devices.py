@@ -17,7 +17,7 @@ from . import messages as msgs
 from ..rotations import quaternion_multiply, rpy_to_quaternion
 from .camera import PinholeCamera, mask_depth
 from .contact import contact_collision_after_lumping, group_contacts, urdf_collision_shapes
-from .contact_points import CollisionNames, link_com, read_contacts
+from .contact_points import CollisionKinds, CollisionNames, link_com, read_contacts
 from .imu import ImuKinematics, quaternion_to_matrix
 from .mount import SensorMount
 from .noise import make_noise
@@ -326,6 +326,7 @@ class BumperSensor(Sensor):
                     % (spec.name, written, '' if name == written else ' (which sdformat rewrites to %r)' % name,
                        self.link, ', '.join(repr(k) for k in known) or '(it has none)'))
         self.names = CollisionNames(self.sim.world)
+        self.kinds = CollisionKinds(self.sim.world.client)
         self.bodies_seen = None
         self.advertise('bumper', ContactsState, 1)
 
@@ -336,10 +337,11 @@ class BumperSensor(Sensor):
         bodies = tuple(id(b) for b in world.bodies.values())
         if bodies != self.bodies_seen:  # a body came or went: PyBullet ids may have been reused
             self.names.forget()
+            self.kinds.forget()
             self.bodies_seen = bodies
         index = self.mount.index
         points = read_contacts(world, self.names, self.body_id, index, self.shapes, self.model_name, self.link,
-                               self.wanted)
+                               self.wanted, self.kinds)
         com, orientation = link_com(world.client, self.body_id, index)
         groups = group_contacts(points, com, orientation)
         self.publishers['bumper'].publish(msgs.contacts_state(stamp, self.config.frame_id, groups, stamp.to_sec()))
