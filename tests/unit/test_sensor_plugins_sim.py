@@ -12,6 +12,7 @@ from racebot_sim_bridge import sdf_world
 from racebot_sim_bridge.sensors import SensorManager
 from racebot_sim_bridge.simulator import Simulator
 
+from racebot_sim_bridge.performance_metrics import PerformanceMetricsPublisher
 from racebot_sim_bridge.pybullet_client import PybulletClient
 from racebot_sim_bridge.sensors.contact import NamedShape
 from racebot_sim_bridge.sensors.contact_points import read_contacts
@@ -123,6 +124,13 @@ def test_stereo_pair_both_images_and_the_baseline(world):
     left, right = (np.frombuffer(images[s][-1].data, np.uint8).reshape(48, 64, 3) for s in ('left', 'right'))
     assert images['left'][-1].header.frame_id == 'stereo_link'
     assert not np.array_equal(left, right)  # 7 cm apart, they see the box from two places
+
+
+def test_the_stereo_pair_is_one_sensor_in_performance_metrics(world):
+    sim, fake, manager, robot = world
+    names = [name for name, _, _ in PerformanceMetricsPublisher(fake, sim, manager, '/gazebo').sensors()]
+    assert len(names) == len(set(names))
+    assert [n for n in names if 'stereo' in n] == ['default::sensor_robot::base_link::stereo_camera']
 
 
 def test_kinect_point_cloud_of_the_box(world):

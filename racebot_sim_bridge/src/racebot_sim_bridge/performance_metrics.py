@@ -71,7 +71,7 @@ class PerformanceMetricsPublisher(object):
     def sensors(self):
         """[(scoped name, measurements so far, is camera)] of the sensors now in the world."""
         from .sensors.devices import CameraSensor
-        out = []
+        out, seen = [], set()
         with self.sim.lock:
             for robot_name, group in self.sensor_manager.sensors.items():
                 robot = self.sim.robots.get(robot_name)
@@ -80,8 +80,10 @@ class PerformanceMetricsPublisher(object):
                 for s in group:
                     link = robot.model.lumped_link(s.spec.reference) if s.spec.reference in robot.model.links \
                         else s.spec.reference
-                    out.append(('%s::%s::%s::%s' % (self.sim.spec.name, robot_name, link, s.config.name),
-                                s.meter.total, isinstance(s, CameraSensor)))
+                    name = '%s::%s::%s::%s' % (self.sim.spec.name, robot_name, link, s.config.name)
+                    if name not in seen:  # a multicamera's cameras are one Gazebo sensor: its first counts
+                        seen.add(name)
+                        out.append((name, s.meter.total, isinstance(s, CameraSensor)))
         return out
 
     def publish_once(self):
