@@ -72,6 +72,18 @@ def test_topics_and_one_warning_for_the_plugin_not_simulated(world):
     assert "see 'Supported plugins, sensors and controllers' in racebot_sim_bridge's README" in warned[0]
 
 
+def test_a_plugin_not_simulated_beside_one_that_is(tmp_path):
+    extra = '<plugin name="extra" filename="libhector_gazebo_ros_sonar.so"/></sensor>'
+    urdf = ROBOT.read_text().replace('</plugin>\n    </sensor>', '</plugin>\n    ' + extra, 1)
+    sim, fake, manager, robot = make_world(tmp_path, urdf)
+    try:
+        warned = [msg for level, msg in fake.logs if level == 'warn' and 'libhector_gazebo_ros_sonar.so' in msg]
+        assert len(warned) == 1 and "sensor 'sonar'" in warned[0]
+        assert '/sonar' in fake.publishers  # gazebo_ros_range beside it still runs
+    finally:
+        sim.close()
+
+
 def test_sonar_reads_the_distance_to_the_box(world):
     sim, fake, manager, robot = world
     listen(fake, '/sonar')

@@ -103,13 +103,13 @@ class SensorManager(object):
             except SensorConfigError as err:
                 self.rospy.logwarn('%s: %s; not simulated' % (robot.name, err))
                 continue
+            unsupported = unsupported_plugins(spec)
+            if unsupported:  # said once, at spawn
+                self.rospy.logwarn("%s: sensor '%s' (type %s): plugin %s is not simulated by racebot, so it "
+                                   'publishes nothing (the rest of the robot works); %s'
+                                   % (robot.name, spec.name, spec.type, ', '.join(unsupported), SUPPORTED_TABLE))
             if config is None:
-                unsupported = unsupported_plugins(spec)
-                if unsupported:  # said once, at spawn
-                    self.rospy.logwarn("%s: sensor '%s' (type %s): plugin %s is not simulated by racebot, so it "
-                                       'publishes nothing (the rest of the robot works); %s'
-                                       % (robot.name, spec.name, spec.type, ', '.join(unsupported), SUPPORTED_TABLE))
-                elif spec.plugins:
+                if spec.plugins and not unsupported:
                     self.rospy.loginfo("%s: sensor '%s' publishes nothing: its plugin has an empty topic name"
                                        % (robot.name, spec.name))
                 continue
