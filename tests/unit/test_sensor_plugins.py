@@ -10,7 +10,8 @@ from racebot_sim_bridge import urdf_model
 from racebot_sim_bridge.rotations import rpy_to_quaternion
 from racebot_sim_bridge.sensors import messages as msgs
 from racebot_sim_bridge.sensors.camera import PinholeCamera, mask_depth
-from racebot_sim_bridge.sensors.config import SensorConfigError, sensor_config, unsupported_plugins
+from racebot_sim_bridge.sensors.config import (SensorConfigError, resolve_frame, sensor_config, tf_resolve,
+                                               unsupported_plugins)
 from racebot_sim_bridge.sensors.contact_points import read_contacts
 from racebot_sim_bridge.sensors.contact import (CollisionKind, ContactPoint, NamedShape,
                                                 contact_collision_after_lumping, friction_reversed, group_contacts,
@@ -88,6 +89,24 @@ def test_range_parameters_and_defaults():
     # an empty <topicName>: gazebo_ros_range advertises nothing
     assert sensor_config(_sensor(RAY, '<plugin name="p" filename="libgazebo_ros_range.so"><topicName>'
                                       '</topicName></plugin>'), '', 'r') is None
+
+
+def test_frames_resolved_with_tf_prefix_as_tf_does():
+    assert tf_resolve('', '/world') == 'world' and tf_resolve('', 'sonar') == 'sonar'
+    assert tf_resolve('robot1', 'sonar') == 'robot1/sonar' and tf_resolve('/robot1', 'sonar') == 'robot1/sonar'
+    assert tf_resolve('robot1', '/sonar') == 'sonar'  # an absolute frame ignores the prefix
+    plugin = ('<plugin name="p" filename="libgazebo_ros_range.so"><frameName>sonar</frameName>'
+              '<robotNamespace>bot</robotNamespace></plugin>')
+    c = sensor_config(_sensor(RAY, plugin), '', 'r')
+    assert c.frame_id == 'sonar' and c.params['tf_prefix_param'] == '/bot/tf_prefix'  # NodeHandle('bot/')
+    resolve_frame(c, 'bot')
+    assert c.frame_id == 'bot/sonar'
+    contact = ('<sensor type="contact" name="s"><contact><collision>a_collision</collision></contact>PLUGIN'
+               '</sensor>')
+    c = sensor_config(_sensor(contact, '<plugin name="p" filename="libgazebo_ros_bumper.so"/>'), '/fleet', 'r')
+    assert c.params['tf_prefix_param'] == '/fleet/tf_prefix'
+    resolve_frame(c, '/fleet')
+    assert c.frame_id == 'fleet/world'  # upstream's default frame, prefixed like any other
 
 
 def test_plugin_throttle_drops_whole_updates():

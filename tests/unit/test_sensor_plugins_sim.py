@@ -96,6 +96,22 @@ def test_sonar_reads_the_distance_to_the_box(world):
     assert m.range == pytest.approx(BOX_FACE - SONAR_X, abs=0.01)
 
 
+def test_range_and_bumper_frames_take_the_tf_prefix_of_their_namespace(tmp_path):
+    path = tmp_path / 'box.world'
+    path.write_text(WORLD)
+    sim = Simulator(sdf_world.load_world(str(path)), NullIO(), Log(), lambda path: None)
+    try:
+        fake = FakeRospy({'~sensors/report_period': 0, '~sensors/render_worker': False, '/fleet/tf_prefix': 'bot1'})
+        SensorManager(fake, sim)
+        sim.spawn_urdf('sensor_robot', ROBOT.read_text(), '/fleet', (0.0, 0.0, 0.0))
+        listen(fake, '/fleet/sonar', '/fleet/bumper')
+        run(sim, 0.06)
+        assert fake.publishers['/fleet/sonar'].messages[-1].header.frame_id == 'bot1/sonar_link'
+        assert fake.publishers['/fleet/bumper'].messages[-1].header.frame_id == 'bot1/bumper_link'
+    finally:
+        sim.close()
+
+
 def test_sonar_reads_range_max_when_nothing_is_ahead(world):
     sim, fake, manager, robot = world
     sim.world.remove('obstacle')

@@ -196,10 +196,28 @@ def unsupported_plugins(spec):
     return [p.filename for p in spec.plugins if plugin_kind(p.filename) is None]
 
 
-def _frame(params, default):
-    """A plugin's frameName as tf::resolve leaves it with no tf_prefix: without a leading slash."""
+def tf_resolve(prefix, frame):
+    """tf::resolve (noetic): a frame with a leading slash loses it and ignores the prefix; else
+    prefix/frame (the prefix without a leading slash), or the frame alone without a prefix."""
+    if frame.startswith('/'):
+        return frame.lstrip('/')
+    prefix = prefix.lstrip('/')
+    return '%s/%s' % (prefix, frame) if prefix else frame
+
+
+def _frame(config, params, default, namespace):
+    """Sets a range or bumper config's frame as its Load() does: frameName (or `default`) resolved
+    with the tf_prefix parameter of the plugin's namespace; the manager reads that parameter
+    (config.params['tf_prefix_param']) and calls resolve_frame. Without it: tf_resolve('', frame)."""
     text = params.get('frameName')
-    return (default if text is None else text).strip().lstrip('/')
+    config.params['frame_name'] = (default if text is None else text).strip()
+    config.params['tf_prefix_param'] = namespace.rstrip('/') + '/tf_prefix'
+    config.frame_id = tf_resolve('', config.params['frame_name'])
+
+
+def resolve_frame(config, tf_prefix):
+    """Gives a config whose plugin reads tf_prefix (config.params['tf_prefix_param']) its frame."""
+    config.frame_id = tf_resolve(str(tf_prefix or ''), config.params['frame_name'])
 
 
 def _range_or_bumper_config(kind, spec, plugin, what, spawn_namespace, model_name, node_namespace):
@@ -212,8 +230,8 @@ def _range_or_bumper_config(kind, spec, plugin, what, spawn_namespace, model_nam
         if not spec.contact_collisions or not all(spec.contact_collisions):
             raise SensorConfigError("%s: the contact sensor needs <contact><collision>NAME</collision></contact> "
                                     "naming one of its link's collisions" % what)
-        config = SensorConfig(spec.name, kind, spec.reference, _frame(params, 'world'), spec.update_rate,
-                              warnings=warnings)
+        config = SensorConfig(spec.name, kind, spec.reference, '', spec.update_rate, warnings=warnings)
+        _frame(config, params, 'world', ns)
         config.topics['bumper'] = join_topic(ns, params.get('bumperTopicName') or 'bumper_states')
         config.params['collisions'] = list(spec.contact_collisions)
         return config
@@ -229,8 +247,8 @@ def _range_or_bumper_config(kind, spec, plugin, what, spawn_namespace, model_nam
                         "gazebo_ros_range does with any text but 'ultrasound'" % (what, radiation))
     if params.get('fov') is None:
         warnings.append('%s has no <fov>; field_of_view 0.05 rad, as gazebo_ros_range defaults' % what)
-    config = SensorConfig(spec.name, kind, spec.reference, _frame(params, '/world'), spec.update_rate,
-                          warnings=warnings)
+    config = SensorConfig(spec.name, kind, spec.reference, '', spec.update_rate, warnings=warnings)
+    _frame(config, params, '/world', ns)
     config.topics['range'] = join_topic(ns, '/range' if topic is None else topic)
     config.params['radiation'] = radiation
     config.params['fov'] = _number(params, 'fov', 0.05, warnings, what)

@@ -33,7 +33,7 @@ import math
 import threading
 import time as walltime
 
-from .config import SensorConfigError, sensor_config, unsupported_plugins
+from .config import SensorConfigError, resolve_frame, sensor_config, unsupported_plugins
 from .devices import make_sensors
 from .render import RENDERER_CHOICES, RENDERER_NAMES, TINY
 from .render_worker import RenderWorker
@@ -113,6 +113,8 @@ class SensorManager(object):
                     self.rospy.loginfo("%s: sensor '%s' publishes nothing: its plugin has an empty topic name"
                                        % (robot.name, spec.name))
                 continue
+            if 'tf_prefix_param' in config.params:  # gazebo_ros_range and _bumper resolve their frame with it
+                resolve_frame(config, self.rospy.get_param(config.params['tf_prefix_param'], ''))
             try:
                 sensors = make_sensors(self, robot, spec, config)
             except (KeyError, ValueError) as err:
