@@ -294,6 +294,11 @@ def test_multicamera_names_without_a_side_and_without_a_camera_name():
     assert c.params['parts'][0][1].topics['image'] == '/left/image_raw'  # no <cameraName>: /left
     assert c.params['parts'][0][1].params['baseline'] == 0.0
     assert any("'middle'" in w for w in c.warnings)
+    pair = body.replace('"middle"', '"cam_right"')
+    c = sensor_config(_sensor(pair, '<plugin name="p" filename="libgazebo_ros_multicamera.so"><updateRate>fast'
+                                    '</updateRate><frameName>f</frameName></plugin>'), '', 'r')
+    assert len(c.params['parts']) == 2
+    assert len(c.warnings) == len(set(c.warnings)) and c.warnings  # one plugin, each warning once
 
 
 # -- gazebo_ros_openni_kinect -------------------------------------------------------------------

@@ -288,7 +288,7 @@ def _multicamera_config(spec, plugin, what, spawn_namespace, model_name, node_na
     config = SensorConfig(spec.name, 'multicamera', spec.reference, '', spec.update_rate, warnings=warnings)
     for part_spec, part in parts:
         config.topics.update({'%s/%s' % (part_spec.camera.name, role): topic for role, topic in part.topics.items()})
-        warnings.extend(part.warnings)
+        warnings.extend(w for w in part.warnings if w not in warnings)  # both sides share the plugin's
         part.warnings = []
     if parts:
         config.frame_id = parts[0][1].frame_id
