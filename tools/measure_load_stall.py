@@ -77,7 +77,8 @@ def step_gaps(sim, action, lock):
 def describe(gaps, wall, lock):
     gaps = sorted(gaps)
     return ('physics waited for the controller manager %6.1f ms in all, at most %5.1f ms at once; '
-            % (sum(lock.waits) * 1e3, max(lock.waits) * 1e3) +'%5.0f steps/s, longest gap %5.1f ms, 99.9th percentile %5.2f ms, gaps > 5 ms: %d'
+            % (sum(lock.waits) * 1e3, max(lock.waits) * 1e3)
+            + '%5.0f steps/s, longest gap %5.1f ms, 99.9th percentile %5.2f ms, gaps > 5 ms: %d'
             % (len(gaps) / wall, gaps[-1] * 1e3, gaps[int(len(gaps) * 0.999)] * 1e3, sum(g > 0.005 for g in gaps)))
 
 

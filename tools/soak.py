@@ -447,8 +447,10 @@ def main():
                  report['rss_growth_percent'] or 0.0, args.max_growth, report['rss_max_kb'] / 1024.0))
     print('  /clock        %d messages, %d times backwards' % (report['clock_messages'], report['clock_regressions']))
     print('  errors        %d ERROR/FATAL log messages' % len(soak.errors))
-    print('  sensors       %s' % (', '.join('%s %d' % kv for kv in sorted(report['sensor_messages'].items())) or 'none'))
-    print('  result        %s' % ('PASSED' if report['passed'] else 'FAILED:\n    ' + '\n    '.join(report['failures'])))
+    sensors = ', '.join('%s %d' % kv for kv in sorted(report['sensor_messages'].items()))
+    print('  sensors       %s' % (sensors or 'none'))
+    failures = '\n    '.join(report['failures'])
+    print('  result        %s' % ('PASSED' if report['passed'] else 'FAILED:\n    ' + failures))
     if report['passed'] and not args.json:
         shutil.copyfile(json_path, os.path.join(ROOT, 'out', 'soak', 'latest.json'))
     sys.exit(0 if report['passed'] else 1)

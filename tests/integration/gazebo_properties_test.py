@@ -73,13 +73,15 @@ class GazeboPropertiesTest(unittest.TestCase):
         cls.clock = None
         rospy.Subscriber('/clock', Clock, cls._on_clock, queue_size=1)
         services = dict(
-            spawn_urdf_model=SpawnModel, delete_model=DeleteModel, get_model_state=GetModelState, set_model_configuration=SetModelConfiguration, set_model_state=SetModelState,
+            spawn_urdf_model=SpawnModel, delete_model=DeleteModel, get_model_state=GetModelState,
+            set_model_configuration=SetModelConfiguration, set_model_state=SetModelState,
             pause_physics=Empty, unpause_physics=Empty, get_model_properties=GetModelProperties,
             get_joint_properties=GetJointProperties, get_link_properties=GetLinkProperties,
             set_link_properties=SetLinkProperties, set_joint_properties=SetJointProperties,
             get_physics_properties=GetPhysicsProperties, set_physics_properties=SetPhysicsProperties,
             get_light_properties=GetLightProperties, set_light_properties=SetLightProperties,
-            delete_light=DeleteLight, reset_world=Empty, apply_body_wrench=ApplyBodyWrench, apply_joint_effort=ApplyJointEffort,
+            delete_light=DeleteLight, reset_world=Empty, apply_body_wrench=ApplyBodyWrench,
+            apply_joint_effort=ApplyJointEffort,
             clear_body_wrenches=BodyRequest, clear_joint_forces=JointRequest)
         cls.srv = {}
         for name, cls_ in services.items():
@@ -345,7 +347,8 @@ class GazeboPropertiesTest(unittest.TestCase):
             self.run_for(0.2)
             self.assertAlmostEqual(self.rate(), -0.5, delta=0.01)
         finally:
-            self.assertTrue(self.call('set_joint_properties', 'hinge', ODEJointProperties(vel=[0.0], fmax=[0.0])).success)
+            self.assertTrue(self.call('set_joint_properties', 'hinge',
+                                      ODEJointProperties(vel=[0.0], fmax=[0.0])).success)
         # a model deleted and spawned again has its joint motor off, whatever the old one's was
         self.assertTrue(self.call('set_joint_properties', 'hinge', ODEJointProperties(vel=[-0.5], fmax=[10.0])).success)
         self.assertTrue(self.call('delete_model', 'probe').success)
@@ -354,7 +357,8 @@ class GazeboPropertiesTest(unittest.TestCase):
         self.assertTrue(self.call('set_joint_properties', 'hinge', ODEJointProperties(vel=[0.3])).success)
         self.run_for(0.2)
         self.assertAlmostEqual(self.rate(), 0.0, delta=1e-3)  # vel without fmax: a motor without force
-        self.refused(self.call('set_joint_properties', 'nope', ODEJointProperties()), 'SetJointProperties: joint not found')
+        self.refused(self.call('set_joint_properties', 'nope', ODEJointProperties()),
+                     'SetJointProperties: joint not found')
         res = self.call('set_joint_properties', 'hinge', ODEJointProperties(loStop=[1.0], hiStop=[0.5]))
         self.assertFalse(res.success)
 

@@ -117,7 +117,7 @@ class KeyboardTeleopTest(unittest.TestCase):
 
     # -- tests ------------------------------------------------------------------------------------
     def test_1_hold_w_release_then_q(self):
-        window = self.start_teleop()
+        self.start_teleop()
         self.assertEqual(self.messages_since(0), [], 'published before any key was pressed')
 
         t0 = self.hold('w', 3.0)
@@ -187,7 +187,7 @@ class KeyboardTeleopTest(unittest.TestCase):
                 env['DISPLAY'] = display
             done = subprocess.run(['rosrun', 'racebot_gazebo', 'keyboard_teleop.py'], env=env, timeout=60,
                                   stdout=subprocess.PIPE, stderr=subprocess.PIPE, universal_newlines=True)
-            lines = [l for l in done.stdout.splitlines() if l.strip()]
+            lines = [line for line in done.stdout.splitlines() if line.strip()]
             self.assertEqual(done.returncode, 0, 'DISPLAY=%s: exit status %d' % (display, done.returncode))
             self.assertEqual(len(lines), 1, 'DISPLAY=%s: expected one line, got %r' % (display, done.stdout))
             self.assertIn('display', lines[0])

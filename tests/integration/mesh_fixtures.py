@@ -89,9 +89,9 @@ def meshify_urdf(urdf_xml, package_root, package='racebot_mesh_fixture'):
                     else:
                         name, mesh = 'box_%s.dae' % '_'.join('%g' % v for v in size), box(size)
                 else:
-                    r, l = float(shape.get('radius')), float(shape.get('length'))
-                    name = 'cyl_%g_%g.%s' % (r, l, 'stl' if kind == 'collision' else 'dae')
-                    mesh = cylinder(r, l)
+                    r, length = float(shape.get('radius')), float(shape.get('length'))
+                    name = 'cyl_%g_%g.%s' % (r, length, 'stl' if kind == 'collision' else 'dae')
+                    mesh = cylinder(r, length)
                 path = os.path.join(folder, 'meshes', name)
                 if not os.path.exists(path):
                     write_mesh(mesh, path)

@@ -11,7 +11,6 @@ Waits are in wall time, judgements in sim time.
 """
 import functools
 import math
-import time
 import unittest
 
 import rospy

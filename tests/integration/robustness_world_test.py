@@ -21,7 +21,7 @@ import rospy
 import rostest
 from controller_manager_msgs.srv import ListControllers
 
-from robustness_common import WALL_TIMEOUT, Process, SimProbe, rosrun, wait_for
+from robustness_common import WALL_TIMEOUT, SimProbe, rosrun, wait_for
 
 CONTROLLERS = ['left_rear_wheel_velocity_controller', 'right_rear_wheel_velocity_controller',
                'left_front_wheel_velocity_controller', 'right_front_wheel_velocity_controller',

@@ -40,8 +40,9 @@ WHEEL = '/fleet/wheel_velocity'
 
 
 def robot_urdf(control_ns=None, imu_ns=None):
-    """A 1 kg box resting on the ground with a free wheel on top (it spins in the air; its inertia makes a spin-up take ~0.3 s), an effort
-    transmission, gazebo_ros_control, a laser (topicName scan) and an IMU (topicName imu)."""
+    """A 1 kg box resting on the ground with a free wheel on top (it spins in the air; its inertia makes
+    a spin-up take ~0.3 s), an effort transmission, gazebo_ros_control, a laser (topicName scan) and an
+    IMU (topicName imu)."""
     def ns(value):
         return '' if value is None else '<robotNamespace>%s</robotNamespace>' % value
     inertia = '<inertia ixx="%g" ixy="0" ixz="0" iyy="%g" iyz="0" izz="%g"/>'
@@ -107,8 +108,10 @@ class RosControlNamespacesTest(unittest.TestCase):
         return {name for name, _ in self.master.getSystemState()[2]}
 
     def test_1_plugins_land_where_gazebo_ros_puts_them(self):
-        expected_services = ['/fleet/controller_manager/switch_controller', '/mine/controller_manager/switch_controller',
-                             '/plain_car/controller_manager/switch_controller', '/controller_manager/switch_controller']
+        expected_services = ['/fleet/controller_manager/switch_controller',
+                             '/mine/controller_manager/switch_controller',
+                             '/plain_car/controller_manager/switch_controller',
+                             '/controller_manager/switch_controller']
         wait_for(lambda: set(expected_services) <= self.services(), 'the four controller managers')
         expected_topics = {'/fleet/scan': 'sensor_msgs/LaserScan', '/own_imu/imu': 'sensor_msgs/Imu',
                            '/fleet2/scan': 'sensor_msgs/LaserScan', '/fleet2/imu': 'sensor_msgs/Imu',

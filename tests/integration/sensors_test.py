@@ -8,7 +8,6 @@ offsets, fields of view) and the pinhole model. Waits are in wall time, judgemen
 """
 import functools
 import math
-import time
 import unittest
 
 import numpy as np

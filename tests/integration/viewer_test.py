@@ -20,7 +20,6 @@ relies on:
 """
 import os
 import shutil
-import signal
 import subprocess
 import sys
 import tempfile

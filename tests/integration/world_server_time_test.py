@@ -36,7 +36,8 @@ class WorldServerTimeTest(unittest.TestCase):
         wait_for(lambda: self.clock is not None, '/clock', 60)
         publishers, subscribers, _ = rosgraph.Master('/world_server_time_test').getSystemState()
         self.assertIn('/gazebo', dict(publishers)['/clock'])
-        self.assertNotIn('/gazebo', dict(subscribers).get('/clock', []), 'the world server subscribes to its own /clock')
+        self.assertNotIn('/gazebo', dict(subscribers).get('/clock', []),
+                         'the world server subscribes to its own /clock')
 
     def test_its_log_messages_carry_sim_time(self):
         wait_for(lambda: self.clock is not None and self.clock > 1.0, '1 s of sim time', 60)

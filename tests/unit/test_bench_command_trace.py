@@ -24,13 +24,18 @@ URDF = """<robot name="traced">
     <limit effort="50" velocity="10"/></joint>
   <joint name="position_joint" type="revolute"><parent link="base"/><child link="c"/><axis xyz="0 0 1"/>
     <limit lower="-1" upper="1" effort="50" velocity="10"/></joint>
-  <transmission name="t1"><joint name="effort_joint"><hardwareInterface>hardware_interface/EffortJointInterface</hardwareInterface></joint></transmission>
-  <transmission name="t2"><joint name="velocity_joint"><hardwareInterface>hardware_interface/VelocityJointInterface</hardwareInterface></joint></transmission>
-  <transmission name="t3"><joint name="position_joint"><hardwareInterface>hardware_interface/PositionJointInterface</hardwareInterface></joint></transmission>
+  <transmission name="t1"><joint name="effort_joint">
+    <hardwareInterface>hardware_interface/EffortJointInterface</hardwareInterface></joint></transmission>
+  <transmission name="t2"><joint name="velocity_joint">
+    <hardwareInterface>hardware_interface/VelocityJointInterface</hardwareInterface></joint></transmission>
+  <transmission name="t3"><joint name="position_joint">
+    <hardwareInterface>hardware_interface/PositionJointInterface</hardwareInterface></joint></transmission>
 </robot>"""
 # (class, joint, extra parameters): every command controller type
-TYPES = [(EffortForwardController, 'effort_joint', {}), (JointVelocityController, 'effort_joint', {'pid': {'p': 1.0}}),
-         (JointPositionController, 'effort_joint', {'pid': {'p': 1.0}}), (VelocityForwardController, 'velocity_joint', {}),
+TYPES = [(EffortForwardController, 'effort_joint', {}),
+         (JointVelocityController, 'effort_joint', {'pid': {'p': 1.0}}),
+         (JointPositionController, 'effort_joint', {'pid': {'p': 1.0}}),
+         (VelocityForwardController, 'velocity_joint', {}),
          (VelocityJointPositionController, 'velocity_joint', {'pid': {'p': 1.0}}),
          (PositionForwardController, 'position_joint', {})]
 

@@ -69,7 +69,8 @@ def test_turning_circles(tmp_path):
     circle = {'reference_m': 1.0, 'measured_m': 1.05, 'steering_rad': 0.3, 'error_pct': 5.0,
               'trajectory': [(0.0, 0.0), (0.5, 0.2), (0.9, 0.6)]}
     fig = plot.turning_circles_figure({'parallel': [circle], 'ackermann': [circle]})
-    assert [ax.get_title() for ax in fig.axes] == ['parallel steering: rear-axle path', 'ackermann steering: rear-axle path']
+    assert [ax.get_title() for ax in fig.axes] == ['parallel steering: rear-axle path',
+                                                   'ackermann steering: rear-axle path']
     assert all(ax.get_xlabel() == 'x (m)' and ax.get_ylabel() == 'y (m)' for ax in fig.axes)
     assert legend_texts(fig.axes[0])[-1] == 'bicycle model, R = L / tan δ'
     assert 'R 1.05 m vs 1.00 m' in legend_texts(fig.axes[0])[0]

@@ -511,7 +511,8 @@ def test_switch_stops_waiting_on_shutdown(rig):
 # -- list ---------------------------------------------------------------------------------------
 
 def test_list_with_claimed_resources(rig):
-    rig.load_all('joint_state_controller', 'left_rear_wheel_velocity_controller', 'left_steering_hinge_position_controller')
+    rig.load_all('joint_state_controller', 'left_rear_wheel_velocity_controller',
+                 'left_steering_hinge_position_controller')
     assert rig.switch(['joint_state_controller', 'left_steering_hinge_position_controller'], [], STRICT, 0.0)
     assert rig.switch([], ['left_steering_hinge_position_controller'], STRICT, 0.0)
     assert rig.cm.list() == [
@@ -632,7 +633,8 @@ def test_a_controller_raising_in_update_is_stopped_and_the_others_keep_running()
         def update(self, time, period):
             Counting.updates += 1
 
-    cm = ControllerManager('/bot', hw, params.get, FakeIO(), log, types={'test/Broken': Broken, 'test/Counting': Counting})
+    cm = ControllerManager('/bot', hw, params.get, FakeIO(), log,
+                           types={'test/Broken': Broken, 'test/Counting': Counting})
     assert cm.load('broken') and cm.load('fine')
     assert cm.request_switch(['broken', 'fine'], [], STRICT)
     cm.update(0.0, 0.001)

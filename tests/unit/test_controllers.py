@@ -93,8 +93,10 @@ EXTRA_URDF = """<robot name="extra">
     <limit lower="-1" upper="5" effort="50" velocity="10"/></joint>
   <joint name="slide" type="prismatic"><parent link="base"/><child link="slide_link"/><axis xyz="1 0 0"/>
     <limit lower="0" upper="0.5" effort="50" velocity="10"/></joint>
-  <transmission name="t1"><joint name="arm"><hardwareInterface>hardware_interface/EffortJointInterface</hardwareInterface></joint></transmission>
-  <transmission name="t2"><joint name="slide"><hardwareInterface>hardware_interface/EffortJointInterface</hardwareInterface></joint></transmission>
+  <transmission name="t1"><joint name="arm">
+    <hardwareInterface>hardware_interface/EffortJointInterface</hardwareInterface></joint></transmission>
+  <transmission name="t2"><joint name="slide">
+    <hardwareInterface>hardware_interface/EffortJointInterface</hardwareInterface></joint></transmission>
 </robot>"""
 
 

@@ -69,7 +69,7 @@ def test_world_lights_are_read_with_sdf_defaults():
         <attenuation><range>20</range><linear>0.2</linear></attenuation></light>
       <light name="bad"><diffuse>red</diffuse></light>
     </world></sdf>""")
-    assert [l.name for l in world.lights] == ['sun2', 'lamp']
+    assert [light.name for light in world.lights] == ['sun2', 'lamp']
     assert world.lights[0].pose == (1.0, 2.0, 3.0, 0.0, 0.0, 0.0)
     lamp = world.lights[1]
     assert lamp.diffuse == (0.5, 0.4, 0.3, 1.0) and lamp.specular == (0.1, 0.1, 0.1, 1.0)

@@ -1,10 +1,10 @@
 """The compatibility interface packages must be wire-identical to upstream.
 
 On the ROS wire a message or service type is its name plus an md5 sum over its fields and
-constants. The table below is the md5 table of the project's interface reference (INTERFACES.md) (what a genpy build of the upstream
-definitions gives); every generated class must carry exactly that sum, or clients built against
-the real packages (rqt, rostopic, ros_control's spawner, scripts calling /gazebo/*) cannot talk
-to the simulator.
+constants. The table below is the md5 table of the project's interface reference (INTERFACES.md)
+(what a genpy build of the upstream definitions gives); every generated class must carry exactly that
+sum, or clients built against the real packages (rqt, rostopic, ros_control's spawner, scripts calling
+/gazebo/*) cannot talk to the simulator.
 
 Needs the workspace built and sourced (``source devel/setup.bash``) but no master. Where an
 underlay has the real package, ours steps aside and these imports get the real one, which must

@@ -134,7 +134,8 @@ def test_running_a_script_loads_no_module_from_its_folder(script):
     if relay_folder.is_dir():
         folders.append(str(relay_folder))
     env = dict(os.environ)
-    env['PYTHONPATH'] = os.pathsep.join([str(REPO / package / 'src')] + [p for p in env.get('PYTHONPATH', '').split(os.pathsep) if p])
+    env['PYTHONPATH'] = os.pathsep.join([str(REPO / package / 'src')]
+                                        + [p for p in env.get('PYTHONPATH', '').split(os.pathsep) if p])
     done = subprocess.run([sys.executable, '-c', LOADED_FROM, str(script)] + folders, env=env,
                           stdout=subprocess.PIPE, stderr=subprocess.PIPE, universal_newlines=True, timeout=120)
     assert done.returncode == 0, done.stderr

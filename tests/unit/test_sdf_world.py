@@ -41,7 +41,8 @@ FIXTURE = """<?xml version="1.0"?>
         </visual>
       </link>
       <link name="post">
-        <collision name="c"><geometry><cylinder><radius>0.15</radius><length>1</length></cylinder></geometry></collision>
+        <collision name="c"><geometry><cylinder><radius>0.15</radius><length>1</length></cylinder></geometry>
+        </collision>
         <visual name="v"><geometry><cylinder><radius>0.15</radius><length>1</length></cylinder></geometry>
           <material><ambient>0.2 0.3 0.4 1</ambient></material></visual>
       </link>

@@ -293,7 +293,7 @@ def test_a_preserved_fixed_link_is_a_real_frame_with_a_working_sensor(racebot_xm
         assert 'camera' not in body.link_names()  # still lumped, as Gazebo does
         listen(fake, '/scan')
         run(sim, 0.5)
-        (pose, twist), frame = sim.world.link_state(body, 'lidar'), body.frame_pose()
+        (pose, _), frame = sim.world.link_state(body, 'lidar'), body.frame_pose()
         expected = rotations.compose((frame.position, frame.orientation),
                                      rotations.compose((0.0, 0.0, 0.032, 0.0, 0.0, 0.0),
                                                        (0.093603, 0.0, 0.12377, 0.0, 0.0, 0.0)))

@@ -54,7 +54,7 @@ def origin(elem):
 
 def test_lumping_moves_shapes_and_joints_into_the_link_gazebo_keeps():
     root = lumped()
-    assert [l.get('name') for l in root.findall('link')] == ['base', 'wheel']
+    assert [link.get('name') for link in root.findall('link')] == ['base', 'wheel']
     assert [j.get('name') for j in root.findall('joint')] == ['wheel_joint']
     base = root.find('link')
     arm_box = base.findall('collision')[1]
@@ -88,7 +88,7 @@ def test_lumped_inertia_is_the_rigid_sum_about_the_common_centre_of_mass():
 
 def test_a_preserved_fixed_joint_keeps_its_link_and_lumps_below_it():
     root = lumped(PRESERVE_ARM)
-    assert [l.get('name') for l in root.findall('link')] == ['base', 'arm', 'wheel']
+    assert [link.get('name') for link in root.findall('link')] == ['base', 'arm', 'wheel']
     assert [j.get('name') for j in root.findall('joint')] == ['arm_joint', 'wheel_joint']
     arm = root.findall('link')[1]
     assert len(arm.findall('visual')) == 2  # the tip's sphere joined it
@@ -98,7 +98,7 @@ def test_a_preserved_fixed_joint_keeps_its_link_and_lumps_below_it():
 
 def test_a_preserved_link_below_a_lumped_one_hangs_on_the_link_that_is_kept():
     root = lumped('<gazebo reference="tip_joint"><preserveFixedJoint>true</preserveFixedJoint></gazebo>')
-    assert [l.get('name') for l in root.findall('link')] == ['base', 'tip', 'wheel']
+    assert [link.get('name') for link in root.findall('link')] == ['base', 'tip', 'wheel']
     tip_joint = root.find("joint[@name='tip_joint']")
     assert tip_joint.find('parent').get('link') == 'base'
     xyz, rpy = origin(tip_joint)
@@ -109,7 +109,7 @@ def test_a_preserved_link_below_a_lumped_one_hangs_on_the_link_that_is_kept():
     '<gazebo reference="arm_joint"><preserveFixedJoint value="1"/></gazebo>',
     '<gazebo reference="arm_joint"><disableFixedJointLumping>yes</disableFixedJointLumping></gazebo>'])
 def test_the_other_spellings_keep_the_link_too(flag):
-    assert [l.get('name') for l in lumped(flag).findall('link')] == ['base', 'arm', 'wheel']
+    assert [link.get("name") for link in lumped(flag).findall('link')] == ['base', 'arm', 'wheel']
 
 
 def test_preserve_on_a_link_reference_is_ignored_as_gazebo_does_with_a_warning_naming_the_joint():

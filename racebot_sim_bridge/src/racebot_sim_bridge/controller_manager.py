@@ -89,7 +89,8 @@ class ControllerManager(object):
         if closed:  # shut down while it loaded (its model was deleted): undone
             made.controller.shutdown()
             self.log.error("Could not load controller '%s': its controller manager (%s) was shut down while it "
-                           "loaded (the model was deleted); spawn the model again, then load it" % (name, self.ns or '/'))
+                           "loaded (the model was deleted); spawn the model again, then load it"
+                           % (name, self.ns or '/'))
             return False
         self.log.info("Loaded '%s' (%s)" % (name, made.type_name))
         return True

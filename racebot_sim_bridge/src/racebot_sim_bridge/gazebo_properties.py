@@ -212,7 +212,8 @@ class GazeboProperties(object):
             body, link = self._link(req.link_name)
             if body is None:
                 res.success = False
-                res.status_message = 'GetLinkProperties: link not found, did you forget to scope the link by model name?'
+                res.status_message = ('GetLinkProperties: link not found, did you forget to scope the link by '
+                                      'model name?')
                 return res
             d = self.sim.world.link_dynamics(*link_address(body, link))
             res.gravity_mode = (body.name, link) not in self.no_gravity
@@ -239,7 +240,8 @@ class GazeboProperties(object):
             body, link = self._link(req.link_name)
             if body is None:
                 res.success = False
-                res.status_message = 'SetLinkProperties: link not found, did you forget to scope the link by model name?'
+                res.status_message = ('SetLinkProperties: link not found, did you forget to scope the link by '
+                                      'model name?')
                 return res
             if not frames.finite(req.mass, *(tensor + com)) or req.mass <= 0:
                 return self._fail(res, 'SetLinkProperties: mass must be a positive number and com and inertia '
@@ -306,8 +308,8 @@ class GazeboProperties(object):
         if not frames.finite(*g):
             return self._fail(res, 'SetPhysicsProperties: gravity must be finite, got (%r, %r, %r)' % g)
         o = req.ode_config
-        if not frames.finite(o.sor_pgs_w, o.sor_pgs_rms_error_tol, o.contact_surface_layer, o.contact_max_correcting_vel,
-                       o.cfm, o.erp):
+        if not frames.finite(o.sor_pgs_w, o.sor_pgs_rms_error_tol, o.contact_surface_layer,
+                             o.contact_max_correcting_vel, o.cfm, o.erp):
             return self._fail(res, 'SetPhysicsProperties: ode_config values must be finite')
         with self.sim.lock:
             if req.time_step != self.sim.step_size:
@@ -326,7 +328,7 @@ class GazeboProperties(object):
 
     # -- lights -----------------------------------------------------------------------------------
     def _light(self, name):
-        return next((l for l in self.sim.spec.lights if l.name == name), None)
+        return next((light for light in self.sim.spec.lights if light.name == name), None)
 
     def get_light_properties(self, req):
         res = self.srv.GetLightPropertiesResponse()

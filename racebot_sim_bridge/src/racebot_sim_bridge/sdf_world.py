@@ -34,11 +34,11 @@ __all__ = [
     'parse_world', 'load_world', 'GAZEBO_MATERIALS', 'EMPTY_WORLD_SDF', 'ZERO_POSE',
 ]
 
-ZERO_POSE = (0.0, 0.0, 0.0, 0.0, 0.0, 0.0)
-
 from . import meshes, model_path
 from .materials import GAZEBO_MATERIALS, gazebo_material_rgba  # GAZEBO_MATERIALS: re-exported
 from .rotations import as_xyz_rpy, compose, inverse
+
+ZERO_POSE = (0.0, 0.0, 0.0, 0.0, 0.0, 0.0)
 
 # What Gazebo's worlds/empty.world holds, for world_name:=worlds/empty.world (the default of
 # empty_world.launch), which Gazebo finds in its own resource path.
@@ -131,7 +131,7 @@ class Model:
             if link.name == name:
                 return link
         raise KeyError('model %r has no link %r (links: %s)'
-                       % (self.name, name, ', '.join(l.name for l in self.links) or 'none'))
+                       % (self.name, name, ', '.join(lk.name for lk in self.links) or 'none'))
 
     def world_pose_of(self, link, element=None):
         """World pose ``(xyz, quaternion xyzw)`` of a link, or of a collision or visual of
@@ -530,7 +530,7 @@ class _WorldReader:
                 link = self.link(child, where, model.static)
                 if link is None:
                     continue
-                if any(l.name == link.name for l in model.links):
+                if any(other.name == link.name for other in model.links):
                     self.warn(where, 'a second link %s; skipped' % _quote(link.name))
                     continue
                 model.links.append(link)

@@ -228,7 +228,8 @@ class SpawnModelNode(object):
                 text = rospy.get_param(args.param)
             except KeyError:
                 rospy.logfatal("Error: parameter '%s' does not exist; load the model first, e.g. "
-                               "<param name=\"%s\" command=\"xacro ...\"/>" % (rospy.resolve_name(args.param), args.param))
+                               "<param name=\"%s\" command=\"xacro ...\"/>"
+                               % (rospy.resolve_name(args.param), args.param))
                 return None
             if not isinstance(text, str) or text.strip() == '':
                 rospy.logerr('Error: param does not exist or is empty (-param %s)' % rospy.resolve_name(args.param))
