@@ -6,7 +6,7 @@ VENV := $(ROOT)/.venv
 SYSTEM_PYTHON := /usr/bin/python3
 IN_WS := source $(ROOT)/devel/setup.bash &&
 
-.PHONY: setup debian venv build test unit run demo bench bench-quick soak fresh-check clean help
+.PHONY: setup debian venv build test unit lint run demo bench bench-quick soak fresh-check clean help
 
 help:
 	@echo "make run    set up, build, start the simulator with the racebot in the room"
@@ -14,6 +14,7 @@ help:
 	@echo "make setup  install what is missing (Debian packages, .venv) and build into build/ devel/"
 	@echo "make demo   headless: drive a scripted route, print it, draw it (out/demo/demo_path.png)"
 	@echo "make unit   only the unit tests (no ROS master)"
+	@echo "make lint   ruff over the repository (ruff.toml); make test runs it too"
 	@echo "make fresh-check  'make test' in a brand-new minimal Debian 12 root (root only; ~10 min); CI runs it"
 	@echo "            extra roslaunch arguments: make run ARGS='paused:=true x_pos:=1'"
 	@echo "make clean  remove build/ devel/ (keeps .venv)"
@@ -51,6 +52,10 @@ build: debian venv
 
 test: setup
 	@$(IN_WS) $(VENV)/bin/python3 tools/run_tests.py
+
+# ruff with the repository's ruff.toml (make test runs it too, as one test)
+lint: setup
+	@$(VENV)/bin/ruff check $(ROOT)
 
 unit: setup
 	@$(IN_WS) $(VENV)/bin/python3 tools/run_tests.py --unit-only

@@ -4,8 +4,8 @@
 `--repeat N` runs it (or the part -k / --unit-only picks) N times and ends with each test's
 failure count over the N runs: the way to tell a flaky test (fails 1 of 10) from a broken one.
 
-Two tiers: pytest unit tests in tests/unit (no ROS master) and every rostest file in
-tests/integration (each brings up its own master, roslaunch and nodes). Results are counted
+Three tiers: ruff over the repository (one test), pytest unit tests in tests/unit (no ROS master)
+and every rostest file in tests/integration (each brings up its own master, roslaunch and nodes). Results are counted
 from the JUnit XML both write, so a test node that crashes or never reports counts as failed.
 Run it from a shell where `devel/setup.bash` is sourced (the Makefile does that).
 """
@@ -83,6 +83,20 @@ def run_unit(python):
     if code not in (0, 1) and result[1] == 0:  # collection/usage errors: pytest wrote no failing case
         return result[0], result[1] + 1, result[2], result[3] + ['pytest exited %d' % code]
     return result
+
+
+def run_lint(python):
+    """ruff over the repository (ruff.toml: one line length, pycodestyle and pyflakes): one test,
+    failed with ruff's findings."""
+    cmd = [python, '-m', 'ruff', 'check', '--no-cache', '--output-format', 'concise', ROOT]
+    print('== lint: %s' % ' '.join(cmd), flush=True)
+    done = subprocess.run(cmd, cwd=ROOT, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, universal_newlines=True)
+    if done.returncode == 0:
+        print('   ruff: no findings', flush=True)
+        return 1, 0, 0, []
+    findings = [line for line in done.stdout.splitlines() if line.strip()]
+    print('\n'.join('   ' + line for line in findings), flush=True)
+    return 0, 1, 0, ['lint: ruff reported %d finding(s) (run `make lint`; fix them)' % max(len(findings) - 1, 1)]
 
 
 def rostest_cases(test_file):
@@ -195,6 +209,7 @@ def run_once(args):
         failures.extend(result[3])
 
     if not args.only:
+        add(run_lint(sys.executable))
         add(run_unit(sys.executable))
     if not args.unit_only:
         for test_file in sorted(glob.glob(os.path.join(ROOT, 'tests', 'integration', '*.test'))):
