@@ -397,6 +397,10 @@ class PhysicsWorld(object):
         self.client.resetBasePositionAndOrientation(body_id, position, orientation)
         self.client.resetBaseVelocity(body_id, linear, angular)
 
+    def set_base_velocity(self, body_id, linear, angular):
+        """A base's world linear (at its centre of mass) and angular velocity, its pose left as it is."""
+        self.client.resetBaseVelocity(body_id, list(linear), list(angular))
+
     def apply_joint_effort(self, body, joint_name, effort):
         joint = body.joints[joint_name]
         self.client.setJointMotorControl2(body.id, joint.index, pb.TORQUE_CONTROL, force=effort)

@@ -51,3 +51,20 @@ def sensor_namespace(kind, own, requested, model_name, camera_name='', node_name
     if kind in ('camera', 'depth', 'multicamera'):
         return resolve('%s/%s' % (text, camera_name), node_namespace)
     return resolve(text, node_namespace)
+
+
+def model_plugin_namespace(kind, own, requested, model_name, node_namespace='/'):
+    """The namespace a gazebo_plugins model plugin of `kind` opens its ros::NodeHandle in:
+    'drive' (skid_steer_drive, p3d: text + '/', none -> ''), 'planar_move' (text, none -> ''),
+    'joint_state_publisher' (none or empty -> the model name, then + '/')."""
+    text = after_spawn(own, requested)
+    if kind == 'joint_state_publisher':
+        return resolve((text or model_name) + '/', node_namespace)
+    if text is None:
+        return resolve('', node_namespace)
+    return resolve(text + '/' if kind == 'drive' else text, node_namespace)
+
+
+def name_in(namespace, name):
+    """ros::NodeHandle(namespace).advertise(name)'s topic: `name` when absolute, else under `namespace`."""
+    return resolve(name if name.startswith('/') else '%s/%s' % (namespace, name))

@@ -8,7 +8,9 @@ Sensor plugins (a <sensor>'s <plugin>) are in ../sensors; gazebo_ros_control is 
 """
 import os
 
-MODULES = ()
+from . import joint_state_publisher, p3d, planar_move, skid_steer_drive
+
+MODULES = (skid_steer_drive, planar_move, p3d, joint_state_publisher)
 
 
 def plugin_key(filename):

@@ -1,0 +1,26 @@
+"""A link's world pose and motion as Gazebo's Link reports them: WorldPose is the link's frame and
+WorldLinearVel the velocity of the frame's origin, while PyBullet gives the centre of mass's. No rospy."""
+
+
+def point_velocity(com_velocity, angular, com, point):
+    """Velocity of a point of a rigid body: v_com + w x (point - com)."""
+    rx, ry, rz = (point[i] - com[i] for i in range(3))
+    wx, wy, wz = angular
+    return (com_velocity[0] + wy * rz - wz * ry,
+            com_velocity[1] + wz * rx - wx * rz,
+            com_velocity[2] + wx * ry - wy * rx)
+
+
+def link_motion(world, body, link):
+    """(position, quaternion xyzw, linear velocity of the frame origin, angular velocity), all in world
+    axes, of the PyBullet link `link` (a name in body.link_index; the root link is the base)."""
+    index = body.link_index[link]
+    if index < 0:
+        frame, com = body.frame_pose(), body.pose()
+        linear, angular = body.twist()
+        position, orientation, com_position = frame.position, frame.orientation, com.position
+    else:
+        s = world.client.getLinkState(body.id, index, computeLinkVelocity=1, computeForwardKinematics=1)
+        com_position, position, orientation, linear, angular = s[0], s[4], s[5], s[6], s[7]
+    return (tuple(position), tuple(orientation), point_velocity(linear, angular, com_position, position),
+            tuple(angular))
