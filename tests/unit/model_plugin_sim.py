@@ -1,0 +1,70 @@
+"""A real Simulator (PyBullet DIRECT, a ground plane) with the model-plugin manager and a rospy stand-in
+(no master): what the unit tests of the drive plugins (test_plugins_*.py) spawn their robots into."""
+from pathlib import Path
+
+from racebot_sim_bridge import sdf_world
+from racebot_sim_bridge.plugins.manager import PluginManager
+from racebot_sim_bridge.simulator import Simulator
+
+from test_sensors_sim import FakeRospy, Log, NullIO
+
+ROBOTS = Path(__file__).resolve().parents[1] / 'fixtures' / 'robots'
+GROUND = """<sdf version="1.6"><world name="default">
+<model name="ground_plane"><static>true</static><link name="link"><collision name="collision"><geometry>
+<plane><normal>0 0 1</normal><size>100 100</size></plane></geometry></collision></link></model>
+</world></sdf>"""
+
+
+def fixture_urdf(package):
+    """The URDF of a fixture package's xacro (tests/fixtures/robots/<package>/urdf/<package>.urdf.xacro)."""
+    import xacro
+    return xacro.process_file(str(ROBOTS / package / 'urdf' / ('%s.urdf.xacro' % package))).toxml()
+
+
+class PluginRospy(FakeRospy):
+    """FakeRospy with subscribers (callbacks by topic) and parameters looked up by has_param."""
+
+    def __init__(self, params=None):
+        super(PluginRospy, self).__init__(params)
+        self.subscribers = {}
+
+    def Subscriber(self, topic, msg_class, callback, queue_size=None):
+        assert queue_size, 'every subscriber needs a queue_size'
+        self.subscribers[topic] = callback
+        return self
+
+    def has_param(self, name):
+        return name in self.params
+
+    def unregister(self):
+        pass
+
+
+class PluginWorld(object):
+    def __init__(self, tmp_path, params=None):
+        path = tmp_path / 'ground.world'
+        path.write_text(GROUND)
+        self.sim = Simulator(sdf_world.load_world(str(path)), NullIO(), Log(), lambda path: None)
+        self.fake = PluginRospy(params)
+        self.manager = PluginManager(self.fake, self.sim)
+
+    def spawn(self, name, urdf, namespace='/', pose=(0.0, 0.0, 0.0)):
+        """As spawn_urdf_model places a robot: its root link frame at `pose` (x, y, z), level."""
+        robot = self.sim.spawn_urdf(name, urdf, namespace, pose)
+        frame = robot.body.com_pose_for_frame(pose, (0, 0, 0, 1))
+        self.sim.world.set_pose(robot.body, frame.position, frame.orientation)
+        return robot
+
+    def run(self, seconds):
+        for _ in range(int(round(seconds / self.sim.step_size))):
+            self.sim.step()
+
+    def warnings(self, text=''):
+        return [m for level, m in self.fake.logs if level == 'warn' and text in m]
+
+    def errors(self, text=''):
+        return [m for level, m in self.fake.logs if level == 'error' and text in m]
+
+    def close(self):
+        self.manager.close()
+        self.sim.close()
