@@ -122,7 +122,10 @@ def test_noise_is_on_the_twist_only_with_its_standard_deviation(tmp_path, urdf):
         w.run(0.5)
         msgs = pub.messages[-400:]
         assert len(msgs) == 400  # updateRate 0: every world update
-        assert statistics.pstdev(m.twist.twist.angular.y for m in msgs) == pytest.approx(0.05, rel=0.2)
+        for part in ('linear', 'angular'):
+            for axis in 'xyz':
+                spread = statistics.pstdev(getattr(getattr(m.twist.twist, part), axis) for m in msgs)
+                assert spread == pytest.approx(0.05, rel=0.2), (part, axis)
         assert statistics.pstdev(m.pose.pose.position.x for m in msgs) < 1e-4
     finally:
         w.close()
