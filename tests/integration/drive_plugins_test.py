@@ -18,6 +18,7 @@ Odometry, TF and p3d are compared with the ground truth at rest (poses) and whil
 """
 import math
 import os
+import tempfile
 import threading
 import time
 import unittest
@@ -105,7 +106,10 @@ class DrivePluginsTest(unittest.TestCase):
     def start(cls):
         rospy.init_node('drive_plugins_test')
         env = dict(os.environ, ROS_PACKAGE_PATH=ROBOTS + os.pathsep + os.environ['ROS_PACKAGE_PATH'])
-        log = os.path.join(os.environ.get('ROS_LOG_DIR', '/tmp'), 'drive_plugins_roslaunch.log')
+        log_dir = os.environ.get('ROS_LOG_DIR', '/tmp')
+        os.makedirs(log_dir, exist_ok=True)
+        handle, log = tempfile.mkstemp(prefix='drive_plugins_roslaunch-', suffix='.log', dir=log_dir)
+        os.close(handle)
         cls.launch = ShellCommand('exec roslaunch %s' % os.path.join(HERE, 'drive_plugins_world.launch'), env, log)
         cls.watch = LaunchWatch(cls.launch)
         cls.clock = Latest('/clock', Clock)
