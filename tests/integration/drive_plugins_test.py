@@ -9,11 +9,11 @@ that follows the pause. Motion is judged against the kinematics (racebot_sim_bri
 - planar move: body-frame vx, vy and wz within 5 % of the command, instantaneous and over 1 s;
 - skid steer straight: speed within 5 % (no side slip when both sides turn alike); turning: each
   wheel at its side's commanded speed within 5 %, the base turning in the commanded sense and moving
-  ahead, its yaw rate above 5 % and below 105 % of the command. A skid-steer turn drags the wheels
-  sideways, so friction, not the plugin, sets the yaw rate: always below the differential formula's
-  (the effective track is 1.5-2 times the wheel separation for a wheelbase/track of 0.75), and with
-  Coulomb friction changing between stick and slip it wanders (0.09 to 0.5 rad/s in 0.5 s windows for
-  0.8 commanded, measured here).
+  ahead, its yaw rate between 25 % and 105 % of the command. A skid-steer turn drags the wheels
+  sideways, so friction, not the plugin, sets the yaw rate: below the differential formula's (the
+  effective track is 1.5-2 times the wheel separation for a wheelbase/track of 0.75: 50-67 %). This
+  window of this turn measured 0.398 rad/s for 0.8 (50 %) in each of 5 runs; the bound leaves half of
+  it, as stick and slip make longer turns wander (0.09 to 0.5 rad/s in 0.5 s windows, measured).
 Odometry, TF and p3d are compared with the ground truth at rest (poses) and while driving (twists).
 """
 import math
@@ -185,6 +185,8 @@ class DrivePluginsTest(unittest.TestCase):
         self.sim_wait(1.0)
         b = self.snapshot(PLANAR)
         vx, vy = b.body_velocity()
+        rospy.loginfo('planar move: truth vx %.4f vy %.4f wz %.4f for (0.3, 0.2, 0.5); over %.2f s yaw rate %.4f',
+                      vx, vy, b.wz, b.t - a.t, (b.yaw - a.yaw) / (b.t - a.t))
         for value, expected, what in ((vx, command[0], 'vx'), (vy, command[1], 'vy'), (b.wz, command[2], 'wz')):
             self.assertClose(value, expected, 0.05 * abs(expected), 'ground-truth %s in the robot frame' % what)
         dt = b.t - a.t
@@ -227,7 +229,8 @@ class DrivePluginsTest(unittest.TestCase):
         b = self.snapshot(SKID)
         dt = b.t - a.t
         rate = (b.yaw - a.yaw) / dt
-        self.assertGreater(rate, 0.05 * turn[1], 'yaw rate %.3f rad/s for a commanded %.2f' % (rate, turn[1]))
+        rospy.loginfo('skid steer turn: yaw rate %.4f rad/s over %.2f s for %.2f commanded', rate, dt, turn[1])
+        self.assertGreater(rate, 0.25 * turn[1], 'yaw rate %.3f rad/s for a commanded %.2f' % (rate, turn[1]))
         self.assertLess(rate, 1.05 * turn[1], 'yaw rate %.3f rad/s for a commanded %.2f' % (rate, turn[1]))
         ahead = world_to_base(b.x - a.x, b.y - a.y, a.yaw)[0]
         self.assertGreater(ahead, 0.0, 'the base went backwards while turning')
@@ -242,6 +245,8 @@ class DrivePluginsTest(unittest.TestCase):
         self.sim_wait(1.0)
         d = self.snapshot(SKID)
         dt = d.t - c.t
+        rospy.loginfo('skid steer straight: mean speed %.4f m/s over %.2f s for %.2f commanded',
+                      math.hypot(d.x - c.x, d.y - c.y) / dt, dt, speed)
         self.assertClose(math.hypot(d.x - c.x, d.y - c.y) / dt, speed, 0.05 * speed, 'mean speed over %.2f s' % dt)
         self.assertClose(math.atan2(d.y - c.y, d.x - c.x), c.yaw, 0.05, 'direction of travel against the heading')
         self.assertGreater(abs(d.yaw), 0.5, 'the heading is too near the x axis to tell frames apart')
