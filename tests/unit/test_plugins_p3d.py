@@ -114,8 +114,9 @@ def test_pose_and_world_frame_velocity_of_the_body_with_noise(tmp_path, urdf):
         w.close()
 
 
-def test_noise_is_on_the_twist_only_with_its_standard_deviation(tmp_path, urdf):
-    w, robot = spawn(tmp_path, with_p3d(urdf, gaussianNoise='0.05', updateRate='0'))
+@pytest.mark.parametrize('sigma', ['0.05', '-0.05'])  # upstream's Box-Muller takes a negative sigma as well
+def test_noise_is_on_the_twist_only_with_its_standard_deviation(tmp_path, urdf, sigma):
+    w, robot = spawn(tmp_path, with_p3d(urdf, gaussianNoise=sigma, updateRate='0'))
     try:
         pub = w.fake.publishers[TOPIC]
         pub.connections = 1
@@ -127,6 +128,7 @@ def test_noise_is_on_the_twist_only_with_its_standard_deviation(tmp_path, urdf):
                 spread = statistics.pstdev(getattr(getattr(m.twist.twist, part), axis) for m in msgs)
                 assert spread == pytest.approx(0.05, rel=0.2), (part, axis)
         assert statistics.pstdev(m.pose.pose.position.x for m in msgs) < 1e-4
+        assert msgs[-1].twist.covariance[35] == pytest.approx(0.0025) and w.warnings() == []
     finally:
         w.close()
 

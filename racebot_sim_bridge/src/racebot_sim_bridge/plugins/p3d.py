@@ -67,7 +67,7 @@ class P3D(ModelPlugin):
                                                                                 self.frame_name)
         self.xyz_offset = p.vector('xyzOffset', 3, (0.0, 0.0, 0.0))
         self.rpy_offset = p.vector('rpyOffset', 3, (0.0, 0.0, 0.0))
-        self.noise = p.number('gaussianNoise', 0.0, minimum=0)
+        self.noise = p.number('gaussianNoise', 0.0)  # a negative sigma draws as its absolute value, as upstream
         self.clock = AtLeastPeriod(p.number('updateRate', 0.0), ctx.sim.time)
         self.rng = rng or random.Random()
         ns = model_plugin_namespace('drive', p.string('robotNamespace', None), robot.spawn_namespace, robot.name,
