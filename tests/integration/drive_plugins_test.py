@@ -2,8 +2,10 @@
 """The drive plugins through the topics gazebo_plugins would give, on robot packages of our own.
 
 tests/fixtures/robots/skid_steer_bot (skid_steer_drive, p3d, joint_state_publisher; spawned with
--robot_namespace /skid) and planar_move_bot (planar_move, <robotNamespace>planar, cmdTimeout 0.5) are
-launched by drive_plugins_world.launch, started here with the fixtures on ROS_PACKAGE_PATH.
+-robot_namespace /skid, heading 0.7 rad) and planar_move_bot (planar_move, <robotNamespace>planar,
+cmdTimeout 0.5) are launched in one world by one roslaunch of the skid-steer package's world launch
+(empty_world.launch and its spawn) and the planar package's spawn launch (3 m to the left), started
+here with tests/fixtures/robots on ROS_PACKAGE_PATH.
 Ground truth is gazebo_ros's get_model_state read with physics paused, at the sim time of the /clock
 that follows the pause. Motion is judged against the kinematics (racebot_sim_bridge.kinematics):
 - planar move: body-frame vx, vy and wz within 5 % of the command, instantaneous and over 1 s;
@@ -110,7 +112,9 @@ class DrivePluginsTest(unittest.TestCase):
         os.makedirs(log_dir, exist_ok=True)
         handle, log = tempfile.mkstemp(prefix='drive_plugins_roslaunch-', suffix='.log', dir=log_dir)
         os.close(handle)
-        cls.launch = ShellCommand('exec roslaunch %s' % os.path.join(HERE, 'drive_plugins_world.launch'), env, log)
+        files = [os.path.join(ROBOTS, 'skid_steer_bot', 'launch', 'skid_steer_bot_world.launch'),
+                 os.path.join(ROBOTS, 'planar_move_bot', 'launch', 'spawn.launch')]
+        cls.launch = ShellCommand('exec roslaunch %s gui:=false yaw:=0.7 y:=3' % ' '.join(files), env, log)
         cls.watch = LaunchWatch(cls.launch)
         cls.clock = Latest('/clock', Clock)
         cls.models = Latest('/gazebo/model_states', ModelStates)
