@@ -146,3 +146,20 @@ def test_bad_values_warn_naming_the_parameter_and_the_value_used(tmp_path, urdf,
         assert len(warnings) == 1 and ('using %s' % used) in warnings[0], w.fake.logs
     finally:
         w.close()
+
+
+def test_after_reset_simulation_it_goes_on_from_the_new_time_with_its_command(tmp_path, urdf):
+    # upstream would wait until the sim time passed its last update again; racebot restarts its clock
+    w, robot = spawn(tmp_path, urdf)
+    try:
+        command(w, 0.4, 0.0)
+        w.run(0.5)
+        w.sim.reset_simulation()
+        pub = w.fake.publishers['/skid/odom']
+        before = len(pub.messages)
+        w.run(0.5)
+        stamps = [m.header.stamp.to_sec() for m in pub.messages[before:]]
+        assert stamps[:2] == pytest.approx([0.012, 0.022]) and len(stamps) == 49  # the clock restarts at 0.001
+        assert wheel_velocities(w, robot) == pytest.approx([4.0] * 4, rel=0.02)  # cmd_vel kept, as upstream
+    finally:
+        w.close()
