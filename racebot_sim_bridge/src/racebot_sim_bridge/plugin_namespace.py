@@ -56,9 +56,10 @@ def sensor_namespace(kind, own, requested, model_name, camera_name='', node_name
 def model_plugin_namespace(kind, own, requested, model_name, node_namespace='/'):
     """The namespace a gazebo_plugins model plugin of `kind` opens its ros::NodeHandle in:
     'drive' (skid_steer_drive, p3d: text + '/', none -> ''), 'planar_move' (text, none -> ''),
-    'joint_state_publisher' (none or empty -> the model name, then + '/')."""
+    'joint_state_publisher' and 'gazebo_ros' (the GazeboRos helper of gazebo_ros_utils.cpp, which diff_drive
+    uses: none or empty -> the model name, then + '/')."""
     text = after_spawn(own, requested)
-    if kind == 'joint_state_publisher':
+    if kind in ('joint_state_publisher', 'gazebo_ros'):
         return resolve((text or model_name) + '/', node_namespace)
     if text is None:
         return resolve('', node_namespace)

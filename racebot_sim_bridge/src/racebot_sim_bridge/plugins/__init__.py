@@ -8,9 +8,9 @@ Sensor plugins (a <sensor>'s <plugin>) are in ../sensors; gazebo_ros_control is 
 """
 import os
 
-from . import joint_state_publisher, p3d, planar_move, skid_steer_drive
+from . import diff_drive, imu, joint_state_publisher, p3d, planar_move, skid_steer_drive
 
-MODULES = (skid_steer_drive, planar_move, p3d, joint_state_publisher)
+MODULES = (skid_steer_drive, planar_move, p3d, joint_state_publisher, diff_drive, imu)
 
 
 def plugin_key(filename):

@@ -1,0 +1,118 @@
+"""libgazebo_ros_imu.so (gazebo_plugins noetic-devel): the MODEL plugin's sensor_msgs/Imu of a link
+(the `imu` sensor's libgazebo_ros_imu_sensor.so is sensors/'s).
+
+Parameters: bodyName (required: a link of the model; one Gazebo lumps into its parent is none),
+topicName /default_imu (empty: nothing is advertised), serviceName /default_imu (std_srvs/Empty,
+answers at once: "always calibrated in sim"), gaussianNoise 0 (a standard deviation), xyzOffset 0 0 0
+(read and, as upstream, used for nothing the message carries), rpyOffset 0 0 0, updateRate 0 (every
+world update), frameName (default bodyName; used as written), robotNamespace (text + '/', none: '').
+The old xyzOffsets/rpyOffsets are not read by noetic: a warning says so.
+
+Upstream's arithmetic is kept: orientation is the rpyOffset rotation times the link's world
+orientation; the angular velocity and the linear acceleration (the difference of the link frame
+origin's world velocity since the last message, over the sim time between them, without gravity:
+a resting IMU reads 0) get gaussian noise per axis and are then turned BY that orientation (not into
+the link's axes); gaussianNoise squared is on the diagonal of the three covariances. Nothing is
+computed while nobody subscribes, and the acceleration then spans the whole gap. Stamp: the sim time.
+"""
+import random
+
+from ..plugin_namespace import model_plugin_namespace, name_in
+from ..rotations import quaternion_multiply, rotate, rpy_to_quaternion
+from .base import ModelPlugin, PluginError
+from .link_motion import link_motion
+from .update_timing import AtLeastPeriod
+
+DEFAULT_NAME = '/default_imu'  # upstream's topic and service when not given
+
+
+def acceleration(last_velocity, velocity, dt):
+    """(velocity - last_velocity) / dt per axis; None when dt is 0 (upstream then keeps the last)."""
+    if dt == 0:
+        return None
+    return tuple((velocity[i] - last_velocity[i]) / dt for i in range(3))
+
+
+def imu_vectors(orientation, offset_rotation, angular, linear_acceleration, noise):
+    """Upstream's (orientation, angular velocity, linear acceleration) of the message, from the link's
+    world orientation, world angular velocity and world acceleration; `noise()` draws one sample."""
+    q = quaternion_multiply(offset_rotation, orientation)
+    norm = sum(c * c for c in q) ** 0.5
+    q = tuple(c / norm for c in q)
+    w = rotate(q, tuple(v + noise() for v in angular))
+    a = rotate(q, tuple(v + noise() for v in linear_acceleration))
+    return q, w, a
+
+
+class Imu(ModelPlugin):
+    filename = 'libgazebo_ros_imu.so'
+
+    def __init__(self, ctx, robot, spec, rng=None):
+        super(Imu, self).__init__(ctx, robot, spec)
+        p = self.params
+        self.body_name = self._body()
+        self.topic = p.string('topicName', DEFAULT_NAME)
+        self.service_name = p.string('serviceName', DEFAULT_NAME)
+        self.noise = p.number('gaussianNoise', 0.0)
+        for old, new in (('xyzOffsets', 'xyzOffset'), ('rpyOffsets', 'rpyOffset')):
+            if p.has(old) and not p.has(new):
+                self.warn('<%s> is not read (gazebo_plugins noetic reads <%s>); no offset is applied' % (old, new))
+        self.xyz_offset = p.vector('xyzOffset', 3, (0.0, 0.0, 0.0))
+        self.offset_rotation = rpy_to_quaternion(*p.vector('rpyOffset', 3, (0.0, 0.0, 0.0)))
+        self.clock = AtLeastPeriod(p.number('updateRate', 0.0), ctx.sim.time)
+        self.frame_name = p.string('frameName', self.body_name)
+        self.rng = rng or random.Random()
+        ns = model_plugin_namespace('drive', p.string('robotNamespace', None), robot.spawn_namespace, robot.name,
+                                    ctx.sim.node_namespace)
+        _, _, self.last_velocity, _ = link_motion(self.world, robot.body, self.body_name)
+        self.linear_acceleration = (0.0, 0.0, 0.0)
+        self.pub = None
+        if self.topic:
+            from sensor_msgs.msg import Imu as ImuMsg
+            from std_srvs.srv import Empty, EmptyResponse
+            self.msg_class = ImuMsg
+            self.pub = self.publisher(name_in(ns, self.topic), ImuMsg)
+            self.service(name_in(ns, self.service_name), Empty, lambda request: EmptyResponse())
+
+    def _body(self):
+        name = self.params.string('bodyName', None)
+        if name is None:
+            raise PluginError('<bodyName> is missing: give the link whose motion the IMU reports')
+        model, body = self.robot.model, self.robot.body
+        if name in model.links and name not in body.link_index:
+            raise PluginError("<bodyName>%s</bodyName>: Gazebo merges this link into '%s' (a fixed joint), so the "
+                              "model has no link of that name; name '%s', or keep the joint with <preserveFixedJoint>"
+                              % (name, model.lumped_link(name), model.lumped_link(name)))
+        if name not in body.link_index:
+            raise PluginError("<bodyName>%s</bodyName> is not a link of the model (its links: %s)"
+                              % (name, ', '.join(sorted(body.link_index))))
+        return name
+
+    def before_physics(self, time):
+        if self.pub is None:
+            return
+        since = self.clock.since(time)
+        if since is None or self.pub.get_num_connections() == 0:
+            return
+        _, orientation, velocity, angular = link_motion(self.world, self.robot.body, self.body_name)
+        a = acceleration(self.last_velocity, velocity, since)
+        if a is not None:
+            self.linear_acceleration, self.last_velocity = a, velocity
+        gauss, sigma = self.rng.gauss, self.noise
+        noise = (lambda: gauss(0.0, sigma)) if sigma else (lambda: 0.0)
+        q, w, acc = imu_vectors(orientation, self.offset_rotation, angular, self.linear_acceleration, noise)
+        msg = self.msg_class()
+        msg.header.frame_id = self.frame_name
+        msg.header.stamp = self.stamp(time)
+        o = msg.orientation
+        o.x, o.y, o.z, o.w = q
+        msg.angular_velocity.x, msg.angular_velocity.y, msg.angular_velocity.z = w
+        msg.linear_acceleration.x, msg.linear_acceleration.y, msg.linear_acceleration.z = acc
+        variance = sigma * sigma
+        for cov in (msg.orientation_covariance, msg.angular_velocity_covariance, msg.linear_acceleration_covariance):
+            cov[0] = cov[4] = cov[8] = variance
+        self.pub.publish(msg)
+        self.clock.mark(time)
+
+
+PLUGINS = (Imu,)
