@@ -1,0 +1,190 @@
+#!/usr/bin/env python3
+"""gazebo_ros_diff_drive, a 360-ray laser and the gazebo_ros_imu model plugin on a robot package of our
+own (tests/fixtures/robots/diffbot_plugins), launched as such a package is: its diffbot_world.launch
+(gazebo_ros's empty_world.launch and spawn_model), with the fixtures on ROS_PACKAGE_PATH and
+wheel_separation:=-0.34, a bad <wheelSeparation> the plugin warns about and replaces by upstream's
+default, 0.34 m, which is this robot's.
+
+Driven through cmd_vel at 0.3 m/s and 0.5 rad/s together; once the wheels' ramp (wheelAcceleration
+1 m/s^2) is done, the ground truth (gazebo_ros's get_model_state, physics paused, at the sim time of the
+/clock that follows the pause) moves at the commanded speed and yaw rate within 5 % over 1 s of sim
+time; the encoder odometry (odom -> base_footprint, in the message and on /tf) stays within 5 % of the
+distance travelled of the true pose. The wheel TFs and joint states, the laser's 360 ranges and the
+IMU's message with its frame are checked on the way.
+"""
+import math
+import os
+import threading
+import time
+import unittest
+
+import rospy
+import rostest
+from gazebo_msgs.msg import ModelStates
+from gazebo_msgs.srv import GetModelState
+from geometry_msgs.msg import Twist
+from nav_msgs.msg import Odometry
+from rosgraph_msgs.msg import Clock, Log
+from sensor_msgs.msg import Imu, JointState, LaserScan
+from std_srvs.srv import Empty
+from tf2_msgs.msg import TFMessage
+
+from catkin_overlay import LaunchWatch, ShellCommand
+from integration_common import Latest, yaw_of
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+ROBOTS = os.path.join(os.path.dirname(HERE), 'fixtures', 'robots')
+STARTUP_TIMEOUT = 90.0  # wall s
+WALL_TIMEOUT = 30.0
+MODEL = 'diffbot'
+COMMAND = (0.3, 0.5)  # m/s, rad/s
+BAD_SEPARATION = "<wheelSeparation>-0.34</wheelSeparation> must be > 0; using 0.34"
+
+
+class DiffDrivePluginTest(unittest.TestCase):
+    launch = None
+
+    @classmethod
+    def setUpClass(cls):
+        try:
+            cls.start()
+        except BaseException:
+            cls.tearDownClass()
+            raise
+
+    @classmethod
+    def start(cls):
+        rospy.init_node('diff_drive_plugin_test')
+        cls.log = []
+        rospy.Subscriber('/rosout', Log, lambda m: cls.log.append(m), queue_size=1000)
+        cls.tf = {}
+        rospy.Subscriber('/tf', TFMessage, cls._on_tf, queue_size=100)
+        cls.clock = Latest('/clock', Clock)
+        cls.models = Latest('/gazebo/model_states', ModelStates)
+        cls.odom = Latest('/odom', Odometry)
+        cls.scan = Latest('/scan', LaserScan)
+        cls.imu = Latest('/imu', Imu)
+        cls.joint_states = Latest('/joint_states', JointState)
+        cls.cmd_pub = rospy.Publisher('/cmd_vel', Twist, queue_size=1)
+        cls.command = None
+        cls.running = True
+        threading.Thread(target=cls._drive, daemon=True).start()
+        env = dict(os.environ, ROS_PACKAGE_PATH=ROBOTS + os.pathsep + os.environ['ROS_PACKAGE_PATH'])
+        log = os.path.join(os.environ.get('ROS_LOG_DIR', '/tmp'), 'diff_drive_plugin_roslaunch_%d.log' % os.getpid())
+        cls.launch = ShellCommand('exec roslaunch diffbot_plugins diffbot_world.launch gui:=false '
+                                  'wheel_separation:=-0.34', env, log)
+        cls.watch = LaunchWatch(cls.launch)
+        cls.watch.wait(lambda: cls.models.msg is not None and MODEL in cls.models.msg.name,
+                       'the robot to be spawned', STARTUP_TIMEOUT)
+        for name in ('get_model_state', 'pause_physics', 'unpause_physics'):
+            rospy.wait_for_service('/gazebo/' + name, timeout=WALL_TIMEOUT)
+        cls.get_state = rospy.ServiceProxy('/gazebo/get_model_state', GetModelState)
+        cls.pause = rospy.ServiceProxy('/gazebo/pause_physics', Empty)
+        cls.unpause = rospy.ServiceProxy('/gazebo/unpause_physics', Empty)
+
+    @classmethod
+    def tearDownClass(cls):
+        cls.running = False
+        if cls.launch is not None:
+            cls.launch.stop()
+
+    @classmethod
+    def _on_tf(cls, msg):
+        for t in msg.transforms:
+            cls.tf[(t.header.frame_id, t.child_frame_id)] = t
+
+    @classmethod
+    def _drive(cls):
+        """Publishes the latest command at 20 Hz (wall time)."""
+        while cls.running and not rospy.is_shutdown():
+            if cls.command is not None:
+                cls.cmd_pub.publish(cls.command)
+            time.sleep(0.05)
+
+    # -- helpers ------------------------------------------------------------------------------
+    def wait_for(self, condition, what, timeout=WALL_TIMEOUT):
+        return self.watch.wait(condition, what, timeout, period=0.01)
+
+    def now(self):
+        return self.clock.msg.clock.to_sec()
+
+    def sim_wait(self, seconds):
+        end = self.wait_for(lambda: self.clock.msg and self.now(), '/clock') + seconds
+        self.wait_for(lambda: self.now() >= end, '%.1f s of sim time' % seconds)
+
+    def snapshot(self):
+        """(sim time, x, y, yaw, forward speed) of the robot with physics paused, and the latest odometry."""
+        self.pause()
+        try:
+            count = self.clock.count
+            self.wait_for(lambda: self.clock.count >= count + 2, 'a /clock while paused')
+            res = self.get_state(MODEL, '')
+            odom = self.odom.msg
+        finally:
+            self.unpause()
+        p, q = res.pose.position, res.pose.orientation
+        yaw = yaw_of(q)
+        speed = res.twist.linear.x * math.cos(yaw) + res.twist.linear.y * math.sin(yaw)
+        return (self.now(), p.x, p.y, yaw, speed), odom
+
+    def assertWithin(self, value, expected, fraction, what):
+        self.assertLessEqual(abs(value - expected), fraction * abs(expected),
+                             '%s: %.4f, expected %.4f within %.0f %%' % (what, value, expected, 100 * fraction))
+
+    # -- the test -------------------------------------------------------------------------------
+    def test_drive_odometry_tf_laser_imu_and_the_bad_parameter(self):
+        # the bad <wheelSeparation> was warned about, naming it and the value used instead
+        warned = self.wait_for(lambda: [m for m in self.log if BAD_SEPARATION in m.msg], 'the warning on /rosout')
+        self.assertEqual(warned[0].level, Log.WARN)
+        self.assertIn('differential_drive_controller', warned[0].msg)
+        # laser: 360 ranges over -pi..pi in laser_link
+        scan = self.wait_for(lambda: self.scan.msg, '/scan')
+        self.assertEqual(len(scan.ranges), 360)
+        self.assertEqual(scan.header.frame_id, 'laser_link')
+        self.assertAlmostEqual(scan.angle_min, -math.pi, places=4)
+        # drive: once the ramp is done, the ground truth follows the command
+        cmd = Twist()
+        cmd.linear.x, cmd.angular.z = COMMAND
+        type(self).command = cmd
+        self.wait_for(lambda: self.odom.msg and self.odom.msg.twist.twist.angular.z > 0.95 * COMMAND[1]
+                      and self.odom.msg.twist.twist.linear.x > 0.95 * COMMAND[0], 'the ramp to end')
+        self.sim_wait(0.2)
+        (t0, x0, y0, yaw0, _), _ = self.snapshot()
+        self.sim_wait(1.0)
+        (t1, x1, y1, yaw1, speed), odom = self.snapshot()
+        dt, turned = t1 - t0, math.remainder(yaw1 - yaw0, 2 * math.pi)
+        chord = math.hypot(x1 - x0, y1 - y0)
+        arc = chord * (turned / 2) / math.sin(turned / 2)  # the length of the circular arc through both poses
+        rospy.loginfo('over %.3f s: yaw rate %.4f, speed along the arc %.4f, instantaneous %.4f',
+                      dt, turned / dt, arc / dt, speed)
+        self.assertWithin(turned / dt, COMMAND[1], 0.05, 'yaw rate (ground truth)')
+        self.assertWithin(arc / dt, COMMAND[0], 0.05, 'mean speed along the arc (ground truth)')
+        self.assertWithin(speed, COMMAND[0], 0.05, 'forward speed (ground truth)')
+        # encoder odometry: its own frames, near the truth (the robot started at the origin heading x)
+        self.assertEqual((odom.header.frame_id, odom.child_frame_id), ('odom', 'base_footprint'))
+        travelled = COMMAND[0] * t1
+        p = odom.pose.pose
+        self.assertLess(math.hypot(p.position.x - x1, p.position.y - y1), 0.05 * travelled,
+                        'odometry (%.3f, %.3f), truth (%.3f, %.3f)' % (p.position.x, p.position.y, x1, y1))
+        o = p.orientation
+        self.assertLess(abs(math.remainder(yaw_of(o) - yaw1, 2 * math.pi)), 0.05 * COMMAND[1] * t1, 'odometry yaw')
+        self.assertWithin(odom.twist.twist.linear.x, COMMAND[0], 0.05, 'odometry speed')
+        self.assertWithin(odom.twist.twist.angular.z, COMMAND[1], 0.05, 'odometry yaw rate')
+        tf = self.wait_for(lambda: self.tf.get(('odom', 'base_footprint')), 'TF odom -> base_footprint')
+        self.assertLess(math.hypot(tf.transform.translation.x - x1, tf.transform.translation.y - y1), 0.05 * travelled)
+        # wheel TFs from Gazebo's parent link (base_link is merged into base_footprint), joint states right first
+        for wheel, y in (('left_wheel', 0.17), ('right_wheel', -0.17)):
+            t = self.wait_for(lambda: self.tf.get(('base_footprint', wheel)), 'TF base_footprint -> %s' % wheel)
+            self.assertAlmostEqual(t.transform.translation.y, y, delta=0.005)
+        js = self.wait_for(lambda: self.joint_states.msg, '/joint_states')
+        self.assertEqual(list(js.name), ['right_wheel_joint', 'left_wheel_joint'])
+        # IMU (model plugin): its frame as written, the yaw rate of the body
+        count = self.imu.count
+        imu = self.wait_for(lambda: self.imu.count > count and self.imu.msg, '/imu')
+        self.assertEqual(imu.header.frame_id, 'imu_link')
+        self.assertWithin(imu.angular_velocity.z, COMMAND[1], 0.05, 'IMU yaw rate')
+        type(self).command = Twist()
+
+
+if __name__ == '__main__':
+    rostest.rosrun('racebot_tests', 'diff_drive_plugin', DiffDrivePluginTest)
