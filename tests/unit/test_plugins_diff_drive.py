@@ -262,9 +262,9 @@ def test_reset_zeroes_the_encoder_odometry_and_the_command(tmp_path, urdf):
 # -- gazebo_ros_imu (the model plugin) ------------------------------------------------------------
 def test_imu_vectors_are_turned_by_the_orientation_as_upstream():
     q = rpy_to_quaternion(0, 0, math.pi / 2)
-    orientation, w, a = imu_plugin.imu_vectors(q, rpy_to_quaternion(0, 0, 0), (0, 0, 0.5), (1, 0, 0), lambda: 0.0)
+    orientation, w, a = imu_plugin.imu_vectors(q, rpy_to_quaternion(0, 0, 0), (0.2, 0, 0.5), (1, 0, 0), lambda: 0.0)
     assert orientation == pytest.approx(q)
-    assert w == pytest.approx((0, 0, 0.5)) and a == pytest.approx((0, 1, 0))  # BY q: x -> y
+    assert w == pytest.approx((0, 0.2, 0.5)) and a == pytest.approx((0, 1, 0))  # BY q: x -> y
     offset = rpy_to_quaternion(0, 0, -math.pi / 2)
     orientation, _, a = imu_plugin.imu_vectors(q, offset, (0, 0, 0), (1, 0, 0), lambda: 0.1)
     assert orientation == pytest.approx((0, 0, 0, 1))
