@@ -137,16 +137,19 @@ class DiffDrive(ModelPlugin):
 
     def before_physics(self, time):
         now = to_ns(time)
-        states = self.world.joint_states_raw(self.robot.body, self.indices)
-        velocities = (states[0][1], states[1][1])  # left, right (rad/s)
-        if self.encoder:
+        states = None
+        if self.encoder:  # integrated every world update, whatever the update rate
+            states = self.world.joint_states_raw(self.robot.body, self.indices)
             dt = (now - self.last_encoder_ns) / float(NS)
             self.last_encoder_ns = now
-            self.encoder_pose, self.encoder_twist = kin.encoder_step(self.encoder_pose, velocities[0], velocities[1],
+            self.encoder_pose, self.encoder_twist = kin.encoder_step(self.encoder_pose, states[0][1], states[1][1],
                                                                      self.diameter, self.separation, dt)
         since = (now - self.clock.last) / float(NS)  # before due() moves the clock on
         if not self.clock.due(time):
             return
+        if states is None:
+            states = self.world.joint_states_raw(self.robot.body, self.indices)
+        velocities = (states[0][1], states[1][1])  # left, right (rad/s)
         stamp = self.stamp(time)
         if self.odom_pub is not None:
             self._publish_odometry(stamp)
