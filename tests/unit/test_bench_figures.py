@@ -188,3 +188,27 @@ def test_entries_without_numbers_are_dropped_on_load(tmp_path):
     kept, problem = kept_figures.load(str(path))
     assert problem is None and set(kept['figures']) == {'good'}
 
+
+
+# -- targets (issue 18: ratio >= 0.85, real-time CPU <= 20 %) -----------------------------------------
+def realtime_result(cpu):
+    return {'window': {'wall_s': 60.0, 'rtf': 1.0, 'cpu': cpu, 'parts_rtf': [1.0], 'parts_cpu': [cpu]},
+            'latency': {'sent': 10, 'delivered': 10, 'applied': 10, 'applied_ms': {'p50': 1.0, 'p99': 2.0},
+                        'callback_ms': {'p50': 0.5, 'p99': 1.0}},
+            'startup_warm_s': 2.0}
+
+
+@pytest.mark.parametrize('ratio, met', [(0.84, 'NO'), (0.85, 'yes'), (0.90, 'yes')])
+def test_the_ratio_is_judged_against_the_issue_target(ratio, met):
+    results = dict(RESULTS, speed=dict(RESULTS['speed'], plain=rounds([ratio] * 3, [8.0] * 3, [10.0] * 3)))
+    row = [r for r in report.rows(results) if r[0].startswith('bridge / ceiling: median')][0]
+    assert row[3:] == ('>= 0.85', met)
+    assert any('below 0.85' in n for n in report.notes(results)) == (met == 'NO')
+
+
+@pytest.mark.parametrize('cpu, met', [(0.21, 'NO'), (0.20, 'yes'), (0.12, 'yes')])
+def test_the_realtime_cpu_is_judged_against_the_issue_target(cpu, met):
+    results = dict(RESULTS, realtime=realtime_result(cpu))
+    row = [r for r in report.rows(results) if r[0].startswith('real time: simulator CPU')][0]
+    assert row[3:] == ('<= 20 %', met)
+    assert any('CPU above 20 %' in n for n in report.notes(results)) == (met == 'NO')

@@ -4,7 +4,8 @@ tools/bench.py is the command; these modules are its parts:
   common        paths, worlds, processes (/proc), launches on private masters
   stats         medians, percentiles, the median of repeated pairs with its spread (min-max)
   ceiling       bare PyBullet stepping of the racebot: the speed ceiling
-  inprocess     the simulator without ROS: hinge step response, deterministic runs
+  inprocess     the simulator without ROS: hinge step response, scripted runs (determinism), its
+                real-time factor and where its Python time goes (cProfile)
   scenarios     the measurements that need ROS, each run in a child process with its own master
   plot          PNG plots with matplotlib (Agg backend, no display)
   report        the table of figures and targets
