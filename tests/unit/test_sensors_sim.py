@@ -313,3 +313,38 @@ def test_a_preserved_fixed_link_is_a_real_frame_with_a_working_sensor(racebot_xm
         assert checked > 1000 and not bad, bad[:10]
     finally:
         sim.close()
+
+
+
+def test_sensors_update_on_their_schedule_and_are_not_asked_in_between(racebot_xml):
+    """after_step skips the sensors until the earliest one is due: every sensor publishes at the same
+    sim times as when each is asked at every step (including after a reset sends time back), and steps
+    with nothing due do not call each sensor."""
+    published = []
+    for shortcut in (True, False):
+        sim, fake, manager, robot = make_world(racebot_xml)
+        try:
+            listen(fake, '/scan', '/imu')
+            calls = []
+            for sensor in manager._active:
+                def counted(time, step=sensor.step):
+                    calls.append(time)
+                    step(time)
+                sensor.step = counted
+            for seconds in (0.5, 0.1):
+                for _ in range(int(round(seconds / sim.step_size))):
+                    if not shortcut:
+                        manager._due_for = None  # as if the sensors had changed: every one is asked
+                    sim.step()
+                sim.reset_simulation()
+            published.append({t: [m.header.stamp.to_sec() for m in fake.publishers[t].messages]
+                              for t in ('/scan', '/imu')})
+            if shortcut:
+                # 40 + 100 + 30 + 20 Hz: at most 190 steps a second have a sensor due, each asks every sensor
+                assert 0 < len(calls) <= (190 * 0.6 + 2) * len(manager._active)
+            else:
+                assert len(calls) == 600 * len(manager._active)
+        finally:
+            sim.close()
+    assert published[0] == published[1]
+    assert len(published[0]['/scan']) >= 0.6 * 40 - 2 and len(published[0]['/imu']) >= 0.6 * 100 - 2

@@ -40,7 +40,7 @@ class JointHandle(object):
     """State of one joint and its command, as the controllers see it."""
 
     __slots__ = ('name', 'kind', 'interface', 'lower', 'upper', 'max_effort', 'max_velocity',
-                 'position', 'velocity', 'effort', 'command', '_raw_position')
+                 'position', 'velocity', 'effort', 'command', '_raw_position', 'has_position_limits', '_wraps')
 
     def __init__(self, name, kind, interface, lower=None, upper=None, max_effort=None, max_velocity=None):
         self.name = name
@@ -54,14 +54,13 @@ class JointHandle(object):
         self.effort = 0.0
         self.command = 0.0
         self._raw_position = None
-
-    @property
-    def has_position_limits(self):
-        return self.kind in ('revolute', 'prismatic') and self.lower is not None and self.upper is not None \
-            and self.lower < self.upper
+        # Fixed at construction (the URDF's), read by every update: plain attributes, not properties.
+        self.has_position_limits = kind in ('revolute', 'prismatic') and lower is not None and upper is not None \
+            and lower < upper
+        self._wraps = kind != 'prismatic'  # angles are unwrapped; prismatic positions are taken as they are
 
     def read(self, raw_position, velocity):
-        if self.kind == 'prismatic' or self._raw_position is None:
+        if not self._wraps or self._raw_position is None:
             self.position = raw_position
         else:
             self.position += shortest_angular_distance(self._raw_position, raw_position)
