@@ -199,22 +199,24 @@ class Simulator(object):
         """One world update (physics step), gazebo_ros_control's read-update-write around it."""
         with self.lock:
             t = self.time
+            world = self.world
             for r in self.robots.values():
                 if r.cm is None:
                     continue
-                r.read(self.world)
+                r.read(world)
                 if r.last_update is None or t - r.last_update >= r.control_period - 1e-9:
                     period = 0.0 if r.last_update is None else t - r.last_update
                     r.cm.update(t, period if period > 0 else r.control_period)
                     r.last_update = t
-                r.write(self.world)
+                r.write(world)
+            t_next = self._time_at(self.steps + 1)  # the time this step ends at, computed once
             for hook in self.before_physics:
-                hook(self._time_at(self.steps + 1))
-            self.world.step()
+                hook(t_next)
+            world.step()
             self.steps += 1
-            self.time = self._time_at(self.steps)
+            self.time = t_next
             for hook in self.after_step:
-                hook(self.time)
+                hook(t_next)
 
     def _time_at(self, steps):
         s0, t0 = self._epoch
