@@ -4,7 +4,7 @@ import math  # noqa: F401
 
 from ..hardware import EFFORT, shortest_angular_distance
 from .base import PidCommandController, shortest_angular_distance_with_limits
-from .forward_command import ForwardCommandController
+from .forward_command import ForwardCommandController, ForwardJointGroupCommandController
 
 
 class EffortForwardController(ForwardCommandController):
@@ -74,4 +74,10 @@ class JointPositionController(PidCommandController):
         return out
 
 
-TYPES = (EffortForwardController, JointVelocityController, JointPositionController)
+
+class JointGroupEffortController(ForwardJointGroupCommandController):
+    type_name = 'effort_controllers/JointGroupEffortController'
+    interface = EFFORT
+
+
+TYPES = (JointGroupEffortController, EffortForwardController, JointVelocityController, JointPositionController)

@@ -1,6 +1,6 @@
 """position_controllers: JointPositionController (forward)."""
 from ..hardware import POSITION
-from .forward_command import ForwardCommandController
+from .forward_command import ForwardCommandController, ForwardJointGroupCommandController
 
 
 class PositionForwardController(ForwardCommandController):
@@ -9,4 +9,10 @@ class PositionForwardController(ForwardCommandController):
     setpoint = 'position'
 
 
-TYPES = (PositionForwardController,)
+
+class JointGroupPositionController(ForwardJointGroupCommandController):
+    type_name = 'position_controllers/JointGroupPositionController'
+    interface = POSITION
+
+
+TYPES = (JointGroupPositionController, PositionForwardController,)

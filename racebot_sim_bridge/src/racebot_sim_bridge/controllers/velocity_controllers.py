@@ -2,7 +2,7 @@
 position, a velocity out)."""
 from ..hardware import VELOCITY
 from .effort_controllers import JointPositionController
-from .forward_command import ForwardCommandController
+from .forward_command import ForwardCommandController, ForwardJointGroupCommandController
 
 
 class VelocityForwardController(ForwardCommandController):
@@ -17,4 +17,10 @@ class VelocityJointPositionController(JointPositionController):
     interface = VELOCITY
 
 
-TYPES = (VelocityForwardController, VelocityJointPositionController)
+
+class JointGroupVelocityController(ForwardJointGroupCommandController):
+    type_name = 'velocity_controllers/JointGroupVelocityController'
+    interface = VELOCITY
+
+
+TYPES = (JointGroupVelocityController, VelocityForwardController, VelocityJointPositionController)
