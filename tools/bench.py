@@ -143,7 +143,8 @@ def part_determinism(cfg, out, results):
         raise common.BenchError('the two runs recorded %d and %d samples' % (len(a), len(b)))
     diff = max(max(abs(p[1] - q[1]), abs(p[2] - q[2])) for p, q in zip(a, b))
     results['determinism'] = {'sim_s': cfg['determinism_s'], 'samples': len(a), 'max_diff_m': diff,
-                              'end_pose': a[-1], 'how': 'two processes, in-process simulator, commands keyed to sim time'}
+                              'end_pose': a[-1],
+                              'how': 'two processes, in-process simulator, commands keyed to sim time'}
 
 
 def part_speed(cfg, out, results):

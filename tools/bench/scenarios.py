@@ -506,7 +506,8 @@ def fidelity(p, out):
             msg.drive.speed = 0.0
             pub.publish(msg)
             if len(samples) < 10:
-                raise BenchError('only %d model_states samples for speed %g, steering %g' % (len(samples), speed, angle))
+                raise BenchError('only %d model_states samples for speed %g, steering %g'
+                                 % (len(samples), speed, angle))
             return samples
 
         result['speeds'] = []
@@ -602,5 +603,6 @@ def determinism(p, out):
     return {'samples': len(trajectory)}
 
 
-SCENARIOS = {'speed': speed, 'realtime': realtime, 'sensors': sensors_realtime, 'startup': startup, 'fidelity': fidelity,
+SCENARIOS = {'speed': speed, 'realtime': realtime, 'sensors': sensors_realtime, 'startup': startup,
+             'fidelity': fidelity,
              'determinism': determinism}
