@@ -233,6 +233,7 @@ def test_load_unknown_type(rig):
     assert ("Could not load controller 'bad_type' because controller type "
             "'effort_controllers/JointTrajectoryController' does not exist") in msg
     assert '/racebot/controller_manager/list_controller_types' in msg
+    assert 'Supported plugins, sensors and controllers' in msg
     assert rig.cm.list() == []
 
 
