@@ -9,7 +9,9 @@ import threading
 
 from . import physics, plugin_namespace, urdf_model
 from .controller_manager import ControllerManager
-from .hardware import EFFORT, POSITION, VELOCITY, RobotHW
+from .controllers.base import shortest_angular_distance_with_limits
+from .hardware import EFFORT, POSITION, VELOCITY, RobotHW, shortest_angular_distance
+from .pid import Pid
 
 CONTROL_PLUGIN = 'libgazebo_ros_control.so'
 
@@ -21,9 +23,12 @@ class SpawnError(ValueError):
 class Robot(object):
     """A spawned URDF model with its RobotHW and (if it declares the control plugin) controllers."""
 
-    def __init__(self, name, body, model, robot_ns, hardware_joints, control_period, spawn_namespace=''):
+    def __init__(self, name, body, model, robot_ns, hardware_joints, control_period, spawn_namespace='',
+                 pid_gains=None):
         """hardware_joints: urdf_model.hardware_joints(model), or None without gazebo_ros_control;
-        spawn_namespace: the spawn request's robot_namespace (plugins without their own use it)."""
+        spawn_namespace: the spawn request's robot_namespace (plugins without their own use it);
+        pid_gains: {joint: Pid} of position or velocity joints that gazebo_ros_control drives through a
+        PID (`<ns>/gazebo_ros_control/pid_gains/<joint>` set); the others follow their command directly."""
         self.name = name
         self.body = body
         self.model = model
@@ -43,8 +48,13 @@ class Robot(object):
             self.indices = [body.joints[h.name].index for h in self.handles]
             self.effort_idx = [i for i, h in zip(self.indices, self.handles) if h.interface == EFFORT]
             self.effort_handles = [h for h in self.handles if h.interface == EFFORT]
-            self.velocity_handles = [h for h in self.handles if h.interface == VELOCITY]
-            self.position_handles = [h for h in self.handles if h.interface == POSITION]
+            pid_gains = pid_gains or {}
+            # DefaultRobotHWSim's POSITION_PID / VELOCITY_PID joints: effort = PID(error), clamped to
+            # the effort limit, applied as a force (its writeSim, every world update).
+            self.pid_joints = [(h, pid_gains[h.name], body.joints[h.name].index) for h in self.handles
+                               if h.interface in (POSITION, VELOCITY) and h.name in pid_gains]
+            self.velocity_handles = [h for h in self.handles if h.interface == VELOCITY and h.name not in pid_gains]
+            self.position_handles = [h for h in self.handles if h.interface == POSITION and h.name not in pid_gains]
             # What write() passes every step, built once.
             self._drives = [(hs, drive, [body.joints[h.name].index for h in hs], [h.max_effort or 1e3 for h in hs])
                             for hs, drive in ((self.velocity_handles, 'drive_velocities'),
@@ -57,9 +67,13 @@ class Robot(object):
         for h, s in zip(self.handles, world.joint_states_raw(self.body, self.indices)):
             h.read(s[0], s[1])
 
-    def write(self, world):
+    def write(self, world, dt):
+        """gazebo_ros_control's writeSim: `dt` is the time since the last write (one world update)."""
         if not self.handles:
             return
+        if self.pid_joints:
+            efforts = [self._pid_effort(h, pid, dt) for h, pid, _ in self.pid_joints]
+            world.apply_efforts(self.body, [i for _, _, i in self.pid_joints], efforts)
         if self.effort_handles:
             efforts = []
             for h in self.effort_handles:
@@ -68,6 +82,23 @@ class Robot(object):
             world.apply_efforts(self.body, self.effort_idx, efforts)
         for hs, drive, indices, forces in self._drives:
             getattr(world, drive)(self.body, indices, [h.limited_command() for h in hs], forces)
+
+    @staticmethod
+    def _pid_effort(h, pid, dt):
+        target = h.limited_command()
+        if h.interface == VELOCITY:
+            error = target - h.velocity
+        elif h.kind == 'revolute' and h.has_position_limits:
+            error = shortest_angular_distance_with_limits(h.position, target, h.lower, h.upper)
+        elif h.kind in ('revolute', 'continuous'):
+            error = shortest_angular_distance(h.position, target)
+        else:
+            error = target - h.position
+        effort = pid.compute(error, dt)
+        if h.max_effort is not None:
+            effort = min(max(effort, -h.max_effort), h.max_effort)
+        h.effort = effort
+        return effort
 
     def reset_joint_readings(self, world):
         if self.handles:
@@ -166,7 +197,8 @@ class Simulator(object):
             except physics.PhysicsError as err:
                 raise SpawnError('SpawnModel: Failure - %s' % err)
             try:
-                robot = Robot(name, body, model, robot_ns, hw_joints, period, robot_namespace)
+                robot = Robot(name, body, model, robot_ns, hw_joints, period, robot_namespace,
+                              pid_gains=self._pid_gains(name, robot_ns, hw_joints))
             except SpawnError:
                 self.world.remove(name)
                 raise
@@ -181,6 +213,25 @@ class Simulator(object):
             for hook in self.on_spawn:
                 hook(robot)
             return robot
+
+    def _pid_gains(self, name, robot_ns, hw_joints):
+        """{joint: Pid} for the position and velocity joints whose `<ns>/gazebo_ros_control/pid_gains/<joint>`
+        is set, as DefaultRobotHWSim reads them at spawn; gains that are set and wrong are warned about and
+        the joint follows its command directly."""
+        gains = {}
+        for joint, interface in hw_joints or ():
+            if interface not in (POSITION, VELOCITY):
+                continue
+            where = '%s/gazebo_ros_control/pid_gains/%s' % (robot_ns, joint)
+            params = self.get_params(where)
+            if params is None:
+                continue
+            try:
+                gains[joint] = Pid.from_params(params, where)
+            except ValueError as err:
+                self.log.warn('%s: %s; joint %s follows its command directly instead of through a PID'
+                              % (name, err, joint))
+        return gains
 
     def delete_model(self, name):
         with self.lock:
@@ -208,7 +259,7 @@ class Simulator(object):
                     period = 0.0 if r.last_update is None else t - r.last_update
                     r.cm.update(t, period if period > 0 else r.control_period)
                     r.last_update = t
-                r.write(world)
+                r.write(world, self.step_size)
             t_next = self._time_at(self.steps + 1)  # the time this step ends at, computed once
             for hook in self.before_physics:
                 hook(t_next)
