@@ -101,6 +101,7 @@ class RobotHW(object):
 
     def __init__(self, model, hardware_joints):
         """hardware_joints: [(joint_name, interface)] as urdf_model.hardware_joints gives them."""
+        self.model = model  # urdf_model.RobotModel: controllers read geometry from it (diff_drive_controller)
         self.handles = {}
         self.warnings = []
         for joint_name, interface in hardware_joints:

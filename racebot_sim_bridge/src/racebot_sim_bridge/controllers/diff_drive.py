@@ -1,0 +1,269 @@
+"""diff_drive_controller/DiffDriveController (ros_controllers noetic-devel) on VelocityJointInterface
+wheels: `cmd_vel` (geometry_msgs/Twist) in, wheel velocities out, `odom` (nav_msgs/Odometry) and the
+odom -> base TF at publish_rate. Parameters, defaults and errors as upstream's init(); the kinematics
+are kinematics/diff_drive_controller.py. Upstream's dynamic_reconfigure server and
+publish_wheel_joint_controller_state are not here (README)."""
+import math
+
+from geometry_msgs.msg import TransformStamped, TwistStamped
+from geometry_msgs.msg import Twist
+from nav_msgs.msg import Odometry as OdometryMsg
+from tf2_msgs.msg import TFMessage
+
+from .. import hardware
+from ..hardware import VELOCITY
+from ..kinematics.diff_drive_controller import Odometry, SpeedLimiter, wheel_params_from_urdf
+from .base import Controller, ControllerInitError
+
+
+class DiffDriveController(Controller):
+    type_name = 'diff_drive_controller/DiffDriveController'
+    interface = VELOCITY
+
+    def __init__(self, name, ns, params, hw, io):
+        super(DiffDriveController, self).__init__(name, ns, params, hw, io)
+        p = self.params
+        left_names, right_names = self._wheel_names('left_wheel'), self._wheel_names('right_wheel')
+        if len(left_names) != len(right_names):
+            raise ControllerInitError('%s: #left wheels (%d) != #right wheels (%d).'
+                                      % (self.param_ns, len(left_names), len(right_names)))
+        publish_rate = self._number('publish_rate', 50.0, positive=True)
+        self.publish_period = 1.0 / publish_rate
+        self.open_loop = self._flag('open_loop', False)
+        self.separation_multiplier = self._number('wheel_separation_multiplier', 1.0)
+        if 'wheel_radius_multiplier' in p:
+            self.left_multiplier = self.right_multiplier = self._number('wheel_radius_multiplier', 1.0)
+        else:
+            self.left_multiplier = self._number('left_wheel_radius_multiplier', 1.0)
+            self.right_multiplier = self._number('right_wheel_radius_multiplier', 1.0)
+        window = p.get('velocity_rolling_window_size', 10)
+        if isinstance(window, bool) or not isinstance(window, int) or window < 1:
+            raise ControllerInitError("%s/velocity_rolling_window_size must be an integer >= 1, got %r"
+                                      % (self.param_ns, window))
+        self.odometry = Odometry(window)
+        self.cmd_vel_timeout = self._number('cmd_vel_timeout', 0.5)
+        self.allow_multiple_publishers = self._flag('allow_multiple_cmd_vel_publishers', True)
+        self.base_frame_id = self._text('base_frame_id', 'base_link')
+        self.odom_frame_id = self._text('odom_frame_id', 'odom')
+        self.enable_odom_tf = self._flag('enable_odom_tf', True)
+        self.limiter_lin = self._limiter('linear/x')
+        self.limiter_ang = self._limiter('angular/z')
+        self.publish_cmd = self._flag('publish_cmd', False)
+        if self._flag('publish_wheel_joint_controller_state', False):
+            self.io.warn_throttle(self.param_ns + '/state', 0.0, '%s: publish_wheel_joint_controller_state is not '
+                                  'simulated by racebot (see the README table); the controller runs without it'
+                                  % self.param_ns)
+        self.separation = p.get('wheel_separation')
+        self.radius = p.get('wheel_radius')
+        for key in ('wheel_separation', 'wheel_radius'):
+            value = p.get(key)
+            if value is not None and (isinstance(value, bool) or not isinstance(value, (int, float))
+                                      or not math.isfinite(value) or value <= 0):
+                raise ControllerInitError('%s/%s must be a number > 0 (m), got %r; or leave it out to read it from '
+                                          'the URDF' % (self.param_ns, key, value))
+        try:
+            separation, radius = wheel_params_from_urdf(hw.model, left_names[0], right_names[0],
+                                                        self.separation is None, self.radius is None)
+        except ValueError as err:
+            raise ControllerInitError('%s: %s' % (self.param_ns, err))
+        self.separation = float(self.separation if self.separation is not None else separation)
+        self.radius = float(self.radius if self.radius is not None else radius)
+        if not (self.separation > 0 and self.radius > 0):
+            raise ControllerInitError('%s: wheel separation %g and radius %g must both be > 0 (from the URDF: the '
+                                      'wheel joints coincide, or a zero radius); set wheel_separation and wheel_radius'
+                                      % (self.param_ns, self.separation, self.radius))
+        self.pose_cov = self._covariance('pose_covariance_diagonal')
+        self.twist_cov = self._covariance('twist_covariance_diagonal')
+        try:
+            self.left = [hw.handle(n, VELOCITY) for n in left_names]
+            self.right = [hw.handle(n, VELOCITY) for n in right_names]
+        except hardware.HardwareError as err:
+            raise ControllerInitError('%s: %s' % (self.param_ns, err))
+        self.odom_pub = self._pub(self.topic('odom'), OdometryMsg, 100)
+        self.tf_pub = self._pub('/tf', TFMessage, 100) if self.enable_odom_tf else None
+        self.cmd_pub = self._pub(self.topic('cmd_vel_out'), TwistStamped, 100) if self.publish_cmd else None
+        self.command = (0.0, 0.0, -math.inf)  # (linear, angular, stamp): one tuple, swapped whole
+        self.last0 = self.last1 = (0.0, 0.0)
+        self.now = 0.0
+        self.last_publish = 0.0
+        self.running = False
+        self.sub = self._sub(self.topic('cmd_vel'), Twist, self._on_cmd_vel)
+
+    # -- parameters -----------------------------------------------------------------------------
+    def _wheel_names(self, key):
+        value = self.params.get(key)
+        if value is None:
+            raise ControllerInitError("%s: Couldn't retrieve wheel param '%s'. Set %s/%s to the wheel joint (or a list)"
+                                      % (self.param_ns, key, self.param_ns, key))
+        if isinstance(value, str):
+            return [value]
+        if isinstance(value, list):
+            if not value:
+                raise ControllerInitError("%s: Wheel param '%s' is an empty list" % (self.param_ns, key))
+            for i, v in enumerate(value):
+                if not isinstance(v, str):
+                    raise ControllerInitError("%s: Wheel param '%s' #%d isn't a string." % (self.param_ns, key, i))
+            return list(value)
+        raise ControllerInitError("%s: Wheel param '%s' is neither a list of strings nor a string."
+                                  % (self.param_ns, key))
+
+    def _lookup(self, path):
+        node = self.params
+        for part in path.split('/'):
+            if not isinstance(node, dict) or part not in node:
+                return None
+            node = node[part]
+        return node
+
+    def _number(self, path, default, positive=False):
+        value = self._lookup(path)
+        if value is None:
+            return default
+        if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value) \
+                or (positive and value <= 0):
+            raise ControllerInitError('%s/%s must be a %snumber, got %r' % (self.param_ns, path,
+                                                                           'positive ' if positive else '', value))
+        return float(value)
+
+    def _flag(self, path, default):
+        value = self._lookup(path)
+        if value is None:
+            return default
+        if not isinstance(value, bool):
+            raise ControllerInitError('%s/%s must be true or false, got %r' % (self.param_ns, path, value))
+        return value
+
+    def _text(self, path, default):
+        value = self._lookup(path)
+        if value is None:
+            return default
+        if not isinstance(value, str):
+            raise ControllerInitError('%s/%s must be a string, got %r' % (self.param_ns, path, value))
+        return value
+
+    def _limiter(self, prefix):
+        lim = SpeedLimiter(self._flag(prefix + '/has_velocity_limits', False),
+                           self._flag(prefix + '/has_acceleration_limits', False),
+                           self._flag(prefix + '/has_jerk_limits', False))
+        for kind in ('velocity', 'acceleration', 'jerk'):
+            high = self._number('%s/max_%s' % (prefix, kind), 0.0)
+            low = self._number('%s/min_%s' % (prefix, kind), -high)
+            setattr(lim, 'max_' + kind, high)
+            setattr(lim, 'min_' + kind, low)
+        return lim
+
+    def _covariance(self, key):
+        """Six diagonal entries; absent: zeros (upstream's XmlRpc reads an absent list as zeros)."""
+        value = self.params.get(key)
+        if value is None:
+            return (0.0,) * 6
+        if not isinstance(value, list) or len(value) != 6 or not all(
+                isinstance(v, (int, float)) and not isinstance(v, bool) and math.isfinite(v) for v in value):
+            raise ControllerInitError('%s/%s must be a list of 6 numbers, got %r' % (self.param_ns, key, value))
+        return tuple(float(v) for v in value)
+
+    # -- ROS ------------------------------------------------------------------------------------
+    def _on_cmd_vel(self, msg):
+        if not self.running:
+            self.io.warn_throttle(self.param_ns + '/stopped', 1.0, "%s: Can't accept new commands. Controller is not "
+                                  "running." % self.param_ns)
+            return
+        if not self.allow_multiple_publishers:
+            count = getattr(self.sub, 'get_num_connections', lambda: 1)()
+            if count > 1:
+                self.io.warn_throttle(self.param_ns + '/publishers', 1.0, '%s: Detected %d publishers. Only 1 '
+                                      'publisher is allowed. Going to brake.' % (self.param_ns, count))
+                self.command = (0.0, 0.0, self.now)
+                return
+        if not (math.isfinite(msg.angular.z) and math.isfinite(msg.linear.x)):
+            self.io.warn_throttle(self.param_ns + '/nan', 1.0, '%s: Received NaN in velocity command. Ignoring.'
+                                  % self.param_ns)
+            return
+        # Stamped with the controller's latest update time (upstream: ros::Time::now(), the same sim clock).
+        self.command = (msg.linear.x, msg.angular.z, self.now)
+
+    def claimed_resources(self):
+        return [(VELOCITY, sorted(h.name for h in self.left + self.right))]
+
+    # -- life cycle -----------------------------------------------------------------------------
+    def starting(self, time):
+        self._brake()
+        self.now = self.last_publish = time
+        self.odometry.init(time)
+        self.running = True
+
+    def stopping(self, time):
+        self._brake()
+        self.running = False
+
+    def _brake(self):
+        for h in self.left + self.right:
+            h.command = 0.0
+
+    def update(self, time, period):
+        self.now = time
+        ws = self.separation_multiplier * self.separation
+        lwr, rwr = self.left_multiplier * self.radius, self.right_multiplier * self.radius
+        odo = self.odometry
+        odo.set_wheel_params(ws, lwr, rwr)
+        if self.open_loop:
+            odo.update_open_loop(self.last0[0], self.last0[1], time)
+        else:
+            left = sum(h.position for h in self.left) / len(self.left)
+            right = sum(h.position for h in self.right) / len(self.right)
+            if math.isnan(left) or math.isnan(right):
+                return
+            odo.update(left, right, time)
+        if self.last_publish + self.publish_period < time:
+            self.last_publish += self.publish_period
+            self._publish_odometry(time)
+        lin, ang, stamp = self.command
+        if time - stamp > self.cmd_vel_timeout:
+            lin = ang = 0.0
+        lin = self.limiter_lin.limit(lin, self.last0[0], self.last1[0], period)
+        ang = self.limiter_ang.limit(ang, self.last0[1], self.last1[1], period)
+        self.last1, self.last0 = self.last0, (lin, ang)
+        if self.cmd_pub is not None:
+            out = TwistStamped()
+            out.header.stamp = self.io.stamp(time)
+            out.twist.linear.x, out.twist.angular.z = lin, ang
+            self.cmd_pub.publish(out)
+        vel_left = (lin - ang * ws / 2.0) / lwr
+        vel_right = (lin + ang * ws / 2.0) / rwr
+        for h in self.left:
+            h.command = vel_left
+        for h in self.right:
+            h.command = vel_right
+
+    def _publish_odometry(self, time):
+        odo = self.odometry
+        stamp = self.io.stamp(time)
+        qz, qw = math.sin(odo.heading / 2.0), math.cos(odo.heading / 2.0)
+        msg = OdometryMsg()
+        msg.header.stamp = stamp
+        msg.header.frame_id = self.odom_frame_id
+        msg.child_frame_id = self.base_frame_id
+        msg.pose.pose.position.x, msg.pose.pose.position.y = odo.x, odo.y
+        msg.pose.pose.orientation.z, msg.pose.pose.orientation.w = qz, qw
+        msg.twist.twist.linear.x, msg.twist.twist.angular.z = odo.linear, odo.angular
+        msg.pose.covariance = _diagonal(self.pose_cov)
+        msg.twist.covariance = _diagonal(self.twist_cov)
+        self.odom_pub.publish(msg)
+        if self.tf_pub is not None:
+            t = TransformStamped()
+            t.header.stamp = stamp
+            t.header.frame_id = self.odom_frame_id
+            t.child_frame_id = self.base_frame_id
+            t.transform.translation.x, t.transform.translation.y = odo.x, odo.y
+            t.transform.rotation.z, t.transform.rotation.w = qz, qw
+            self.tf_pub.publish(TFMessage(transforms=[t]))
+
+
+def _diagonal(values):
+    cov = [0.0] * 36
+    for i, v in enumerate(values):
+        cov[i * 7] = v
+    return cov
+
+
+TYPES = (DiffDriveController,)
