@@ -16,7 +16,8 @@ One module per ros_controllers package; each lists its classes in TYPES, and CON
 with `type_name`, `interface` and ros_control's init (constructor) / starting / update / stopping,
 added to its module's TYPES and to MODULES below.
 """
-from . import diff_drive, effort_controllers, joint_state, position_controllers, velocity_controllers
+from . import (ackermann_steering, diff_drive, effort_controllers, joint_state, position_controllers,
+               velocity_controllers)
 from .base import (LIMIT_WARN_TOLERANCE, STATE_PUBLISH_EVERY, CommandController, Controller,  # noqa: F401
                    ControllerInitError, PidCommandController, shortest_angular_distance_with_limits)
 from .effort_controllers import EffortForwardController, JointPositionController, JointVelocityController  # noqa: F401
@@ -25,5 +26,6 @@ from .joint_state import JointStateController  # noqa: F401
 from .position_controllers import PositionForwardController  # noqa: F401
 from .velocity_controllers import VelocityForwardController, VelocityJointPositionController  # noqa: F401
 
-MODULES = (joint_state, effort_controllers, velocity_controllers, position_controllers, diff_drive)
+MODULES = (joint_state, effort_controllers, velocity_controllers, position_controllers, diff_drive,
+           ackermann_steering)
 CONTROLLER_TYPES = {c.type_name: c for m in MODULES for c in getattr(m, 'TYPES', ())}

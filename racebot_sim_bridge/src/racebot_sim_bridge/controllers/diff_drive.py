@@ -16,31 +16,22 @@ from ..kinematics.diff_drive_controller import Odometry, SpeedLimiter, wheel_par
 from .base import Controller, ControllerInitError
 
 
-class DiffDriveController(Controller):
-    type_name = 'diff_drive_controller/DiffDriveController'
-    interface = VELOCITY
+class OdometryDriveController(Controller):
+    """What diff_drive_controller and ackermann_steering_controller share (the latter is derived from the
+    former upstream): cmd_vel with its timeout and limits, the odometry published at publish_rate with
+    its frames, covariances and TF. A subclass reads its joints and geometry (`_init_drive`), feeds the
+    odometry (`_read_odometry`) and turns the limited command into joint commands (`_command`)."""
 
     def __init__(self, name, ns, params, hw, io):
-        super(DiffDriveController, self).__init__(name, ns, params, hw, io)
-        p = self.params
-        left_names, right_names = self._wheel_names('left_wheel'), self._wheel_names('right_wheel')
-        if len(left_names) != len(right_names):
-            raise ControllerInitError('%s: #left wheels (%d) != #right wheels (%d).'
-                                      % (self.param_ns, len(left_names), len(right_names)))
+        super(OdometryDriveController, self).__init__(name, ns, params, hw, io)
         publish_rate = self._number('publish_rate', 50.0, positive=True)
         self.publish_period = 1.0 / publish_rate
         self.open_loop = self._flag('open_loop', False)
-        self.separation_multiplier = self._number('wheel_separation_multiplier', 1.0)
-        if 'wheel_radius_multiplier' in p:
-            self.left_multiplier = self.right_multiplier = self._number('wheel_radius_multiplier', 1.0)
-        else:
-            self.left_multiplier = self._number('left_wheel_radius_multiplier', 1.0)
-            self.right_multiplier = self._number('right_wheel_radius_multiplier', 1.0)
-        window = p.get('velocity_rolling_window_size', 10)
+        window = self.params.get('velocity_rolling_window_size', 10)
         if isinstance(window, bool) or not isinstance(window, int) or window < 1:
             raise ControllerInitError("%s/velocity_rolling_window_size must be an integer >= 1, got %r"
                                       % (self.param_ns, window))
-        self.odometry = Odometry(window)
+        self.odometry = self.odometry_class(window)
         self.cmd_vel_timeout = self._number('cmd_vel_timeout', 0.5)
         self.allow_multiple_publishers = self._flag('allow_multiple_cmd_vel_publishers', True)
         self.base_frame_id = self._text('base_frame_id', 'base_link')
@@ -48,40 +39,13 @@ class DiffDriveController(Controller):
         self.enable_odom_tf = self._flag('enable_odom_tf', True)
         self.limiter_lin = self._limiter('linear/x')
         self.limiter_ang = self._limiter('angular/z')
-        self.publish_cmd = self._flag('publish_cmd', False)
-        if self._flag('publish_wheel_joint_controller_state', False):
-            self.io.warn_throttle(self.param_ns + '/state', 0.0, '%s: publish_wheel_joint_controller_state is not '
-                                  'simulated by racebot (see the README table); the controller runs without it'
-                                  % self.param_ns)
-        self.separation = p.get('wheel_separation')
-        self.radius = p.get('wheel_radius')
-        for key in ('wheel_separation', 'wheel_radius'):
-            value = p.get(key)
-            if value is not None and (isinstance(value, bool) or not isinstance(value, (int, float))
-                                      or not math.isfinite(value) or value <= 0):
-                raise ControllerInitError('%s/%s must be a number > 0 (m), got %r; or leave it out to read it from '
-                                          'the URDF' % (self.param_ns, key, value))
-        try:
-            separation, radius = wheel_params_from_urdf(hw.model, left_names[0], right_names[0],
-                                                        self.separation is None, self.radius is None)
-        except ValueError as err:
-            raise ControllerInitError('%s: %s' % (self.param_ns, err))
-        self.separation = float(self.separation if self.separation is not None else separation)
-        self.radius = float(self.radius if self.radius is not None else radius)
-        if not (self.separation > 0 and self.radius > 0):
-            raise ControllerInitError('%s: wheel separation %g and radius %g must both be > 0 (from the URDF: the '
-                                      'wheel joints coincide, or a zero radius); set wheel_separation and wheel_radius'
-                                      % (self.param_ns, self.separation, self.radius))
+        self._init_drive()
         self.pose_cov = self._covariance('pose_covariance_diagonal')
         self.twist_cov = self._covariance('twist_covariance_diagonal')
-        try:
-            self.left = [hw.handle(n, VELOCITY) for n in left_names]
-            self.right = [hw.handle(n, VELOCITY) for n in right_names]
-        except hardware.HardwareError as err:
-            raise ControllerInitError('%s: %s' % (self.param_ns, err))
         self.odom_pub = self._pub(self.topic('odom'), OdometryMsg, 100)
         self.tf_pub = self._pub('/tf', TFMessage, 100) if self.enable_odom_tf else None
-        self.cmd_pub = self._pub(self.topic('cmd_vel_out'), TwistStamped, 100) if self.publish_cmd else None
+        self.cmd_pub = None
+        self._init_publishers()
         self.command = (0.0, 0.0, -math.inf)  # (linear, angular, stamp): one tuple, swapped whole
         self.last0 = self.last1 = (0.0, 0.0)
         self.now = 0.0
@@ -89,23 +53,22 @@ class DiffDriveController(Controller):
         self.running = False
         self.sub = self._sub(self.topic('cmd_vel'), Twist, self._on_cmd_vel)
 
-    # -- parameters -----------------------------------------------------------------------------
-    def _wheel_names(self, key):
+    def _init_publishers(self):
+        pass
+
+    def _geometry_param(self, key):
         value = self.params.get(key)
-        if value is None:
-            raise ControllerInitError("%s: Couldn't retrieve wheel param '%s'. Set %s/%s to the wheel joint (or a list)"
-                                      % (self.param_ns, key, self.param_ns, key))
-        if isinstance(value, str):
-            return [value]
-        if isinstance(value, list):
-            if not value:
-                raise ControllerInitError("%s: Wheel param '%s' is an empty list" % (self.param_ns, key))
-            for i, v in enumerate(value):
-                if not isinstance(v, str):
-                    raise ControllerInitError("%s: Wheel param '%s' #%d isn't a string." % (self.param_ns, key, i))
-            return list(value)
-        raise ControllerInitError("%s: Wheel param '%s' is neither a list of strings nor a string."
-                                  % (self.param_ns, key))
+        if value is not None and (isinstance(value, bool) or not isinstance(value, (int, float))
+                                  or not math.isfinite(value) or value <= 0):
+            raise ControllerInitError('%s/%s must be a number > 0 (m), got %r; or leave it out to read it from '
+                                      'the URDF' % (self.param_ns, key, value))
+        return value
+
+    def _handle(self, joint, interface):
+        try:
+            return self.hw.handle(joint, interface)
+        except hardware.HardwareError as err:
+            raise ControllerInitError('%s: %s' % (self.param_ns, err))
 
     def _lookup(self, path):
         node = self.params
@@ -182,10 +145,6 @@ class DiffDriveController(Controller):
         # Stamped with the controller's latest update time (upstream: ros::Time::now(), the same sim clock).
         self.command = (msg.linear.x, msg.angular.z, self.now)
 
-    def claimed_resources(self):
-        return [(VELOCITY, sorted(h.name for h in self.left + self.right))]
-
-    # -- life cycle -----------------------------------------------------------------------------
     def starting(self, time):
         self._brake()
         self.now = self.last_publish = time
@@ -196,24 +155,12 @@ class DiffDriveController(Controller):
         self._brake()
         self.running = False
 
-    def _brake(self):
-        for h in self.left + self.right:
-            h.command = 0.0
-
     def update(self, time, period):
         self.now = time
-        ws = self.separation_multiplier * self.separation
-        lwr, rwr = self.left_multiplier * self.radius, self.right_multiplier * self.radius
-        odo = self.odometry
-        odo.set_wheel_params(ws, lwr, rwr)
         if self.open_loop:
-            odo.update_open_loop(self.last0[0], self.last0[1], time)
-        else:
-            left = sum(h.position for h in self.left) / len(self.left)
-            right = sum(h.position for h in self.right) / len(self.right)
-            if math.isnan(left) or math.isnan(right):
-                return
-            odo.update(left, right, time)
+            self.odometry.update_open_loop(self.last0[0], self.last0[1], time)
+        elif not self._read_odometry(time):
+            return
         if self.last_publish + self.publish_period < time:
             self.last_publish += self.publish_period
             self._publish_odometry(time)
@@ -228,12 +175,7 @@ class DiffDriveController(Controller):
             out.header.stamp = self.io.stamp(time)
             out.twist.linear.x, out.twist.angular.z = lin, ang
             self.cmd_pub.publish(out)
-        vel_left = (lin - ang * ws / 2.0) / lwr
-        vel_right = (lin + ang * ws / 2.0) / rwr
-        for h in self.left:
-            h.command = vel_left
-        for h in self.right:
-            h.command = vel_right
+        self._command(lin, ang)
 
     def _publish_odometry(self, time):
         odo = self.odometry
@@ -257,6 +199,99 @@ class DiffDriveController(Controller):
             t.transform.translation.x, t.transform.translation.y = odo.x, odo.y
             t.transform.rotation.z, t.transform.rotation.w = qz, qw
             self.tf_pub.publish(TFMessage(transforms=[t]))
+
+
+class DiffDriveController(OdometryDriveController):
+    type_name = 'diff_drive_controller/DiffDriveController'
+    interface = VELOCITY
+    odometry_class = Odometry
+
+    def _init_drive(self):
+        p = self.params
+        left_names, right_names = self._wheel_names('left_wheel'), self._wheel_names('right_wheel')
+        if len(left_names) != len(right_names):
+            raise ControllerInitError('%s: #left wheels (%d) != #right wheels (%d).'
+                                      % (self.param_ns, len(left_names), len(right_names)))
+        self.separation_multiplier = self._number('wheel_separation_multiplier', 1.0)
+        if 'wheel_radius_multiplier' in p:
+            self.left_multiplier = self.right_multiplier = self._number('wheel_radius_multiplier', 1.0)
+        else:
+            self.left_multiplier = self._number('left_wheel_radius_multiplier', 1.0)
+            self.right_multiplier = self._number('right_wheel_radius_multiplier', 1.0)
+        self.publish_cmd = self._flag('publish_cmd', False)
+        if self._flag('publish_wheel_joint_controller_state', False):
+            self.io.warn_throttle(self.param_ns + '/state', 0.0, '%s: publish_wheel_joint_controller_state is not '
+                                  'simulated by racebot (see the README table); the controller runs without it'
+                                  % self.param_ns)
+        self.separation = self._geometry_param('wheel_separation')
+        self.radius = self._geometry_param('wheel_radius')
+        try:
+            separation, radius = wheel_params_from_urdf(self.hw.model, left_names[0], right_names[0],
+                                                        self.separation is None, self.radius is None)
+        except ValueError as err:
+            raise ControllerInitError('%s: %s' % (self.param_ns, err))
+        self.separation = float(self.separation if self.separation is not None else separation)
+        self.radius = float(self.radius if self.radius is not None else radius)
+        if not (self.separation > 0 and self.radius > 0):
+            raise ControllerInitError('%s: wheel separation %g and radius %g must both be > 0 (from the URDF: the '
+                                      'wheel joints coincide, or a zero radius); set wheel_separation and wheel_radius'
+                                      % (self.param_ns, self.separation, self.radius))
+        self.left = [self._handle(n, VELOCITY) for n in left_names]
+        self.right = [self._handle(n, VELOCITY) for n in right_names]
+
+    def _init_publishers(self):
+        if self.publish_cmd:
+            self.cmd_pub = self._pub(self.topic('cmd_vel_out'), TwistStamped, 100)
+
+    # -- parameters -----------------------------------------------------------------------------
+    def _wheel_names(self, key):
+        value = self.params.get(key)
+        if value is None:
+            raise ControllerInitError("%s: Couldn't retrieve wheel param '%s'. Set %s/%s to the wheel joint (or a list)"
+                                      % (self.param_ns, key, self.param_ns, key))
+        if isinstance(value, str):
+            return [value]
+        if isinstance(value, list):
+            if not value:
+                raise ControllerInitError("%s: Wheel param '%s' is an empty list" % (self.param_ns, key))
+            for i, v in enumerate(value):
+                if not isinstance(v, str):
+                    raise ControllerInitError("%s: Wheel param '%s' #%d isn't a string." % (self.param_ns, key, i))
+            return list(value)
+        raise ControllerInitError("%s: Wheel param '%s' is neither a list of strings nor a string."
+                                  % (self.param_ns, key))
+
+    def claimed_resources(self):
+        return [(VELOCITY, sorted(h.name for h in self.left + self.right))]
+
+    # -- life cycle -----------------------------------------------------------------------------
+    def _brake(self):
+        for h in self.left + self.right:
+            h.command = 0.0
+
+    def _geometry(self):
+        """(separation, left radius, right radius) with the multipliers."""
+        return (self.separation_multiplier * self.separation, self.left_multiplier * self.radius,
+                self.right_multiplier * self.radius)
+
+    def _read_odometry(self, time):
+        """False when a wheel position is NaN (upstream skips the whole update then)."""
+        self.odometry.set_wheel_params(*self._geometry())
+        left = sum(h.position for h in self.left) / len(self.left)
+        right = sum(h.position for h in self.right) / len(self.right)
+        if math.isnan(left) or math.isnan(right):
+            return False
+        self.odometry.update(left, right, time)
+        return True
+
+    def _command(self, lin, ang):
+        ws, lwr, rwr = self._geometry()
+        vel_left = (lin - ang * ws / 2.0) / lwr
+        vel_right = (lin + ang * ws / 2.0) / rwr
+        for h in self.left:
+            h.command = vel_left
+        for h in self.right:
+            h.command = vel_right
 
 
 def _diagonal(values):

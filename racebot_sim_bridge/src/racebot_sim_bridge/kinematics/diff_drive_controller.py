@@ -130,3 +130,44 @@ def wheel_params_from_urdf(model, left_joint, right_joint, need_separation, need
                              % (left_joint, left.child, geometry.kind))
         radius = geometry.radius
     return separation, radius
+
+
+class AckermannOdometry(Odometry):
+    """ackermann_steering_controller's Odometry: the rear wheel's travel and the front steering angle
+    (a bicycle model) instead of two wheels; the same integration and rolling means."""
+
+    def set_wheel_params(self, separation_h, radius):
+        self.wheel_separation_h, self.radius = separation_h, radius
+
+    def update(self, rear_wheel_pos, front_steer_pos, time):
+        rear = rear_wheel_pos * self.radius
+        linear = rear - self._left_old
+        self._left_old = rear
+        angular = math.tan(front_steer_pos) * linear / self.wheel_separation_h
+        self.integrate_exact(linear, angular)
+        dt = time - self.timestamp
+        if dt < MIN_INTEGRATION_DT:
+            return False
+        self.timestamp = time
+        self._lin.append(linear / dt)
+        self._ang.append(angular / dt)
+        self.linear = sum(self._lin) / len(self._lin)
+        self.angular = sum(self._ang) / len(self._ang)
+        return True
+
+
+def ackermann_params_from_urdf(model, rear_joint, steer_joint, need_separation_h, need_radius):
+    """(wheel_separation_h, radius) as ackermann_steering_controller's setOdomParamsFromUrdf: the x
+    distance between the rear wheel joint's and the front steer joint's origins in their parents, and the
+    radius of the rear wheel link's first collision (cylinder or sphere). Raises ValueError."""
+    separation_h = radius = None
+    if not (need_separation_h or need_radius):
+        return separation_h, radius
+    for name in (rear_joint, steer_joint):
+        if name not in model.joints:
+            raise ValueError('%s couldn\'t be retrieved from model description' % name)
+    if need_separation_h:
+        separation_h = abs(model.joints[rear_joint].origin_xyz[0] - model.joints[steer_joint].origin_xyz[0])
+    if need_radius:
+        _, radius = wheel_params_from_urdf(model, rear_joint, rear_joint, False, True)
+    return separation_h, radius
