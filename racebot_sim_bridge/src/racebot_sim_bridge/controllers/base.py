@@ -80,6 +80,41 @@ class Controller(object):
         self._topics.append(s)
         return s
 
+    # -- parameters: `path` is relative to the controller's namespace, parts joined by "/" --
+    def _lookup(self, path):
+        node = self.params
+        for part in path.split('/'):
+            if not isinstance(node, dict) or part not in node:
+                return None
+            node = node[part]
+        return node
+
+    def _number(self, path, default, positive=False):
+        value = self._lookup(path)
+        if value is None:
+            return default
+        if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value) \
+                or (positive and value <= 0):
+            raise ControllerInitError('%s/%s must be a %snumber, got %r' % (self.param_ns, path,
+                                                                           'positive ' if positive else '', value))
+        return float(value)
+
+    def _flag(self, path, default):
+        value = self._lookup(path)
+        if value is None:
+            return default
+        if not isinstance(value, bool):
+            raise ControllerInitError('%s/%s must be true or false, got %r' % (self.param_ns, path, value))
+        return value
+
+    def _text(self, path, default):
+        value = self._lookup(path)
+        if value is None:
+            return default
+        if not isinstance(value, str):
+            raise ControllerInitError('%s/%s must be a string, got %r' % (self.param_ns, path, value))
+        return value
+
     def _joint_param(self):
         joint = self.params.get('joint')
         if not isinstance(joint, str) or not joint:

@@ -70,40 +70,6 @@ class OdometryDriveController(Controller):
         except hardware.HardwareError as err:
             raise ControllerInitError('%s: %s' % (self.param_ns, err))
 
-    def _lookup(self, path):
-        node = self.params
-        for part in path.split('/'):
-            if not isinstance(node, dict) or part not in node:
-                return None
-            node = node[part]
-        return node
-
-    def _number(self, path, default, positive=False):
-        value = self._lookup(path)
-        if value is None:
-            return default
-        if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value) \
-                or (positive and value <= 0):
-            raise ControllerInitError('%s/%s must be a %snumber, got %r' % (self.param_ns, path,
-                                                                           'positive ' if positive else '', value))
-        return float(value)
-
-    def _flag(self, path, default):
-        value = self._lookup(path)
-        if value is None:
-            return default
-        if not isinstance(value, bool):
-            raise ControllerInitError('%s/%s must be true or false, got %r' % (self.param_ns, path, value))
-        return value
-
-    def _text(self, path, default):
-        value = self._lookup(path)
-        if value is None:
-            return default
-        if not isinstance(value, str):
-            raise ControllerInitError('%s/%s must be a string, got %r' % (self.param_ns, path, value))
-        return value
-
     def _limiter(self, prefix):
         lim = SpeedLimiter(self._flag(prefix + '/has_velocity_limits', False),
                            self._flag(prefix + '/has_acceleration_limits', False),
