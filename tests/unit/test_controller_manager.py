@@ -132,7 +132,7 @@ PARAMS = {
     'left_steering_hinge_position_controller': pos('left_steering_hinge_joint', p=1.0, i=1.0, i_clamp=10.0),
     'rear_wheel_effort': {'type': 'effort_controllers/JointEffortController', 'joint': 'left_rear_wheel_joint'},
     'no_type': {'joint': 'left_rear_wheel_joint'},
-    'bad_type': {'type': 'effort_controllers/JointTrajectoryController', 'joint': 'left_rear_wheel_joint'},
+    'bad_type': {'type': 'pos_vel_controllers/JointTrajectoryController', 'joint': 'left_rear_wheel_joint'},
     'bad_joint': vel('wing_joint'),
     'no_pid': {'type': 'effort_controllers/JointVelocityController', 'joint': 'left_rear_wheel_joint'},
     'rec_a': {'type': Recorder.type_name, 'joints': ['left_front_wheel_joint']},
@@ -231,7 +231,7 @@ def test_load_unknown_type(rig):
     assert not rig.cm.load('bad_type')
     msg = rig.log.errors[-1]
     assert ("Could not load controller 'bad_type' because controller type "
-            "'effort_controllers/JointTrajectoryController' does not exist") in msg
+            "'pos_vel_controllers/JointTrajectoryController' does not exist") in msg
     assert '/racebot/controller_manager/list_controller_types' in msg
     assert 'Supported plugins, sensors and controllers' in msg
     assert rig.cm.list() == []

@@ -10,14 +10,16 @@ Types:
   effort_controllers/JointEffortController, JointVelocityController, JointPositionController
   velocity_controllers/JointVelocityController, JointPositionController
   position_controllers/JointPositionController
+  {position,velocity,effort}_controllers/JointTrajectoryController
+  {position,effort}_controllers/GripperActionController
 
 One module per ros_controllers package; each lists its classes in TYPES, and CONTROLLER_TYPES
 (type name -> class) is what the controller manager loads from. A new controller type is a class
 with `type_name`, `interface` and ros_control's init (constructor) / starting / update / stopping,
 added to its module's TYPES and to MODULES below.
 """
-from . import (ackermann_steering, diff_drive, effort_controllers, joint_state, position_controllers,
-               velocity_controllers)
+from . import (ackermann_steering, diff_drive, effort_controllers, gripper_action, joint_state, joint_trajectory,
+               position_controllers, velocity_controllers)
 from .base import (LIMIT_WARN_TOLERANCE, STATE_PUBLISH_EVERY, CommandController, Controller,  # noqa: F401
                    ControllerInitError, PidCommandController, shortest_angular_distance_with_limits)
 from .effort_controllers import EffortForwardController, JointPositionController, JointVelocityController  # noqa: F401
@@ -27,5 +29,5 @@ from .position_controllers import PositionForwardController  # noqa: F401
 from .velocity_controllers import VelocityForwardController, VelocityJointPositionController  # noqa: F401
 
 MODULES = (joint_state, effort_controllers, velocity_controllers, position_controllers, diff_drive,
-           ackermann_steering)
+           ackermann_steering, joint_trajectory, gripper_action)
 CONTROLLER_TYPES = {c.type_name: c for m in MODULES for c in getattr(m, 'TYPES', ())}

@@ -68,6 +68,16 @@ class RosIO(object):
     def subscriber(self, topic, cls, callback):
         return self.rospy.Subscriber(topic, cls, callback, queue_size=10)
 
+    def service(self, name, cls, handler):
+        return _Unregisters(self.rospy.Service(name, cls, handler), 'shutdown')
+
+    def action_server(self, ns, action_cls, goal_cb, cancel_cb):
+        """actionlib's ActionServer on `ns` (goal, cancel, status, feedback, result), started."""
+        import actionlib
+        server = actionlib.ActionServer(ns, action_cls, goal_cb, cancel_cb, auto_start=False)
+        server.start()
+        return _Unregisters(server, 'stop')
+
     def stamp(self, time):
         return self.rospy.Time.from_sec(time)
 
@@ -79,3 +89,14 @@ class RosIO(object):
         if now - self._last_warning.get(key, -math.inf) >= period:
             self._last_warning[key] = now
             self.rospy.logwarn(message)
+
+
+class _Unregisters(object):
+    """A service or action server that goes away with unregister(), as a topic does (Controller.shutdown)."""
+
+    def __init__(self, target, method):
+        self.target = target
+        self._method = method
+
+    def unregister(self):
+        getattr(self.target, self._method)()
