@@ -330,8 +330,13 @@ class PhysicsWorld(object):
             self.client.changeDynamics(body_id, index, lateralFriction=friction)
             # separate call: PyBullet ignores the friction when damping comes in the same call
             self.client.changeDynamics(body_id, index, linearDamping=0.0, angularDamping=0.0)
-        for joint in body.joints.values():
-            self.client.setJointMotorControl2(body_id, joint.index, pb.VELOCITY_CONTROL, force=0.0)
+        for joint_name, joint in body.joints.items():
+            # PyBullet's default velocity motors off; in their place the URDF <dynamics friction>, which Gazebo
+            # applies as Coulomb friction: a motor holding velocity 0 with at most that force. (<dynamics damping>
+            # PyBullet's URDF importer applies itself.) A joint a controller drives by velocity or position
+            # gets the hardware's motor instead (Robot.write).
+            self.client.setJointMotorControl2(body_id, joint.index, pb.VELOCITY_CONTROL, targetVelocity=0.0,
+                                              force=joint_friction(urdf_model, joint_name))
         self.bodies[name] = body
         return body
 
@@ -485,6 +490,13 @@ def _mesh_flags(static):
 
 def _rgba(visual):
     return list(visual.rgba) if visual.rgba else [0.7, 0.7, 0.7, 1.0]  # Gazebo's default grey
+
+
+def joint_friction(urdf_model, joint_name):
+    """The URDF <dynamics friction> of a joint (N*m or N), 0 without one."""
+    joint = urdf_model.joints.get(joint_name)
+    dynamics = getattr(joint, 'dynamics', None)
+    return max(0.0, dynamics.friction) if dynamics is not None else 0.0
 
 
 def link_friction(urdf_model, link):
