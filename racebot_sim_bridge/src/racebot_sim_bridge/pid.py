@@ -20,9 +20,12 @@ Where this class differs from control_toolbox, on purpose (the project's contrac
 - ``dt <= 0`` (not only ``dt == 0``), a non-finite ``dt`` or a non-finite error returns
   0.0 and leaves every piece of state untouched (control_toolbox's two-argument form
   already stores the error before it bails out).
+- Finite inputs give a finite command: a term that overflows (an error or gain near the
+  float range) saturates at the largest float, where control_toolbox would give inf or NaN.
 """
 
 import math
+import sys
 
 __all__ = ['Pid']
 
@@ -31,6 +34,7 @@ _PARAM_KEYS = ('p', 'i', 'd', 'i_clamp', 'i_clamp_min', 'i_clamp_max', 'antiwind
 
 
 _INF = float('inf')
+_MAX = sys.float_info.max
 
 
 def _is_number(value):
@@ -239,8 +243,18 @@ class Pid:
         self._i_term = i_term
 
         self._d_term = self._d * error_dot
-        self._command = self._p_term + self._i_term + self._d_term
-        return self._command
+        command = self._p_term + self._i_term + self._d_term
+        if command - command != 0.0:  # inf or NaN (x - x is 0 for every finite x): terms overflowed
+            command = self._saturated()
+        self._command = command
+        return command
+
+    def _saturated(self):
+        """The command with each overflowed term held at the largest float, and the sum saturated too (so
+        an overflow to +inf and one to -inf make no NaN)."""
+        self._p_term, self._i_term, self._d_term = (_clamp(t, -_MAX, _MAX) if not math.isnan(t) else 0.0
+                                                    for t in (self._p_term, self._i_term, self._d_term))
+        return _clamp(self._p_term + self._i_term + self._d_term, -_MAX, _MAX)
 
     def __repr__(self):
         return ('Pid(p=%g, i=%g, d=%g, i_clamp_min=%g, i_clamp_max=%g, antiwindup=%s)'
