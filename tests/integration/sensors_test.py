@@ -162,8 +162,9 @@ class SensorsTest(unittest.TestCase):
         f = cam.width / (2 * math.tan(cam.horizontal_fov / 2))
         self.assertAlmostEqual(info.K[0], f, places=3)
         self.assertAlmostEqual(info.K[4], f, places=3)
-        self.assertAlmostEqual(info.K[2], (cam.width - 1) / 2.0, places=3)
-        self.assertAlmostEqual(info.K[5], (cam.height - 1) / 2.0, places=3)
+        # gazebo_ros_camera_utils' principal point, one pixel off the centre of the image it renders
+        self.assertAlmostEqual(info.K[2], (cam.width + 1) / 2.0, places=3)
+        self.assertAlmostEqual(info.K[5], (cam.height + 1) / 2.0, places=3)
         rgb = np.frombuffer(img.data, dtype=np.uint8).reshape(img.height, img.width, 3).astype(int)
         red = (rgb[..., 0] > 120) & (rgb[..., 1] < 60) & (rgb[..., 2] < 60)
         self.assertGreater(red.sum(), 200, 'the red box is not in the image')

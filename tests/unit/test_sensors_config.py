@@ -3,7 +3,7 @@ and rates come from the URDF (no master, no physics)."""
 import pytest
 
 from racebot_sim_bridge import urdf_model
-from racebot_sim_bridge.sensors.config import SensorConfigError, join_topic, plugin_kind, sensor_config
+from racebot_sim_bridge.sensors.config import resolve_frame, SensorConfigError, join_topic, plugin_kind, sensor_config
 
 
 @pytest.fixture(scope='module')
@@ -70,6 +70,50 @@ def test_plugin_rules_and_mismatches():
         sensor_config(_sensor(ray, '<plugin name="p" filename="libgazebo_ros_camera.so"/>'))
     imu = ('<sensor type="imu" name="i"><update_rate>200</update_rate>PLUGIN</sensor>')
     c = sensor_config(_sensor(imu, '<plugin name="p" filename="libgazebo_ros_imu_sensor.so">'
-                                   '<updateRateHZ>50</updateRateHZ><topicName>imu</topicName></plugin>'))
+                                   '<updateRateHZ>50</updateRateHZ><topicName>imu</topicName>'
+                                   '<frameName>/imu_link</frameName></plugin>'))
     assert c.rate == 50.0  # the plugin throttles
-    assert c.frame_id == 'a' and c.warnings  # no frameName: the link, with a warning
+    assert c.frame_id == '/imu_link'  # as written: gazebo_ros_imu_sensor resolves nothing
+    # without frameName gazebo_ros_imu_sensor stops ("cannot proceed"): refused, saying what to add
+    with pytest.raises(SensorConfigError, match='frameName'):
+        sensor_config(_sensor(imu, '<plugin name="p" filename="libgazebo_ros_imu_sensor.so">'
+                                   '<topicName>imu</topicName></plugin>'))
+
+
+def test_laser_and_camera_frames_as_upstream_resolves_them():
+    """Row c/d of issue 17's audit: gazebo_ros_laser's frameName defaults to /world (frame_id `world`), a
+    camera's has no default; both are resolved with the tf_prefix parameter of the plugin's namespace
+    (tf::resolve), which the sensor manager reads from config.params['tf_prefix_param']."""
+    ray = ('<sensor type="ray" name="s"><update_rate>10</update_rate><ray><scan><horizontal><samples>5'
+           '</samples></horizontal></scan><range><min>0.1</min><max>4</max></range></ray>PLUGIN</sensor>')
+    laser = sensor_config(_sensor(ray, '<plugin name="p" filename="libgazebo_ros_laser.so">'
+                                       '<robotNamespace>bot</robotNamespace><topicName>scan</topicName></plugin>'))
+    assert laser.frame_id == 'world' and laser.params['tf_prefix_param'] == '/bot/tf_prefix'
+    resolve_frame(laser, 'bot')
+    assert laser.frame_id == 'world'  # a leading slash ignores the prefix
+    named = sensor_config(_sensor(ray, '<plugin name="p" filename="libgazebo_ros_laser.so"><topicName>scan'
+                                       '</topicName><frameName>hokuyo</frameName></plugin>'))
+    resolve_frame(named, 'robot1')
+    assert named.frame_id == 'robot1/hokuyo'
+    cam = ('<sensor type="camera" name="c"><camera><horizontal_fov>1.0</horizontal_fov><image><width>4</width>'
+           '<height>2</height></image><clip><near>0.1</near><far>10</far></clip></camera>PLUGIN</sensor>')
+    camera = sensor_config(_sensor(cam, '<plugin name="p" filename="libgazebo_ros_camera.so">'
+                                        '<cameraName>cam</cameraName></plugin>'))
+    assert camera.frame_id == ''
+    resolve_frame(camera, '')
+    assert camera.frame_id == ''
+
+
+def test_camera_update_rate_skips_whole_frames():
+    """Row h of issue 17's audit: gazebo_ros_camera's updateRate leaves the sensor's frame rate alone and
+    publishes a frame only when a whole plugin period has passed (a 30 Hz sensor at updateRate 20: 15 Hz)."""
+    from racebot_sim_bridge.sensors.schedule import FrameThrottle
+    cam = ('<sensor type="camera" name="c"><update_rate>30</update_rate><camera><horizontal_fov>1.0</horizontal_fov>'
+           '<image><width>4</width><height>2</height></image><clip><near>0.1</near><far>10</far></clip></camera>'
+           'PLUGIN</sensor>')
+    c = sensor_config(_sensor(cam, '<plugin name="p" filename="libgazebo_ros_camera.so"><cameraName>cam</cameraName>'
+                                   '<updateRate>20</updateRate></plugin>'))
+    assert c.rate == 30.0 and c.params['update_rate'] == 20.0
+    throttle = FrameThrottle(c.params['update_rate'])
+    frames = [k / 30.0 for k in range(30)]  # one second of the sensor's frames
+    assert sum(throttle.passes(t) for t in frames) == 15

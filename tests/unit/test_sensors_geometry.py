@@ -88,8 +88,12 @@ def test_report_masks_as_rep_117_and_noise_stays_within_limits():
 def test_intrinsics_from_hfov_and_size():
     cam = PinholeCamera(800, 800, 1.3962634, 0.02, 300)
     f = 400 / math.tan(1.3962634 / 2)
-    assert cam.K() == pytest.approx([f, 0, 399.5, 0, f, 399.5, 0, 0, 1])
-    assert cam.P(0.07) == pytest.approx([f, 0, 399.5, -f * 0.07, 0, f, 399.5, 0, 0, 0, 1, 0])
+    # camera_info as gazebo_ros_camera_utils writes it: cx = (w + 1) / 2, cy = (h + 1) / 2
+    assert cam.K() == pytest.approx([f, 0, 400.5, 0, f, 400.5, 0, 0, 1])
+    assert cam.P(0.07) == pytest.approx([f, 0, 400.5, -f * 0.07, 0, f, 400.5, 0, 0, 0, 1, 0])
+    # the plugin's <focalLength>, <Cx>, <Cy> are reported as set; 0 means unset
+    assert cam.reported_intrinsics(500.0, 10.0, 0.0) == (500.0, 10.0, 400.5)
+    assert cam.K(cam.reported_intrinsics(500.0, 10.0, 20.0)) == [500.0, 0, 10.0, 0, 500.0, 20.0, 0, 0, 1]
     depth = PinholeCamera(640, 480, math.radians(60), 0.05, 8)
     assert depth.f == pytest.approx(320 / math.tan(math.radians(30)))
     assert (depth.cx, depth.cy) == (319.5, 239.5)

@@ -5,12 +5,12 @@ Pure numpy: no rospy, no pybullet. Frames:
 - the sensor frame (Gazebo's camera convention): x forward (the optical axis), y left, z up;
 - the optical frame (ROS REP 103 `_optical`): z forward, x right, y down. Images, camera_info and
   point clouds are in it.
-Intrinsics are those gazebo_ros_camera_utils computes from the URDF: square pixels with
-f = width / (2 tan(hfov / 2)), the principal point at the image centre. One deliberate
-difference: Gazebo writes cx = (width + 1) / 2, one pixel right of the centre of the image it
-renders; here cx = (width - 1) / 2 and cy = (height - 1) / 2 (pixel centres at integer
-coordinates, as OpenCV and image_geometry count them), so K describes the image exactly. The
-point cloud uses the same centre, as gazebo_ros_openni_kinect's does.
+The image is rendered, and the depth cloud computed, as Gazebo renders: square pixels with
+f = width / (2 tan(hfov / 2)) and the optical axis through the centre of the image, (width - 1) / 2
+and (height - 1) / 2 in pixel coordinates (pixel centres at integers, as OpenCV and image_geometry
+count them). camera_info reports what gazebo_ros_camera_utils writes (`reported_intrinsics`): the
+plugin's <focalLength>, <Cx>, <Cy> where set, else that f and cx = (width + 1) / 2, cy = (height + 1)
+/ 2, one pixel right of and below the centre of the image Gazebo renders, as it is there.
 """
 import math
 
@@ -42,12 +42,19 @@ class PinholeCamera(object):
         self.vfov = 2.0 * math.atan(self.height / (2.0 * self.f))
 
     # -- camera_info ------------------------------------------------------------------------
-    def K(self):
-        return [self.f, 0.0, self.cx, 0.0, self.f, self.cy, 0.0, 0.0, 1.0]
+    def reported_intrinsics(self, focal_length=0.0, cx=0.0, cy=0.0):
+        """(f, cx, cy) as gazebo_ros_camera_utils fills camera_info: each plugin value that is set (not 0),
+        else f from the field of view and (width + 1) / 2, (height + 1) / 2."""
+        return (focal_length or self.f, cx or (self.width + 1) / 2.0, cy or (self.height + 1) / 2.0)
 
-    def P(self, baseline=0.0):
+    def K(self, intrinsics=None):
+        f, cx, cy = intrinsics or self.reported_intrinsics()
+        return [f, 0.0, cx, 0.0, f, cy, 0.0, 0.0, 1.0]
+
+    def P(self, baseline=0.0, intrinsics=None):
         """Projection matrix; P[3] = -f * baseline as gazebo_ros_camera_utils (hackBaseline)."""
-        return [self.f, 0.0, self.cx, -self.f * baseline, 0.0, self.f, self.cy, 0.0, 0.0, 0.0, 1.0, 0.0]
+        f, cx, cy = intrinsics or self.reported_intrinsics()
+        return [f, 0.0, cx, -f * baseline, 0.0, f, cy, 0.0, 0.0, 0.0, 1.0, 0.0]
 
     def project(self, point_optical):
         """Pixel (u, v) of a point in the optical frame (z > 0)."""

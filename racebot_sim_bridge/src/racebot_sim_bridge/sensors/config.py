@@ -17,10 +17,13 @@ Relative topic names resolve in the plugin's namespace as Gazebo sets it: its ow
 else the spawn request's robot_namespace, else each plugin's default (../plugin_namespace.py has
 the rules); absolute ones stay. So the racebot's IMU (topicName imu, no robotNamespace) publishes
 /imu when spawn_model runs at the root (it sends '/'), and /<model>/imu for a spawn request with an
-empty robot_namespace, as gazebo_ros_imu_sensor does. Frame ids are the plugin's frameName without
-a leading slash (tf2 rejects one). The update rate is the sensor's <update_rate>, throttled further
-by the plugin's own rate where the plugin throttles (gazebo_ros_camera's updateRate,
-gazebo_ros_imu_sensor's updateRateHZ); 0 means every world update, as in Gazebo.
+empty robot_namespace, as gazebo_ros_imu_sensor does. Frame ids are the plugins': the laser's and
+cameras' frameName resolved with the `tf_prefix` parameter of their namespace as tf::resolve does
+(laser default /world, i.e. `world`; cameras none), the IMU's frameName as written (it has no
+default: without one the sensor is refused, as gazebo_ros_imu_sensor stops). The update rate is the
+sensor's <update_rate> (0: every world update, as in Gazebo), throttled by gazebo_ros_imu_sensor's
+updateRateHZ; gazebo_ros_camera's updateRate does not change the rate frames come at but skips whole
+frames (params['update_rate'], schedule.FrameThrottle), as upstream's OnNewFrame does.
 """
 from dataclasses import dataclass, field, replace
 
@@ -128,12 +131,8 @@ def sensor_config(spec, spawn_namespace='', model_name='', node_namespace='/'):
 
     def namespace(camera_name=''):
         return sensor_namespace(kind, own_ns, spawn_namespace, model_name, camera_name, node_namespace)
-    frame = (params.get('frameName') or '').strip().lstrip('/')
-    if not frame:
-        frame = spec.reference
-        warnings.append('%s has no <frameName>; using its link %r' % (what, frame))
     rate = spec.update_rate
-    config = SensorConfig(spec.name, kind, spec.reference, frame, rate, warnings=warnings)
+    config = SensorConfig(spec.name, kind, spec.reference, '', rate, warnings=warnings)
     if kind == 'laser':
         topic = params.get('topicName')
         if topic == '':
@@ -141,8 +140,17 @@ def sensor_config(spec, spawn_namespace='', model_name='', node_namespace='/'):
         if topic is None:
             topic = '/world'  # gazebo_ros_laser's default, odd as it is
             warnings.append('%s has no <topicName>; publishing on /world as gazebo_ros_laser does' % what)
+        if params.get('frameName') is None:
+            warnings.append('%s has no <frameName>; frame_id world, as gazebo_ros_laser defaults' % what)
+        _frame(config, params, '/world', namespace())  # resolved with <ns>/tf_prefix, as upstream
         config.topics['scan'] = join_topic(namespace(), topic)
     elif kind == 'imu':
+        # gazebo_ros_imu_sensor writes frameName as it is into the header, and without one it stops
+        # ("missing <frameName>, cannot proceed"): no topic at all.
+        if params.get('frameName') is None:
+            raise SensorConfigError('%s has no <frameName>: gazebo_ros_imu_sensor cannot proceed without one and '
+                                    'publishes nothing; add <frameName>LINK</frameName> to the plugin' % what)
+        config.frame_id = params.get('frameName')
         config.topics['imu'] = join_topic(namespace(), params.get('topicName') or 'imu_data')
         throttle = _number(params, 'updateRateHZ', 1.0, warnings, what)
         config.rate = _throttled(rate, throttle)
@@ -155,12 +163,17 @@ def sensor_config(spec, spawn_namespace='', model_name='', node_namespace='/'):
             warnings.append('%s: <rpyOffset> %r is not three numbers; using 0 0 0' % (what, params.get('rpyOffset')))
     else:
         ns = namespace((params.get('cameraName') or '').strip())
+        _frame(config, params, '', ns)  # no default (an empty frame_id), resolved with <ns>/tf_prefix
         config.params['baseline'] = _number(params, 'hackBaseline', 0.0, warnings, what)
+        # camera_info's intrinsics as gazebo_ros_camera_utils writes them: 0 (unset) = worked out
+        config.params['focal_length'] = _number(params, 'focalLength', 0.0, warnings, what)
+        config.params['cx'] = _number(params, 'Cx', 0.0, warnings, what)
+        config.params['cy'] = _number(params, 'Cy', 0.0, warnings, what)
         config.params['distortion'] = [_number(params, k, 0.0, warnings, what) for k in
                                        ('distortionK1', 'distortionK2', 'distortionT1', 'distortionT2',
                                         'distortionK3')]
         if kind == 'camera':
-            config.rate = _throttled(rate, _number(params, 'updateRate', 0.0, warnings, what))
+            config.params['update_rate'] = _number(params, 'updateRate', 0.0, warnings, what)
             config.topics['image'] = join_topic(ns, params.get('imageTopicName') or 'image_raw')
             config.topics['info'] = join_topic(ns, params.get('cameraInfoTopicName') or 'camera_info')
         else:
@@ -176,10 +189,9 @@ def sensor_config(spec, spawn_namespace='', model_name='', node_namespace='/'):
                                 % (what, plugin.filename, config.topics['depth_info']))
             config.params['cutoff'] = _number(params, 'pointCloudCutoff', 0.4, warnings, what)
             config.params['cutoff_max'] = _number(params, 'pointCloudCutoffMax', 5.0, warnings, what)
-        for key in ('focalLength', 'Cx', 'Cy', 'CxPrime'):
-            if _number(params, key, 0.0, warnings, what):
-                warnings.append('%s: <%s> is ignored; the intrinsics follow from the image size and '
-                                'horizontal_fov' % (what, key))
+        if config.params['focal_length'] or config.params['cx'] or config.params['cy']:
+            warnings.append('%s: <focalLength>, <Cx>, <Cy> go into camera_info as set; the image is rendered from '
+                            'the image size and horizontal_fov (as in Gazebo)' % what)
         if any(config.params['distortion']):
             warnings.append('%s: lens distortion is not rendered; camera_info reports the coefficients' % what)
     return config

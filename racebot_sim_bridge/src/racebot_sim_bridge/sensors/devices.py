@@ -120,12 +120,15 @@ class CameraSensor(Sensor):
                               self.camera.far, noise.mean if noise else 0.0, noise.stddev if noise else None)
         self.buffers = None  # FrameBuffers shared with the worker, made for the first frame it renders
         self.in_worker = InFlight(FRAMES_IN_WORKER)  # frames sent to the worker, not rendered yet
+        self.throttle = FrameThrottle(config.params.get('update_rate', 0.0))
         self.advertise('image', Image, 2)
         self.advertise('info', CameraInfo, 2)
 
     def info(self, stamp):
-        return msgs.camera_info(stamp, self.config.frame_id, self.camera, self.config.params['baseline'],
-                                self.config.params['distortion'])
+        p = self.config.params
+        return msgs.camera_info(stamp, self.config.frame_id, self.camera, p['baseline'], p['distortion'],
+                                self.camera.reported_intrinsics(p.get('focal_length', 0.0), p.get('cx', 0.0),
+                                                                p.get('cy', 0.0)))
 
     def capture(self, time, stamp, wanted, want_depth):
         """A frame of the world at sim `time`, published as `wanted` roles when it is ready: from the
@@ -182,6 +185,8 @@ class CameraSensor(Sensor):
         if not self.listened('image'):
             if self.listened('info'):  # camera_info alone needs no render
                 self.publishers['info'].publish(self.info(stamp))
+            return
+        if not self.throttle.passes(time):  # gazebo_ros_camera's updateRate: skips whole frames
             return
         self.capture(time, stamp, {'image'}, want_depth=False)
 

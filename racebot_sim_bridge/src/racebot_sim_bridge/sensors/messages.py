@@ -51,11 +51,12 @@ def depth_image(stamp, frame_id, depth):
                  step=4 * width, data=depth.tobytes())
 
 
-def camera_info(stamp, frame_id, camera, baseline=0.0, distortion=(0.0, 0.0, 0.0, 0.0, 0.0)):
-    """`camera`: camera.PinholeCamera."""
+def camera_info(stamp, frame_id, camera, baseline=0.0, distortion=(0.0, 0.0, 0.0, 0.0, 0.0), intrinsics=None):
+    """`camera`: camera.PinholeCamera; `intrinsics`: (f, cx, cy) to report (camera.reported_intrinsics())."""
+    intrinsics = intrinsics or camera.reported_intrinsics()
     return CameraInfo(header=header(stamp, frame_id), height=camera.height, width=camera.width,
-                      distortion_model='plumb_bob', D=list(distortion), K=camera.K(),
-                      R=[1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0], P=camera.P(baseline))
+                      distortion_model='plumb_bob', D=list(distortion), K=camera.K(intrinsics),
+                      R=[1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0], P=camera.P(baseline, intrinsics))
 
 
 POINT_FIELDS = [PointField(name='x', offset=0, datatype=PointField.FLOAT32, count=1),
