@@ -117,3 +117,32 @@ def test_camera_update_rate_skips_whole_frames():
     throttle = FrameThrottle(c.params['update_rate'])
     frames = [k / 30.0 for k in range(30)]  # one second of the sensor's frames
     assert sum(throttle.passes(t) for t in frames) == 15
+
+
+def test_use_depth_16uc1_format_is_openni_kinects():
+    depth = ('<sensor type="depth" name="d"><camera><horizontal_fov>1.0</horizontal_fov><image><width>4</width>'
+             '<height>2</height></image><clip><near>0.1</near><far>10</far></clip></camera>PLUGIN</sensor>')
+    kinect = sensor_config(_sensor(depth, '<plugin name="p" filename="libgazebo_ros_openni_kinect.so">'
+                                          '<useDepth16UC1Format>true</useDepth16UC1Format></plugin>'))
+    assert kinect.params['depth_16uc1'] is True
+    plain = sensor_config(_sensor(depth, '<plugin name="p" filename="libgazebo_ros_openni_kinect.so"/>'))
+    assert plain.params['depth_16uc1'] is False
+    other = sensor_config(_sensor(depth, '<plugin name="p" filename="libgazebo_ros_depth_camera.so">'
+                                         '<useDepth16UC1Format>true</useDepth16UC1Format></plugin>'))
+    assert other.params['depth_16uc1'] is False  # only the openni_kinect plugin reads it
+
+
+def test_auto_distortion_copies_the_sensors_lens_into_d():
+    """Row f of issue 17's audit: D = (k1, k2, t1, t2, k3) from the plugin, or with autoDistortion from the
+    camera's own <distortion> (k1 k2 k3 p1 p2)."""
+    cam = ('<sensor type="camera" name="c"><camera><horizontal_fov>1.0</horizontal_fov><image><width>4</width>'
+           '<height>2</height></image><clip><near>0.1</near><far>10</far></clip><distortion><k1>-0.25</k1>'
+           '<k2>0.12</k2><k3>0.01</k3><p1>-0.002</p1><p2>0.003</p2><center>0.5 0.5</center></distortion></camera>'
+           'PLUGIN</sensor>')
+    auto = sensor_config(_sensor(cam, '<plugin name="p" filename="libgazebo_ros_camera.so">'
+                                      '<autoDistortion>true</autoDistortion></plugin>'))
+    assert auto.params['distortion'] == [-0.25, 0.12, -0.002, 0.003, 0.01]
+    given = sensor_config(_sensor(cam, '<plugin name="p" filename="libgazebo_ros_camera.so"><distortionK1>0.1'
+                                       '</distortionK1><distortionT2>0.2</distortionT2></plugin>'))
+    assert given.params['distortion'] == [0.1, 0.0, 0.0, 0.2, 0.0]
+    assert any('not rendered' in w for w in given.warnings)

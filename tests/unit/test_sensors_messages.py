@@ -73,3 +73,13 @@ def test_imu_message():
     assert m.header.frame_id == 'imu' and m.orientation.w == 1.0
     assert (m.angular_velocity.z, m.linear_acceleration.z) == pytest.approx((0.3, 9.8))
     assert m.angular_velocity_covariance[0] == pytest.approx(0.01) and m.angular_velocity_covariance[1] == 0.0
+
+
+def test_depth_in_millimetres_as_openni_kinect_writes_16uc1():
+    """Row g of issue 17's audit: useDepth16UC1Format gives 16UC1, depth * 1000 truncated, 0 for no reading."""
+    depth = np.array([[1.2345, np.nan], [0.5, 70.0]], dtype=np.float32)
+    img = roundtrip(msgs.depth_image(STAMP, 'd', depth, millimetres=True))
+    assert (img.encoding, img.step) == ('16UC1', 4)
+    values = np.frombuffer(img.data, dtype='<u2').reshape(2, 2)
+    assert values.tolist() == [[1234, 0], [500, 65535]]
+    assert roundtrip(msgs.depth_image(STAMP, 'd', depth)).encoding == '32FC1'

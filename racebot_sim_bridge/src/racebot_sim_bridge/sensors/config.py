@@ -79,6 +79,13 @@ def plugin_kind(filename):
     return KINDS.get(base)
 
 
+def plugin_kind_name(plugin):
+    """'libgazebo_ros_openni_kinect.so' -> 'openni_kinect'."""
+    base = (plugin.filename or '').rsplit('/', 1)[-1]
+    return base[len('libgazebo_ros_'):-len('.so')] if base.startswith('libgazebo_ros_') and base.endswith('.so') \
+        else base
+
+
 def join_topic(namespace, *parts):
     """Resolves a topic as a ros::NodeHandle in `namespace` would: an absolute last part stays."""
     names = [p for p in parts if p]
@@ -169,9 +176,15 @@ def sensor_config(spec, spawn_namespace='', model_name='', node_namespace='/'):
         config.params['focal_length'] = _number(params, 'focalLength', 0.0, warnings, what)
         config.params['cx'] = _number(params, 'Cx', 0.0, warnings, what)
         config.params['cy'] = _number(params, 'Cy', 0.0, warnings, what)
-        config.params['distortion'] = [_number(params, k, 0.0, warnings, what) for k in
-                                       ('distortionK1', 'distortionK2', 'distortionT1', 'distortionT2',
-                                        'distortionK3')]
+        # camera_info D = (k1, k2, t1, t2, k3): the plugin's distortion* values, or with <autoDistortion> the
+        # sensor's own <distortion> (gazebo_ros_camera_utils reads the camera's lens model then)
+        if (params.get('autoDistortion') or '').strip().lower() in ('true', '1'):
+            k1, k2, k3, p1, p2 = spec.camera.distortion
+            config.params['distortion'] = [k1, k2, p1, p2, k3]
+        else:
+            config.params['distortion'] = [_number(params, k, 0.0, warnings, what) for k in
+                                           ('distortionK1', 'distortionK2', 'distortionT1', 'distortionT2',
+                                            'distortionK3')]
         if kind == 'camera':
             config.params['update_rate'] = _number(params, 'updateRate', 0.0, warnings, what)
             config.topics['image'] = join_topic(ns, params.get('imageTopicName') or 'image_raw')
@@ -188,12 +201,18 @@ def sensor_config(spec, spawn_namespace='', model_name='', node_namespace='/'):
                                 '<depthImageCameraInfoTopicName>); depth camera_info goes to %s, as upstream'
                                 % (what, plugin.filename, config.topics['depth_info']))
             config.params['cutoff'] = _number(params, 'pointCloudCutoff', 0.4, warnings, what)
+            # gazebo_ros_openni_kinect's useDepth16UC1Format (sdformat's bool: true/1, false/0)
+            flag = (params.get('useDepth16UC1Format') or 'false').strip().lower()
+            config.params['depth_16uc1'] = flag in ('true', '1') and plugin_kind_name(plugin) == 'openni_kinect'
+            if flag not in ('true', '1', 'false', '0'):
+                warnings.append('%s: <useDepth16UC1Format> %r is not true or false; 32FC1 it is' % (what, flag))
             config.params['cutoff_max'] = _number(params, 'pointCloudCutoffMax', 5.0, warnings, what)
         if config.params['focal_length'] or config.params['cx'] or config.params['cy']:
             warnings.append('%s: <focalLength>, <Cx>, <Cy> go into camera_info as set; the image is rendered from '
                             'the image size and horizontal_fov (as in Gazebo)' % what)
-        if any(config.params['distortion']):
-            warnings.append('%s: lens distortion is not rendered; camera_info reports the coefficients' % what)
+        if any(config.params['distortion']) or any(spec.camera.distortion):
+            warnings.append('%s: lens distortion is not rendered (README: supported sensors); camera_info reports '
+                            'the coefficients' % what)
     return config
 
 

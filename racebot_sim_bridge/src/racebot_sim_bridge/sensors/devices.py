@@ -228,7 +228,8 @@ class DepthCameraSensor(CameraSensor):
         if depth is not None and wanted & {'depth', 'points'}:
             depth = mask_depth(depth, self.config.params['cutoff'], self.config.params['cutoff_max'])
             if 'depth' in wanted:
-                pubs['depth'].publish(msgs.depth_image(stamp, frame_id, depth))
+                millimetres = self.config.params.get('depth_16uc1', False)
+                pubs['depth'].publish(msgs.depth_image(stamp, frame_id, depth, millimetres))
             if 'points' in wanted:
                 if self.rays is None:
                     self.rays = self.camera.rays_optical()

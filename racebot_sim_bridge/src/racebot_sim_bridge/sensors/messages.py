@@ -44,7 +44,16 @@ def rgb_image(stamp, frame_id, rgb):
                  step=3 * width, data=rgb.tobytes())
 
 
-def depth_image(stamp, frame_id, depth):
+def depth_image(stamp, frame_id, depth, millimetres=False):
+    """32FC1 in metres (NaN: no reading), or with `millimetres` (gazebo_ros_openni_kinect's
+    useDepth16UC1Format) 16UC1 in whole millimetres, truncated as upstream's float-to-integer assignment,
+    0 for no reading (REP 118)."""
+    if millimetres:
+        mm = np.nan_to_num(np.asarray(depth, dtype=np.float64) * 1000.0, nan=0.0, posinf=0.0, neginf=0.0)
+        data = np.ascontiguousarray(np.clip(np.trunc(mm), 0, 65535), dtype='<u2')
+        height, width = data.shape
+        return Image(header=header(stamp, frame_id), height=height, width=width, encoding='16UC1', is_bigendian=0,
+                     step=2 * width, data=data.tobytes())
     depth = np.ascontiguousarray(depth, dtype='<f4')
     height, width = depth.shape
     return Image(header=header(stamp, frame_id), height=height, width=width, encoding='32FC1', is_bigendian=0,
