@@ -180,6 +180,35 @@ def test_imu_at_rest(world):
     assert msgs[-1].orientation.w == pytest.approx(1.0, abs=1e-3)
 
 
+def test_imu_acceleration_is_over_the_last_step_before_each_update(world):
+    """The sensor manager wakes the IMU one physics step before each of its updates to record the velocity, so
+    an update reads the acceleration of that step (Gazebo: the instantaneous one), not a mean over 10 ms: an
+    upward push on the chassis during only the step before an update shows in full."""
+    sim, fake, manager, robot = world
+    run(sim, 2.5)
+    listen(fake, '/imu')
+    run(sim, 0.0495)  # sensor updates every 10 ms; stop just after one (sim time ~2.55)
+    body = robot.body
+    links = [-1] + list(range(sim.world.client.getNumJoints(body.id)))
+    mass = sum(sim.world.link_dynamics(body.id, i).mass for i in links)
+    imu = next(s for s in manager._active if isinstance(s, devices.ImuSensor))
+    due = imu.schedule.next
+    force = 5.0 * 9.8 * mass  # 5 g upwards on the whole car, for one step
+
+    def push(t_end):
+        if abs(t_end - due) < 1e-9:
+            sim.world.client.applyExternalForce(body.id, -1, (0.0, 0.0, force), sim.world.com_position(body.id, -1),
+                                                1)  # WORLD_FRAME
+    sim.before_physics.append(push)
+    while sim.time < due + 1e-9:
+        sim.step()
+    m = fake.publishers['/imu'].messages[-1]
+    assert m.header.stamp.to_sec() == pytest.approx(due)
+    # about 4 g more than at rest (the push acts on the chassis alone, which also tips: 48.7 m/s^2 measured),
+    # where a mean over the 10 ms since the last update would show a tenth of the push (under 15 m/s^2)
+    assert m.linear_acceleration.z > 9.8 + 0.5 * 5.0 * 9.8
+
+
 RED_BOX = """<sdf version="1.6"><world name="w"><model name="red_box"><static>true</static>
 <pose>{x} {y} {z} 0 0 0</pose><link name="link">
 <collision name="c"><geometry><box><size>{s} {s} {s}</size></box></geometry></collision>
@@ -340,8 +369,9 @@ def test_sensors_update_on_their_schedule_and_are_not_asked_in_between(racebot_x
             published.append({t: [m.header.stamp.to_sec() for m in fake.publishers[t].messages]
                               for t in ('/scan', '/imu')})
             if shortcut:
-                # 40 + 100 + 30 + 20 Hz: at most 190 steps a second have a sensor due, each asks every sensor
-                assert 0 < len(calls) <= (190 * 0.6 + 2) * len(manager._active)
+                # 40 + 100 + 30 + 20 Hz: at most 190 steps a second have a sensor due, and 100 more where the
+                # IMU records the velocity one step before its update; each asks every sensor
+                assert 0 < len(calls) <= (290 * 0.6 + 2) * len(manager._active)
             else:
                 assert len(calls) == 600 * len(manager._active)
         finally:

@@ -264,8 +264,9 @@ def test_camera_depth_and_imu_sensors():
     assert (camera.clip_near, camera.clip_far, camera.noise_stddev) == (0.05, 8.0, 0.007)
     assert camera.horizontal_fov == pytest.approx(math.radians(60))
     assert depth.plugins[0].params['pointCloudTopicName'] == 'depth/points'
-    assert imu.imu.angular_velocity_noise == (0.1, 0.2)
-    assert imu.imu.linear_acceleration_noise == (0.0, 0.0)
+    # per axis (mean, stddev, bias_mean, bias_stddev): only x was given
+    assert imu.imu.angular_velocity_noise == ((0.1, 0.2, 0.0, 0.0), (0.0, 0.0, 0.0, 0.0), (0.0, 0.0, 0.0, 0.0))
+    assert imu.imu.linear_acceleration_noise == ((0.0, 0.0, 0.0, 0.0),) * 3
 
 
 def test_hardware_joints_follow_gazebo_ros_control(model):

@@ -198,10 +198,11 @@ class CameraSpec:
 
 @dataclass
 class ImuSpec:
-    """(mean, stddev) of the angular velocity and linear acceleration noise (x axis, or the
-    older <noise><rate>/<accel> form); (0, 0) when none is given."""
-    angular_velocity_noise: tuple = (0.0, 0.0)
-    linear_acceleration_noise: tuple = (0.0, 0.0)
+    """The angular velocity and linear acceleration noise per axis (x, y, z), each (mean, stddev,
+    bias_mean, bias_stddev) as Gazebo's ImuSensor reads <imu><angular_velocity><x><noise> (or the older
+    <imu><noise><rate>/<accel>, one for all axes); zeros when none is given."""
+    angular_velocity_noise: tuple = ((0.0, 0.0, 0.0, 0.0),) * 3
+    linear_acceleration_noise: tuple = ((0.0, 0.0, 0.0, 0.0),) * 3
 
 
 @dataclass
@@ -761,6 +762,16 @@ class _UrdfReader:
                 0.0 if mean is None else _number(mean, what + ' <noise><mean>'),
                 0.0 if stddev is None else _number(stddev, what + ' <noise><stddev>'))
 
+    def noise_with_bias(self, elem, what):
+        """(mean, stddev, bias_mean, bias_stddev) of a <noise> element, zeros without one."""
+        if elem is None:
+            return (0.0, 0.0, 0.0, 0.0)
+        values = []
+        for key in ('mean', 'stddev', 'bias_mean', 'bias_stddev'):
+            text = _child_text(elem, key)
+            values.append(0.0 if text is None else _number(text, '%s <%s>' % (what, key)))
+        return tuple(values)
+
     def ray(self, elem, what):
         spec = RaySpec()
         what = what + ' <%s>' % elem.tag
@@ -820,15 +831,17 @@ class _UrdfReader:
         if elem is None:
             return spec
         what = what + ' <imu>'
-        for attr, paths in (('angular_velocity_noise', ('angular_velocity/x/noise',
-                                                        'noise/rate')),
-                            ('linear_acceleration_noise', ('linear_acceleration/x/noise',
-                                                           'noise/accel'))):
-            for path in paths:
+        for attr, group, old_form in (('angular_velocity_noise', 'angular_velocity', 'noise/rate'),
+                                      ('linear_acceleration_noise', 'linear_acceleration', 'noise/accel')):
+            shared = elem.find(old_form)
+            axes = []
+            for axis in 'xyz':
+                path = '%s/%s/noise' % (group, axis)
                 noise = elem.find(path)
-                if noise is not None:
-                    setattr(spec, attr, self.noise(noise, '%s <%s>' % (what, path))[1:])
-                    break
+                if noise is None and shared is not None:
+                    noise, path = shared, old_form
+                axes.append(self.noise_with_bias(noise, '%s <%s>' % (what, path)))
+            setattr(spec, attr, tuple(axes))
         return spec
 
 

@@ -162,6 +162,8 @@ def sensor_config(spec, spawn_namespace='', model_name='', node_namespace='/'):
         throttle = _number(params, 'updateRateHZ', 1.0, warnings, what)
         config.rate = _throttled(rate, throttle)
         config.params['gaussian_noise'] = _number(params, 'gaussianNoise', 0.0, warnings, what)
+        config.params['initial_orientation_as_reference'] = \
+            (params.get('initialOrientationAsReference') or '').strip().lower() in ('true', '1')
         rpy = (params.get('rpyOffset') or '0 0 0').split()
         try:
             config.params['rpy_offset'] = tuple(float(v) for v in rpy) if len(rpy) == 3 else (0.0, 0.0, 0.0)

@@ -20,7 +20,7 @@ from .contact import contact_collision_after_lumping, group_contacts, urdf_colli
 from .contact_points import CollisionKinds, CollisionNames, link_com, read_contacts
 from .imu import ImuKinematics, quaternion_to_matrix
 from .mount import SensorMount
-from .noise import make_noise
+from .noise import AxisNoise, make_noise
 from .ray import ScanGeometry
 from .range_reading import radiation_type, range_reading, ray_lengths
 from .raycast import cast_rays
@@ -59,6 +59,10 @@ class Sensor(object):
         """True when any of the roles' topics (all, if none named) has a subscriber."""
         pubs = [self.publishers[r] for r in roles] if roles else self.publishers.values()
         return any(p.get_num_connections() > 0 for p in pubs)
+
+    def wake_time(self):
+        """The sim time this sensor next needs a step(): its next update (the manager skips it till then)."""
+        return self.schedule.next
 
     def step(self, time):
         if not self.schedule.due(time):
@@ -243,25 +247,37 @@ class DepthCameraSensor(CameraSensor):
 
 
 class ImuSensor(Sensor):
+    """gazebo_ros_imu_sensor on Gazebo's ImuSensor: per-axis noise with bias (<imu><angular_velocity><x>...),
+    the plugin's gaussianNoise on every field, rpyOffset, initialOrientationAsReference, and the acceleration
+    over the physics step that ends at each update (the velocity is recorded one step before: wake_time)."""
     main_topic = 'imu'
 
     def __init__(self, manager, robot, spec, config):
         super(ImuSensor, self).__init__(manager, robot, spec, config)
-        self.kinematics = ImuKinematics(manager.sim.world.gravity)
+        reference = self.mount.pose()[1] if config.params.get('initial_orientation_as_reference') else None
+        self.kinematics = ImuKinematics(manager.sim.world.gravity, reference)
         enabled = manager.noise_enabled
         imu = spec.imu
-        self.gyro_noise = make_noise('gaussian', imu.angular_velocity_noise[0], imu.angular_velocity_noise[1],
-                                     enabled)
-        self.accel_noise = make_noise('gaussian', imu.linear_acceleration_noise[0],
-                                      imu.linear_acceleration_noise[1], enabled)
+        self.gyro_noise = AxisNoise.make(imu.angular_velocity_noise, enabled)
+        self.accel_noise = AxisNoise.make(imu.linear_acceleration_noise, enabled)
         self.plugin_stddev = config.params['gaussian_noise']
         self.plugin_noise = make_noise('gaussian', 0.0, self.plugin_stddev, enabled)
         self.offset = rpy_to_quaternion(*config.params['rpy_offset'])
         self.advertise('imu', Imu, 10)
 
+    def wake_time(self):
+        return self.schedule.next - self.sim.step_size  # the step before an update: prime the velocity
+
+    def step(self, time):
+        if not self.schedule.due(time):
+            if time >= self.schedule.next - self.sim.step_size - 1e-9 and self.listened():
+                self.kinematics.prime(time, self.mount.motion()[2])
+            return
+        super(ImuSensor, self).step(time)
+
     def update(self, time, stamp):
         if not self.listened():
-            self.kinematics.reset()  # the next sample after a silence primes the acceleration
+            self.kinematics.reset()  # a silence: the next update after it has no velocity to start from
             return
         _, orientation, velocity, omega = self.mount.motion()
         m = self.kinematics.measure(time, orientation, velocity, omega)

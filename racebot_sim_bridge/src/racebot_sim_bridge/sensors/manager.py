@@ -160,7 +160,7 @@ class SensorManager(object):
                 self.rospy.logerr("sensor '%s' of %s failed and is switched off: %s: %s"
                                   % (sensor.spec.name, sensor.robot_name, type(err).__name__, err))
         # UpdateSchedule.due: due from next - TIME_EPS on
-        self._next_due = min((s.schedule.next for s in active if not s.failed), default=math.inf) - TIME_EPS
+        self._next_due = min((s.wake_time() for s in active if not s.failed), default=math.inf) - TIME_EPS
 
     # -- cameras ------------------------------------------------------------------------------
     def _start_rendering(self):

@@ -75,3 +75,28 @@ class ImageNoise(object):
         start = int(self.rng.integers(0, self.size + 1))
         noisy = flat.astype(np.int16) + self.pool[start:start + self.size]
         return noisy.clip(0, 255).astype(np.uint8).reshape(np.shape(image))
+
+
+class AxisNoise(object):
+    """Gazebo's GaussianNoiseModel on each axis of a vector (an IMU's rates or accelerations): per axis a
+    bias drawn once, N(bias_mean, bias_stddev) with its sign flipped half the time, as Gazebo draws it at
+    load, plus N(mean, stddev) on every sample. `axes`: per axis (mean, stddev, bias_mean, bias_stddev)."""
+
+    def __init__(self, axes, rng=None):
+        self.rng = rng if rng is not None else np.random.default_rng()
+        axes = np.asarray(axes, dtype=np.float64).reshape(-1, 4)
+        if (axes[:, 1] < 0).any() or (axes[:, 3] < 0).any():
+            raise ValueError('noise stddev and bias_stddev must be >= 0, got %r' % axes.tolist())
+        self.mean, self.stddev = axes[:, 0], axes[:, 1]
+        bias = self.rng.normal(axes[:, 2], axes[:, 3])
+        self.bias = np.where(self.rng.uniform(size=len(bias)) < 0.5, -bias, bias)
+
+    @classmethod
+    def make(cls, axes, enabled=True, rng=None):
+        """An AxisNoise, or None when noise is off or every value is 0."""
+        if not enabled or not np.any(np.asarray(axes, dtype=np.float64)):
+            return None
+        return cls(axes, rng)
+
+    def apply(self, values):
+        return np.asarray(values, dtype=np.float64) + self.bias + self.rng.normal(self.mean, self.stddev)
