@@ -152,6 +152,36 @@ def test_scan_matches_the_room_geometry(world):
     assert checked > 1000 and not bad, bad[:10]
 
 
+RETRO_BOX = """<sdf version="1.6"><world name="w"><model name="reflector"><static>true</static>
+<pose>1.0 0 0.25 0 0 0</pose><link name="link"><collision name="c"><laser_retro>150</laser_retro>
+<geometry><box><size>0.1 0.6 0.5</size></box></geometry></collision></link></model></world></sdf>"""
+
+
+def test_scan_intensities_are_the_laser_retro_of_what_each_ray_hits(world):
+    """Row k of issue 17's audit: Gazebo's ray sensor reports the hit collision's laser_retro as intensity (SDF
+    <laser_retro>, URDF <gazebo reference><laserRetro>), 0 elsewhere."""
+    sim, fake, manager, robot = world
+    model = sdf_world.parse_world(RETRO_BOX).models[0]
+    with sim.lock:
+        sim.world.add_sdf_model(model)
+    listen(fake, '/scan')
+    run(sim, 0.1)
+    scan = fake.publishers['/scan'].messages[-1]
+    ahead = len(scan.ranges) // 2  # the beam straight ahead (the scan spans -pi..pi around x)
+    assert scan.ranges[ahead] < 1.0 and scan.intensities[ahead] == 150.0
+    assert scan.intensities[0] == 0.0 and len(scan.intensities) == len(scan.ranges)
+    assert sum(1 for v in scan.intensities if v == 150.0) < len(scan.ranges) / 4  # only the box's rays
+    urdf = ('<robot name="r"><link name="a"><inertial><mass value="1"/><inertia ixx="1" iyy="1" izz="1" ixy="0" '
+            'ixz="0" iyz="0"/></inertial><collision><geometry><box size="1 1 1"/></geometry></collision></link>'
+            '<gazebo reference="a"><laserRetro>80</laserRetro></gazebo></robot>')
+    with sim.lock:
+        body = sim.world.spawn_urdf('retro', urdf_model.parse_urdf(urdf), urdf)
+    assert sim.world.laser_retro[(body.id, -1)] == 80.0
+    with sim.lock:
+        sim.world.remove('retro')
+    assert (body.id, -1) not in sim.world.laser_retro
+
+
 def test_scan_noise_as_declared_unless_switched_off(racebot_xml):
     sim, fake, manager, robot = make_world(racebot_xml, {'~sensors/noise': True})
     try:

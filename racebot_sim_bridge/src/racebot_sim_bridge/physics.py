@@ -145,6 +145,8 @@ class PhysicsWorld(object):
         self.client.setGravity(*self.gravity)
         self.client.setTimeStep(step_size)
         self.bodies = {}
+        # (PyBullet body id, link index) -> laser_retro of its collisions (a laser ray's intensity); 0 if absent
+        self.laser_retro = {}
         self.ground_mu = 1.0
         self._tmpdir = tempfile.mkdtemp(prefix='racebot_urdf_')
 
@@ -174,6 +176,9 @@ class PhysicsWorld(object):
             body_id = self._create_sdf_link(model, link)
             if body_id is not None:
                 ids.append((link.name, body_id))
+                retro = next((c.laser_retro for c in link.collisions if c.laser_retro), 0.0)
+                if retro:
+                    self.laser_retro[(body_id, -1)] = retro
         if not ids:
             raise PhysicsError("model '%s' has no link with supported geometry (give it a box, cylinder, sphere, "
                                "plane or mesh of positive size)" % model.name)
@@ -330,6 +335,9 @@ class PhysicsWorld(object):
             self.client.changeDynamics(body_id, index, lateralFriction=friction)
             # separate call: PyBullet ignores the friction when damping comes in the same call
             self.client.changeDynamics(body_id, index, linearDamping=0.0, angularDamping=0.0)
+            retro = link_laser_retro(urdf_model, link)
+            if retro:
+                self.laser_retro[(body_id, index)] = retro
         for joint_name, joint in body.joints.items():
             # PyBullet's default velocity motors off; in their place the URDF <dynamics friction>, which Gazebo
             # applies as Coulomb friction: a motor holding velocity 0 with at most that force. (<dynamics damping>
@@ -352,6 +360,8 @@ class PhysicsWorld(object):
         self.client.removeBody(body.id)
         for _, extra in body.extra_bodies:
             self.client.removeBody(extra)
+        gone = {body.id} | {extra for _, extra in body.extra_bodies}
+        self.laser_retro = {k: v for k, v in self.laser_retro.items() if k[0] not in gone}
 
     # -- state ----------------------------------------------------------------------------------
     def joint_states(self, body, indices):
@@ -497,6 +507,18 @@ def joint_friction(urdf_model, joint_name):
     joint = urdf_model.joints.get(joint_name)
     dynamics = getattr(joint, 'dynamics', None)
     return max(0.0, dynamics.friction) if dynamics is not None else 0.0
+
+
+def link_laser_retro(urdf_model, link):
+    """<laserRetro> of a (merged) PyBullet link: the first the URDF links merged into it give (Gazebo keeps it per
+    collision; a ray here knows only the link it hit), 0 if none."""
+    for name, spec in urdf_model.links.items():
+        if urdf_model.lumped_link(name) != link or not spec.collisions:
+            continue
+        value = urdf_model.gazebo_refs.get(name, {}).get('laserRetro')
+        if isinstance(value, float) and value:
+            return value
+    return 0.0
 
 
 def link_friction(urdf_model, link):

@@ -95,6 +95,7 @@ class Collision:
     shape: Shape
     mu: float = None
     mu2: float = None
+    laser_retro: float = 0.0  # what a laser ray that hits it reads as intensity (Gazebo's <laser_retro>)
 
 
 @dataclass
@@ -455,7 +456,11 @@ class _WorldReader:
             for label, value in (('mu', mu), ('mu2', mu2)):
                 if value is not None and value < 0.0:
                     return self.skipped(where, 'friction %s must be >= 0, got %g' % (label, value))
-        return Collision(name, pose, geometry.shape, mu, mu2)
+        try:
+            retro = _child_float(elem, 'laser_retro', 0.0, 'laser_retro')
+        except _Unusable as err:
+            return self.skipped(where, err)
+        return Collision(name, pose, geometry.shape, mu, mu2, retro)
 
     def visual(self, elem, where):
         name = elem.get('name', '')

@@ -101,9 +101,17 @@ class LaserSensor(Sensor):
             return
         position, orientation = self.mount.pose()
         starts, ends = self.geometry.endpoints(position, quaternion_to_matrix(orientation))
-        fractions, hit = cast_rays(self.sim.world, starts, ends)
+        world = self.sim.world
+        retro = world.laser_retro
+        intensities = None
+        if retro:  # Gazebo's ray intensity: the laser_retro of the collision hit, 0 for a miss or none set
+            fractions, hit, objects = cast_rays(world, starts, ends, objects=True)
+            intensities = [retro.get(o, 0.0) for o in objects]
+        else:
+            fractions, hit = cast_rays(world, starts, ends)
         ranges = self.geometry.report(self.geometry.ranges_from_hits(fractions, hit), self.noise)
-        self.publishers['scan'].publish(msgs.laser_scan(stamp, self.config.frame_id, self.geometry, ranges))
+        self.publishers['scan'].publish(msgs.laser_scan(stamp, self.config.frame_id, self.geometry, ranges,
+                                                        intensities))
         self.meter.tick()
 
 

@@ -28,13 +28,15 @@ def header(stamp, frame_id):
     return Header(stamp=stamp, frame_id=frame_id)
 
 
-def laser_scan(stamp, frame_id, geometry, ranges):
-    """`geometry`: ray.ScanGeometry; `ranges`: the reported ranges (inf allowed)."""
+def laser_scan(stamp, frame_id, geometry, ranges, intensities=None):
+    """`geometry`: ray.ScanGeometry; `ranges`: the reported ranges (inf allowed); `intensities`: the
+    laser_retro of what each ray hit (None: all 0)."""
     ranges = np.asarray(ranges, dtype=np.float32)
+    intensities = [0.0] * len(ranges) if intensities is None else [float(v) for v in intensities]
     return LaserScan(header=header(stamp, frame_id), angle_min=geometry.angle_min, angle_max=geometry.angle_max,
                      angle_increment=geometry.angle_increment, time_increment=0.0, scan_time=0.0,
                      range_min=geometry.range_min, range_max=geometry.range_max,
-                     ranges=ranges.tolist(), intensities=[0.0] * len(ranges))
+                     ranges=ranges.tolist(), intensities=intensities)
 
 
 def rgb_image(stamp, frame_id, rgb):

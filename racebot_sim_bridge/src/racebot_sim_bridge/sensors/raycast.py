@@ -4,15 +4,21 @@ import numpy as np
 MAX_RAYS_PER_BATCH = 16384  # PyBullet's limit for one rayTestBatch call
 
 
-def cast_rays(world, starts, ends):
-    """(fractions along each segment, hit flags) for segments starts[i] -> ends[i] (N x 3)."""
+def cast_rays(world, starts, ends, objects=False):
+    """(fractions along each segment, hit flags) for segments starts[i] -> ends[i] (N x 3); with `objects`
+    also what each ray hit, as (PyBullet body id, link index) pairs ((-1, -1) for none)."""
     starts = np.asarray(starts, dtype=np.float64)
     ends = np.asarray(ends, dtype=np.float64)
     fractions = np.ones(len(starts))
     hit = np.zeros(len(starts), dtype=bool)
+    hits = [] if objects else None
     for first in range(0, len(starts), MAX_RAYS_PER_BATCH):
         last = first + MAX_RAYS_PER_BATCH
         results = world.client.rayTestBatch(starts[first:last], ends[first:last], numThreads=1)
         fractions[first:last] = [r[2] for r in results]
         hit[first:last] = [r[0] >= 0 for r in results]
+        if objects:
+            hits.extend((r[0], r[1]) for r in results)
+    if objects:
+        return fractions, hit, hits
     return fractions, hit
