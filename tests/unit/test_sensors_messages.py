@@ -83,3 +83,23 @@ def test_depth_in_millimetres_as_openni_kinect_writes_16uc1():
     values = np.frombuffer(img.data, dtype='<u2').reshape(2, 2)
     assert values.tolist() == [[1234, 0], [500, 65535]]
     assert roundtrip(msgs.depth_image(STAMP, 'd', depth)).encoding == '32FC1'
+
+
+def test_image_encodings_as_gazebo_ros_camera_maps_the_sensor_format():
+    """Row j of issue 17's audit: <image><format> -> encoding (gazebo_ros_camera_utils), the pixels converted."""
+    rgb = np.array([[[200, 100, 50], [10, 20, 30]], [[0, 255, 0], [1, 2, 3]]], dtype=np.uint8)
+    assert msgs.image_encoding('R8G8B8') == 'rgb8' and msgs.image_encoding('L_INT8') == 'mono8'
+    assert msgs.image_encoding('NO_SUCH') == 'bgr8'  # upstream's fallback after its error
+    bgr = roundtrip(msgs.rgb_image(STAMP, 'c', rgb, 'bgr8'))
+    assert (bgr.encoding, bgr.step) == ('bgr8', 6) and bgr.data[:3] == bytes([50, 100, 200])
+    mono = roundtrip(msgs.rgb_image(STAMP, 'c', rgb, 'mono8'))
+    assert (mono.encoding, mono.step) == ('mono8', 2)
+    assert mono.data[0] == round(0.299 * 200 + 0.587 * 100 + 0.114 * 50) and mono.data[2] == round(0.587 * 255)
+    mono16 = roundtrip(msgs.rgb_image(STAMP, 'c', rgb, 'mono16'))
+    assert mono16.step == 4 and np.frombuffer(mono16.data, '<u2')[2] == round(0.587 * 255) * 257
+    rgb16 = roundtrip(msgs.rgb_image(STAMP, 'c', rgb, 'rgb16'))
+    assert rgb16.step == 12 and np.frombuffer(rgb16.data, '<u2')[:3].tolist() == [200 * 257, 100 * 257, 50 * 257]
+    bayer = roundtrip(msgs.rgb_image(STAMP, 'c', rgb, 'bayer_rggb8'))
+    # R at (0, 0), G at (0, 1) and (1, 0), B at (1, 1)
+    assert (bayer.encoding, bayer.step, list(bayer.data)) == ('bayer_rggb8', 2, [200, 20, 255, 3])
+    assert list(roundtrip(msgs.rgb_image(STAMP, 'c', rgb, 'bayer_bggr8')).data) == [50, 20, 255, 1]

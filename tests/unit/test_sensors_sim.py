@@ -36,6 +36,11 @@ class FakePublisher(object):
         pass
 
 
+class FakeService(object):
+    def shutdown(self):
+        pass
+
+
 class FakeRospy(object):
     """The part of rospy SensorManager uses; publishers are recorded by topic."""
     Time = rospy.Time
@@ -43,6 +48,7 @@ class FakeRospy(object):
     def __init__(self, params=None):
         self.params = dict(params or {})
         self.publishers = {}
+        self.services = {}
         self.logs = []
 
     def get_param(self, name, default=None):
@@ -55,6 +61,10 @@ class FakeRospy(object):
         assert queue_size, 'every publisher needs a queue_size'
         self.publishers[topic] = FakePublisher(topic)
         return self.publishers[topic]
+
+    def Service(self, name, service_class, handler):
+        self.services[name] = handler
+        return FakeService()
 
     def loginfo(self, msg):
         self.logs.append(('info', msg))
@@ -150,6 +160,28 @@ def test_scan_matches_the_room_geometry(world):
     expected = sensors_geometry.expected_scan(str(ROOM), position, yaw, scan.angle_min, scan.angle_increment, 1081)
     checked, bad = sensors_geometry.compare(scan.ranges, expected, scan.range_min, scan.range_max, 0.03)
     assert checked > 1000 and not bad, bad[:10]
+
+
+def test_set_camera_info_replaces_the_published_camera_info(world):
+    """camera_info_manager's set_camera_info, as gazebo_ros_camera offers it under the camera's namespace."""
+    from sensor_msgs.msg import CameraInfo
+    from sensor_msgs.srv import SetCameraInfoRequest
+    sim, fake, manager, robot = world
+    handler = fake.services['/rrbot/camera1/set_camera_info']
+    service = '/rrbot/camera1/set_camera_info'
+    camera = next(s for s in manager._active if s.config.params.get('set_camera_info') == service)
+    calibrated = CameraInfo(width=camera.camera.width, height=camera.camera.height, distortion_model='plumb_bob',
+                            D=[0.1, 0.0, 0.0, 0.0, 0.0], K=[500.0, 0, 400.0, 0, 500.0, 400.0, 0, 0, 1])
+    calibrated.header.frame_id = 'camera'
+    assert handler(SetCameraInfoRequest(calibrated)).success
+    listen(fake, '/rrbot/camera1/camera_info')
+    run(sim, 0.1)
+    info = fake.publishers['/rrbot/camera1/camera_info'].messages[-1]
+    assert list(info.K) == [500.0, 0, 400.0, 0, 500.0, 400.0, 0, 0, 1] and list(info.D) == [0.1, 0, 0, 0, 0]
+    assert info.header.stamp.to_sec() > 0
+    wrong = CameraInfo(width=10, height=10)
+    response = handler(SetCameraInfoRequest(wrong))
+    assert not response.success and '10 x 10' in response.status_message
 
 
 RETRO_BOX = """<sdf version="1.6"><world name="w"><model name="reflector"><static>true</static>

@@ -191,6 +191,7 @@ def sensor_config(spec, spawn_namespace='', model_name='', node_namespace='/'):
             config.params['update_rate'] = _number(params, 'updateRate', 0.0, warnings, what)
             config.topics['image'] = join_topic(ns, params.get('imageTopicName') or 'image_raw')
             config.topics['info'] = join_topic(ns, params.get('cameraInfoTopicName') or 'camera_info')
+            config.params['set_camera_info'] = join_topic(ns, 'set_camera_info')  # camera_info_manager's service
         else:
             config.topics['image'] = join_topic(ns, params.get('imageTopicName') or 'ir/image_raw')
             config.topics['info'] = join_topic(ns, params.get('cameraInfoTopicName') or 'ir/camera_info')
@@ -198,6 +199,7 @@ def sensor_config(spec, spawn_namespace='', model_name='', node_namespace='/'):
             config.topics['depth_info'] = join_topic(ns, params.get('depthImageCameraInfoTopicName')
                                                      or 'depth/camera_info')
             config.topics['points'] = join_topic(ns, params.get('pointCloudTopicName') or 'points')
+            config.params['set_camera_info'] = join_topic(ns, 'set_camera_info')  # camera_info_manager's service
             if 'depthImageInfoTopicName' in params and 'depthImageCameraInfoTopicName' not in params:
                 warnings.append('%s: <depthImageInfoTopicName> is not read by %s (it reads '
                                 '<depthImageCameraInfoTopicName>); depth camera_info goes to %s, as upstream'

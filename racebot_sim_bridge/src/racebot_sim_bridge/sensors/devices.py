@@ -12,6 +12,7 @@ import time as walltime
 import numpy as np
 from gazebo_msgs.msg import ContactsState
 from sensor_msgs.msg import CameraInfo, Image, Imu, LaserScan, PointCloud2, Range
+from sensor_msgs.srv import SetCameraInfo
 
 from . import messages as msgs
 from ..rotations import quaternion_multiply, rpy_to_quaternion
@@ -33,6 +34,13 @@ from .schedule import FrameThrottle, RateMeter, UpdateSchedule
 # until the camera's next due time; with two, the next frame already waits in its queue (measured:
 # 11.7 -> 12.5 Hz for the 800 x 800 camera). Each frame is still of the sim time it is stamped with.
 FRAMES_IN_WORKER = 2
+
+
+def _serialized(msg):
+    from io import BytesIO
+    buf = BytesIO()
+    msg.serialize(buf)
+    return buf.getvalue()
 
 
 class Sensor(object):
@@ -77,6 +85,9 @@ class Sensor(object):
         publishers, self.publishers = self.publishers, {}
         for p in publishers.values():
             p.unregister()
+        service, self.service = getattr(self, 'service', None), None
+        if service is not None:
+            service.shutdown()
         buffers = getattr(self, 'buffers', None)
         if buffers is not None:
             buffers.close()
@@ -122,8 +133,12 @@ class CameraSensor(Sensor):
     def __init__(self, manager, robot, spec, config):
         super(CameraSensor, self).__init__(manager, robot, spec, config)
         cam = spec.camera
-        if cam.format not in ('R8G8B8', 'RGB_INT8'):
-            config.warnings.append("sensor '%s': image format %s is published as rgb8" % (spec.name, cam.format))
+        self.encoding = msgs.image_encoding(cam.format)
+        if cam.format not in msgs.IMAGE_ENCODINGS:
+            config.warnings.append("sensor '%s': image format %r is not one gazebo_ros_camera knows (L8, L16, R8G8B8, "
+                                   "B8G8R8, R16G16B16, BAYER_RGGB8, ...); published as bgr8, as upstream does"
+                                   % (spec.name, cam.format))
+        self.stored_info = None  # a camera_info set through set_camera_info (camera_info_manager's), else None
         self.camera = PinholeCamera(cam.width, cam.height, cam.horizontal_fov, cam.clip_near, cam.clip_far)
         noise = make_noise(cam.noise_type, cam.noise_mean, cam.noise_stddev, manager.noise_enabled)
         self.frames = CameraFrames(self.camera, noise)  # frames rendered in the physics thread
@@ -135,8 +150,26 @@ class CameraSensor(Sensor):
         self.throttle = FrameThrottle(config.params.get('update_rate', 0.0))
         self.advertise('image', Image, 2)
         self.advertise('info', CameraInfo, 2)
+        self.service = manager.rospy.Service(config.params['set_camera_info'], SetCameraInfo, self.set_camera_info)
+
+    def set_camera_info(self, req):
+        """camera_info_manager's set_camera_info: the camera_info published from now on (until the model goes).
+        Upstream also writes it to ~/.ros/camera_info/<camera>.yaml; racebot keeps it in memory only."""
+        from sensor_msgs.srv import SetCameraInfoResponse
+        info = req.camera_info
+        if (info.width, info.height) not in ((0, 0), (self.camera.width, self.camera.height)):
+            return SetCameraInfoResponse(False, 'camera_info is %d x %d; this camera is %d x %d'
+                                         % (info.width, info.height, self.camera.width, self.camera.height))
+        self.stored_info = info  # one assignment: the publishing thread sees the old or the new one
+        return SetCameraInfoResponse(True, 'camera_info stored (in memory: racebot writes no calibration file)')
 
     def info(self, stamp):
+        stored = self.stored_info
+        if stored is not None:
+            msg = CameraInfo()
+            msg.deserialize(_serialized(stored))  # a copy: the stored one is published from two threads
+            msg.header.stamp = stamp
+            return msg
         p = self.config.params
         return msgs.camera_info(stamp, self.config.frame_id, self.camera, p['baseline'], p['distortion'],
                                 self.camera.reported_intrinsics(p.get('focal_length', 0.0), p.get('cx', 0.0),
@@ -206,7 +239,7 @@ class CameraSensor(Sensor):
         pubs = self.publishers  # the reader thread may publish while the robot is deleted
         if self.failed or not pubs:
             return
-        pubs['image'].publish(msgs.rgb_image(stamp, self.config.frame_id, rgb))
+        pubs['image'].publish(msgs.rgb_image(stamp, self.config.frame_id, rgb, self.encoding))
         pubs['info'].publish(self.info(stamp))
         self.meter.tick()
 
@@ -248,7 +281,7 @@ class DepthCameraSensor(CameraSensor):
                 points = self.camera.points(depth, self.rays)
                 pubs['points'].publish(msgs.point_cloud(stamp, frame_id, points, rgb))
         if 'image' in wanted:
-            pubs['image'].publish(msgs.rgb_image(stamp, frame_id, rgb))
+            pubs['image'].publish(msgs.rgb_image(stamp, frame_id, rgb, self.encoding))
         for role in ('info', 'depth_info'):
             pubs[role].publish(self.info(stamp))
         self.meter.tick()

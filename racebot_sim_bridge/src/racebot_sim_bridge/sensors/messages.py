@@ -39,11 +39,45 @@ def laser_scan(stamp, frame_id, geometry, ranges, intensities=None):
                      ranges=ranges.tolist(), intensities=intensities)
 
 
-def rgb_image(stamp, frame_id, rgb):
+# gazebo_ros_camera_utils: the sensor's <image><format> -> the image's encoding (an unknown format is
+# published as bgr8, as upstream does after its error)
+IMAGE_ENCODINGS = {
+    'L8': 'mono8', 'L_INT8': 'mono8', 'L16': 'mono16', 'L_INT16': 'mono16',
+    'R8G8B8': 'rgb8', 'RGB_INT8': 'rgb8', 'B8G8R8': 'bgr8', 'BGR_INT8': 'bgr8',
+    'R16G16B16': 'rgb16', 'RGB_INT16': 'rgb16',
+    'BAYER_RGGB8': 'bayer_rggb8', 'BAYER_BGGR8': 'bayer_bggr8', 'BAYER_GBRG8': 'bayer_gbrg8',
+    'BAYER_GRBG8': 'bayer_grbg8',
+}
+# which colour each cell of a 2 x 2 Bayer tile samples: (row 0 col 0, row 0 col 1, row 1 col 0, row 1 col 1)
+BAYER_TILES = {'bayer_rggb8': 'RGGB', 'bayer_bggr8': 'BGGR', 'bayer_gbrg8': 'GBRG', 'bayer_grbg8': 'GRBG'}
+
+
+def image_encoding(image_format):
+    return IMAGE_ENCODINGS.get(image_format, 'bgr8')
+
+
+def rgb_image(stamp, frame_id, rgb, encoding='rgb8'):
+    """An image of a rendered RGB frame (height x width x 3 uint8) in `encoding` (image_encoding()): mono by
+    ITU-R 601 luminance, 16-bit channels as value * 257 (full scale to full scale), Bayer as the mosaic."""
     rgb = np.ascontiguousarray(rgb, dtype=np.uint8)
     height, width = rgb.shape[:2]
-    return Image(header=header(stamp, frame_id), height=height, width=width, encoding='rgb8', is_bigendian=0,
-                 step=3 * width, data=rgb.tobytes())
+    if encoding == 'bgr8':
+        data = rgb[:, :, ::-1]
+    elif encoding in ('mono8', 'mono16'):
+        luma = np.rint(rgb.astype(np.float32) @ np.array([0.299, 0.587, 0.114], dtype=np.float32)).clip(0, 255)
+        data = luma.astype(np.uint8) if encoding == 'mono8' else (luma.astype('<u2') * 257)
+    elif encoding == 'rgb16':
+        data = rgb.astype('<u2') * 257
+    elif encoding in BAYER_TILES:
+        tile = BAYER_TILES[encoding]
+        data = np.empty((height, width), dtype=np.uint8)
+        for k, colour in enumerate(tile):
+            data[k // 2::2, k % 2::2] = rgb[k // 2::2, k % 2::2, 'RGB'.index(colour)]
+    else:
+        encoding, data = 'rgb8', rgb
+    data = np.ascontiguousarray(data)
+    return Image(header=header(stamp, frame_id), height=height, width=width, encoding=encoding, is_bigendian=0,
+                 step=data.nbytes // height, data=data.tobytes())
 
 
 def depth_image(stamp, frame_id, depth, millimetres=False):
