@@ -45,6 +45,7 @@ FULL = {
     'modes': ['parallel', 'ackermann'],
     'determinism_s': 20.0,
     'profile_steps': 5000,
+    'fleet': dict(counts=[1, 2, 4, 8], rounds=3, window_s=4.0, warmup_s=1.5),
 }
 QUICK = {
     'speed': dict(rounds=3, window_s=0.7, warmup_s=0.5, profile_s=0, memory_sim_s=10.0, memory_timeout_s=120),
@@ -57,6 +58,7 @@ QUICK = {
     'modes': ['parallel'],
     'determinism_s': 2.0,
     'profile_steps': 500,
+    'fleet': dict(counts=[1, 2], rounds=3, window_s=0.5, warmup_s=0.3),
 }
 SCENARIO_TIMEOUT_S = 1800
 
@@ -190,8 +192,16 @@ def part_fidelity(cfg, out, results):
         raise common.BenchError('fidelity failed in %s steering (see errors)' % ', '.join(failures))
 
 
+def part_fleet(cfg, out, results):
+    """1, 2, 4, 8 differential-drive robots with laser and IMU beside bare PyBullet (bench/fleet.py)."""
+    from bench import plot
+    results['fleet'] = run_scenario('fleet', cfg['fleet'], out)
+    plot.fleet(os.path.join(out, 'fleet.png'), results['fleet'])
+
+
 PARTS = (('inprocess', part_inprocess), ('determinism', part_determinism), ('speed', part_speed),
-         ('realtime', part_realtime), ('sensors', part_sensors), ('startup', part_startup), ('fidelity', part_fidelity))
+         ('realtime', part_realtime), ('sensors', part_sensors), ('startup', part_startup), ('fidelity', part_fidelity),
+         ('fleet', part_fleet))
 
 
 def machine():
@@ -339,7 +349,8 @@ def main():
     for name, err in results['errors'].items():
         print('\n%s failed:\n%s' % (name, err))
     print('\nraw figures: %s; plots: %s' % (os.path.relpath(os.path.join(out, 'bench.json')), ', '.join(
-        os.path.relpath(os.path.join(out, p)) for p in ('turning_circles.png', 'hinge_step.png', 'sensor_rates.png')
+        os.path.relpath(os.path.join(out, p))
+        for p in ('turning_circles.png', 'hinge_step.png', 'sensor_rates.png', 'fleet.png')
         if os.path.exists(os.path.join(out, p)))))
     print('total %.0f s' % results['total_s'])
     return 1 if results['errors'] else 0

@@ -103,8 +103,20 @@ class BenchQuickTest(unittest.TestCase):
                 self.assertGreater(sens[path]['topics'][topic]['wall_hz'], 0.0, (path, topic))
         self.assertIn('TinyRenderer in the physics thread', self.output)  # the side-by-side table
 
+    def test_fleet_beside_bare_pybullet(self):
+        fleet = self.results['fleet']
+        self.assertEqual(sorted(f['robots'] for f in fleet.values()), [1, 2])
+        for f in fleet.values():
+            for key in ('rtf', 'ceiling_rtf', 'ratio'):
+                s = f['spread'][key]
+                self.assertTrue(s['n'] >= 3 and finite(s['median']) and s['median'] > 0, (f['robots'], key, s))
+            # every robot's laser and IMU delivered (subscribed, as a SLAM node would)
+            self.assertEqual(len(f['messages']), 2 * f['robots'], f['messages'])
+            self.assertTrue(all(c > 0 for c in f['messages'].values()), f['messages'])
+        self.assertIn('fleet of 2: racebot / bare PyBullet', [r[0] for r in self.results['compared']['rows']])
+
     def test_plots_are_png_files(self):
-        for name in ('turning_circles.png', 'hinge_step.png', 'sensor_rates.png'):
+        for name in ('turning_circles.png', 'hinge_step.png', 'sensor_rates.png', 'fleet.png'):
             with open(os.path.join(OUT, name), 'rb') as f:
                 self.assertEqual(f.read(8), b'\x89PNG\r\n\x1a\n', name)
 

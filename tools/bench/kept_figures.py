@@ -50,6 +50,11 @@ def key_figures(r):
         if sp.get('rss_end_bytes'):
             add('speed.rss_end_mb', 'simulator RSS at %.0f s of sim time' % sp['memory_sim_s'],
                 sp['rss_end_bytes'] / 1048576.0, ' MB', 'lower', '%.0f', 0.10)
+    for f in (r.get('fleet') or {}).values():
+        add('fleet.%d.ratio' % f['robots'], 'fleet of %d: racebot / bare PyBullet' % f['robots'], f['spread']['ratio'],
+            better='higher', tolerance=0.03)
+        add('fleet.%d.rtf' % f['robots'], 'fleet of %d: real-time factor' % f['robots'], f['spread']['rtf'],
+            better='higher')
     rt = r.get('realtime')
     if rt:
         w = rt['window']

@@ -152,3 +152,35 @@ def room_path_figure(shapes, path):
 
 def room_path(path_png, shapes, path):
     return save(room_path_figure(shapes, path), path_png)
+
+
+# -- fleet -----------------------------------------------------------------------------------------
+def fleet_figure(fleet):
+    """fleet: {str(n): {'robots', 'bridge_rtf', 'ceiling_rtf', 'spread'}} -> real-time factor against the number of
+    robots, racebot beside bare PyBullet, with each median's spread."""
+    runs = sorted(fleet.values(), key=lambda f: f['robots'])
+    fig = new_figure(6.5, 4.5)
+    ax = fig.add_subplot(1, 1, 1)
+    n = [f['robots'] for f in runs]
+    for key, label in (('ceiling_rtf', 'bare PyBullet (same bodies, same ray casts)'), ('rtf', 'racebot through ROS')):
+        med = [f['spread'][key]['median'] for f in runs]
+        lo = [m - f['spread'][key]['min'] for m, f in zip(med, runs)]
+        hi = [f['spread'][key]['max'] - m for m, f in zip(med, runs)]
+        ax.errorbar(n, med, yerr=[lo, hi], marker='o', capsize=3, label=label)
+    for f in runs:
+        ax.annotate('%.2f' % f['ratio'], (f['robots'], f['spread']['rtf']['median']), textcoords='offset points',
+                    xytext=(4, -12), fontsize='small')
+    ax.set_xscale('log', base=2)
+    ax.set_xticks(n)
+    ax.set_xticklabels([str(k) for k in n])
+    ax.set_xlabel('differential-drive robots (laser 360 rays at 10 Hz, IMU at 50 Hz, each)')
+    ax.set_ylabel('real-time factor, as fast as possible')
+    ax.set_title('fleet: racebot / bare PyBullet (numbers: the ratio)')
+    ax.grid(True, alpha=0.3)
+    ax.legend(fontsize='small')
+    fig.tight_layout()
+    return fig
+
+
+def fleet(path, fleet_results):
+    return save(fleet_figure(fleet_results), path)

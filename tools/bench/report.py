@@ -56,6 +56,17 @@ def rows(r):
     elif 'speed' in errors:
         add('speed (ceiling, bridge)', 'ERROR', '-', '-', 'NO')
 
+    fleet = r.get('fleet')
+    if fleet:
+        for f in sorted(fleet.values(), key=lambda f: f['robots']):
+            sp_ = f['spread']
+            add('fleet: %d diff-drive robot%s with laser and IMU, as fast as possible: RTF racebot / bare PyBullet '
+                '(ratio)' % (f['robots'], '' if f['robots'] == 1 else 's'),
+                '%s / %s (%s)' % (stats.with_spread(sp_['rtf']), stats.with_spread(sp_['ceiling_rtf']),
+                                  stats.with_spread(sp_['ratio'])), '-', 'reported', '-')
+    elif 'fleet' in errors:
+        add('fleet (1, 2, 4, 8 robots)', 'ERROR', '-', '-', 'NO')
+
     rt = r.get('realtime')
     if rt:
         w = rt['window']

@@ -603,6 +603,11 @@ def determinism(p, out):
     return {'samples': len(trajectory)}
 
 
+def fleet(p, out):
+    from .fleet import fleet as run
+    return run(p, out)
+
+
 SCENARIOS = {'speed': speed, 'realtime': realtime, 'sensors': sensors_realtime, 'startup': startup,
              'fidelity': fidelity,
-             'determinism': determinism}
+             'determinism': determinism, 'fleet': fleet}
