@@ -1,5 +1,5 @@
-"""Gazebo's model plugins (gazebo_plugins noetic-devel, and hector_gazebo_plugins' GPS), simulated: one module
-per plugin.
+"""Gazebo's model plugins (gazebo_plugins noetic-devel; hector_gazebo_plugins' GPS and IMU), simulated: one
+module per plugin.
 
 MODEL_PLUGINS maps a plugin's library name, as `plugin_key` spells it ('gazebo_ros_diff_drive'
 for filename="libgazebo_ros_diff_drive.so", a path or the bare name alike), to its class (a
@@ -9,9 +9,9 @@ Sensor plugins (a <sensor>'s <plugin>) are in ../sensors; gazebo_ros_control is 
 """
 import os
 
-from . import diff_drive, hector_gps, imu, joint_state_publisher, p3d, planar_move, skid_steer_drive
+from . import diff_drive, hector_gps, hector_imu, imu, joint_state_publisher, p3d, planar_move, skid_steer_drive
 
-MODULES = (skid_steer_drive, planar_move, p3d, joint_state_publisher, diff_drive, imu, hector_gps)
+MODULES = (skid_steer_drive, planar_move, p3d, joint_state_publisher, diff_drive, imu, hector_gps, hector_imu)
 
 
 def plugin_key(filename):
