@@ -152,15 +152,23 @@ class GazeboServices(object):
             # Gazebo cannot load it and the service waits out its 10 s; the reason is in the server's log
             self.rospy.logerr('SpawnModel: the URDF of %s is not valid: %s' % (name, err))
             return srv.SpawnModelResponse(False, SPAWN_NOT_LOADED % name)
+        return self._spawned(lambda: self.sim.spawn_urdf(name, req.model_xml, req.robot_namespace, pose[0], pose[1]))
+
+    def _spawned(self, spawn):
+        """The response to a spawn through the URDF path; a robot with gazebo_ros_control gets its services."""
         try:
-            robot = self.sim.spawn_urdf(name, req.model_xml, req.robot_namespace, pose[0], pose[1])
+            robot = spawn()
         except SpawnError as err:
             return srv.SpawnModelResponse(False, self._err(str(err)))
-        if robot.cm is not None:
-            self.cm_services[name] = ControllerManagerServices(self.rospy, robot.cm)
-            self.rospy.loginfo('%s: controller manager ready under %s/controller_manager (control period %g s, '
-                               'joints: %s)' % (name, robot.ns, robot.control_period, ', '.join(robot.hw.names)))
+        self.adopt(robot)
         return srv.SpawnModelResponse(True, SPAWN_OK)
+
+    def adopt(self, robot):
+        """Offers the services of a spawned robot's controller manager, when it has one."""
+        if robot.cm is not None:
+            self.cm_services[robot.name] = ControllerManagerServices(self.rospy, robot.cm)
+            self.rospy.loginfo('%s: controller manager ready under %s/controller_manager (control period %g s, '
+                               'joints: %s)' % (robot.name, robot.ns, robot.control_period, ', '.join(robot.hw.names)))
 
     def _spawn_sdf(self, req, pose):
         from . import sdf_world
@@ -185,6 +193,8 @@ class GazeboServices(object):
             return srv.SpawnModelResponse(False, SPAWN_EXISTS)
         # the request's pose, then the model's own <pose> in it (updateSDFAttributes)
         model.pose = as_xyz_rpy(frames.in_world(pose, as_transform(model.pose)))
+        if model.is_robot:  # joints, plugins or sensors: the URDF path simulates them
+            return self._spawned(lambda: self.sim.spawn_sdf_robot(model, req.robot_namespace))
         try:
             self.sim.world.add_sdf_model(model)
         except PhysicsError as err:

@@ -71,7 +71,9 @@ class Body(object):
 
     `source`: the BodySource it was built from. `extra_bodies`: [(link name, PyBullet id)] of an SDF
     model's links after the first (each link its own body; the first is `id`). `copy_key`: None until
-    world_copy.body_key gives the body its identity across a delete and respawn under the same name."""
+    world_copy.body_key gives the body its identity across a delete and respawn under the same name.
+    `model_offset`: for an SDF robot spawned as a URDF (sdf_urdf.py), its root link's pose in the SDF model
+    frame, (xyz, quaternion), when not the identity; else None (a URDF's model frame is its root link's)."""
 
     def __init__(self, client, name, body_id, static, source, extra_bodies=()):
         self.client = client
@@ -82,6 +84,7 @@ class Body(object):
         self.kind = source.kind  # 'urdf' or 'sdf'
         self.extra_bodies = list(extra_bodies)
         self.copy_key = None
+        self.model_offset = None
         dyn = client.getDynamicsInfo(body_id, -1)
         self._inertial = (tuple(dyn[3]), tuple(dyn[4]))  # base inertial frame in the link frame
         self.spawn_pose = self.pose()
@@ -152,11 +155,14 @@ class PhysicsWorld(object):
 
     # -- world --------------------------------------------------------------------------------
     def load_world(self, world, warn=None):
-        """Creates every model of a parsed sdf_world.World; returns the names created. With `warn`,
+        """Creates every model of a parsed sdf_world.World but its robots (Model.is_robot, spawned through
+        the URDF path by the Simulator); returns the names created. With `warn`,
         a model that cannot be built (no link with usable geometry left) is skipped and warn(message)
         told, as the reader skips degenerate elements; without it, PhysicsError."""
         created = []
         for model in world.models:
+            if model.is_robot:
+                continue  # joints, plugins or sensors: Simulator.spawn_world_robots spawns it as a URDF
             try:
                 self.add_sdf_model(model)
             except PhysicsError as err:
@@ -323,8 +329,11 @@ class PhysicsWorld(object):
         with open(path, 'w') as f:
             f.write(prepare_urdf_for_bullet(urdf_xml, urdf_model, self.visuals))
         flags = pb.URDF_USE_INERTIA_FROM_FILE | pb.URDF_MAINTAIN_LINK_ORDER | pb.URDF_USE_IMPLICIT_CYLINDER
+        # A root link named world is the world (sdformat's URDF reader): its joints hold the robot to the world.
+        fixed = urdf_model.root_link == 'world'
         try:
-            body_id = self.client.loadURDF(path, basePosition=position, baseOrientation=orientation, flags=flags)
+            body_id = self.client.loadURDF(path, basePosition=position, baseOrientation=orientation, flags=flags,
+                                           useFixedBase=fixed)
         except pb.error as err:
             raise PhysicsError("PyBullet could not load the URDF of '%s': %s" % (name, err))
         # urdf_xml has its meshes resolved: a copy needs no package path

@@ -12,8 +12,10 @@ block's model and link poses, which Gazebo applies when it loads a saved world. 
 (model://, package://, file://, paths) are resolved and the files converted here
 (meshes.convert), so a parsed world names only absolute files and needs no search path again.
 
-Everything else that matters to the physics (heightmap and polyline geometry, plugins, joints
-of world models, nested models, includes inside models, actors) is skipped with ONE entry in
+A model's joints (revolute, prismatic, fixed), its ``<plugin>``s and its links' ``<sensor>``s are
+kept (plugins and sensors as the XML written): such a model is a robot, spawned through the URDF
+path (sdf_urdf.py).  Everything else that matters to the physics (heightmap and polyline
+geometry, world plugins, nested models, includes inside models, actors) is skipped with ONE entry in
 ``World.warnings`` naming the element, where it is and why; so are elements whose values are
 unusable (non-numeric, non-finite, zero or negative sizes) and models or meshes that cannot be
 found (the warning names the URI and every place searched) or read.  Only a missing file, text
@@ -30,7 +32,7 @@ from dataclasses import dataclass, field
 from typing import NamedTuple
 
 __all__ = [
-    'WorldError', 'World', 'Physics', 'Light', 'sun_light', 'Model', 'Link', 'Collision', 'Visual', 'Shape',
+    'WorldError', 'World', 'Physics', 'Light', 'sun_light', 'Model', 'Link', 'Joint', 'Collision', 'Visual', 'Shape',
     'parse_world', 'load_world', 'GAZEBO_MATERIALS', 'EMPTY_WORLD_SDF', 'ZERO_POSE',
 ]
 
@@ -117,6 +119,32 @@ class Link:
     inertial_pose: tuple = ZERO_POSE
     collisions: list = field(default_factory=list)
     visuals: list = field(default_factory=list)
+    sensors: list = field(default_factory=list)  # each <sensor> element as written (XML text)
+
+
+# SDF's "no limit": <limit> defaults of lower/upper (+-1e16) and of effort/velocity (-1)
+UNLIMITED = 1e16
+
+
+@dataclass
+class Joint:
+    """A joint.  ``pose`` is the joint frame in the child link's frame (SDF 1.6); ``axis`` is in that
+    frame, or in the model's when ``axis_in_model`` (<use_parent_model_frame> or expressed_in
+    __model__).  ``type`` is revolute, prismatic or fixed; limits are SDF's (``lower``/``upper`` of
+    magnitude UNLIMITED and negative ``effort``/``velocity`` mean none)."""
+    name: str
+    type: str
+    parent: str
+    child: str
+    pose: tuple = ZERO_POSE
+    axis: tuple = (0.0, 0.0, 1.0)
+    axis_in_model: bool = False
+    lower: float = -UNLIMITED
+    upper: float = UNLIMITED
+    effort: float = -1.0
+    velocity: float = -1.0
+    damping: float = 0.0
+    friction: float = 0.0
 
 
 @dataclass
@@ -125,6 +153,13 @@ class Model:
     pose: tuple = ZERO_POSE
     static: bool = False
     links: list = field(default_factory=list)
+    joints: list = field(default_factory=list)
+    plugins: list = field(default_factory=list)  # each <plugin> element as written (XML text)
+
+    @property
+    def is_robot(self):
+        """Joints, plugins or sensors: what only the URDF path (sdf_urdf.py) simulates."""
+        return bool(self.joints or self.plugins or any(link.sensors for link in self.links))
 
     def link(self, name):
         """The link called ``name``; KeyError naming the model's links otherwise."""
@@ -236,14 +271,11 @@ _WORLD_UNSUPPORTED = {
     'frame': 'frames are not supported',
 }
 _MODEL_UNSUPPORTED = {
-    'joint': 'joints of world models are not supported; its links are placed as given',
-    'plugin': 'model plugins are not supported',
     'model': 'nested models are not supported; move it to the world level',
     'include': 'includes inside a model are not supported',
     'gripper': 'grippers are not supported',
 }
 _LINK_UNSUPPORTED = {
-    'sensor': 'sensors of world models are not supported',
     'projector': 'projectors are not supported',
     'light': 'lights are not simulated',
     'audio_source': 'audio is not supported',
@@ -513,10 +545,60 @@ class _WorldReader:
                 visual = self.visual(child, where)
                 if visual is not None:
                     link.visuals.append(visual)
+            elif child.tag == 'sensor':
+                link.sensors.append(ET.tostring(child, encoding='unicode'))
             elif child.tag in _LINK_UNSUPPORTED:
                 self.warn(where, '<%s> %s: %s; skipped' % (
                     child.tag, _quote(child.get('name', '')), _LINK_UNSUPPORTED[child.tag]))
         return link
+
+    def joint(self, elem, where):
+        """A <joint>; None (warned) when unusable.  ball, universal, revolute2, screw and gearbox
+        joints are not simulated: made fixed, with a warning, so that the links stay joined."""
+        name = elem.get('name')
+        if not name:
+            return self.skipped(where, 'a <joint> without a name')
+        where = '%s joint %s' % (where, _quote(name))
+        kind = elem.get('type', '')
+        parent, child = (elem.findtext('parent') or '').strip(), (elem.findtext('child') or '').strip()
+        if not parent or not child:
+            return self.skipped(where, 'a joint needs <parent> and <child> link names')
+        if kind not in ('revolute', 'prismatic', 'fixed'):
+            if kind not in ('ball', 'universal', 'revolute2', 'screw', 'gearbox'):
+                return self.skipped(where, 'unknown joint type %s (SDF has revolute, prismatic, fixed, ball, '
+                                    'universal, revolute2, screw, gearbox)' % _quote(kind))
+            self.warn(where, '%s joints are not supported; made fixed' % kind)
+            kind = 'fixed'
+        try:
+            joint = Joint(name, kind, parent, child, pose=self.pose(elem, where))
+            axis = elem.find('axis')
+            if axis is not None and kind != 'fixed':
+                xyz = axis.find('xyz')
+                if xyz is not None:
+                    joint.axis = _floats(xyz.text, 3, 'axis xyz')
+                    joint.axis_in_model = xyz.get('expressed_in') == '__model__'
+                joint.axis_in_model = _child_bool(axis, 'use_parent_model_frame', joint.axis_in_model,
+                                                  'use_parent_model_frame')
+                if not any(joint.axis):
+                    raise _Unusable('axis xyz is the zero vector; give the direction the joint moves along')
+                limit = axis.find('limit')
+                if limit is not None:
+                    joint.lower = _child_float(limit, 'lower', -UNLIMITED, 'limit lower')
+                    joint.upper = _child_float(limit, 'upper', UNLIMITED, 'limit upper')
+                    joint.effort = _child_float(limit, 'effort', -1.0, 'limit effort')
+                    joint.velocity = _child_float(limit, 'velocity', -1.0, 'limit velocity')
+                    if joint.lower > joint.upper:
+                        raise _Unusable('limit lower %g is above upper %g' % (joint.lower, joint.upper))
+                dynamics = axis.find('dynamics')
+                if dynamics is not None:
+                    joint.damping = _child_float(dynamics, 'damping', 0.0, 'dynamics damping')
+                    joint.friction = _child_float(dynamics, 'friction', 0.0, 'dynamics friction')
+                    if joint.damping < 0 or joint.friction < 0:
+                        raise _Unusable('dynamics damping and friction must be >= 0, got %g and %g'
+                                        % (joint.damping, joint.friction))
+        except _Unusable as err:
+            return self.skipped(where, err)
+        return joint
 
     def model(self, elem):
         name = elem.get('name')
@@ -539,6 +621,12 @@ class _WorldReader:
                     self.warn(where, 'a second link %s; skipped' % _quote(link.name))
                     continue
                 model.links.append(link)
+            elif child.tag == 'joint':
+                joint = self.joint(child, where)
+                if joint is not None:
+                    model.joints.append(joint)
+            elif child.tag == 'plugin':
+                model.plugins.append(ET.tostring(child, encoding='unicode'))
             elif child.tag in _MODEL_UNSUPPORTED:
                 self.warn(where, '<%s> %s: %s; skipped' % (
                     child.tag, _quote(child.get('name', '')), _MODEL_UNSUPPORTED[child.tag]))

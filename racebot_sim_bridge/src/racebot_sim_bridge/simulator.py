@@ -7,11 +7,12 @@ read joints, update the controller manager when a control period has elapsed, wr
 """
 import threading
 
-from . import physics, plugin_namespace, urdf_model
+from . import physics, plugin_namespace, sdf_urdf, urdf_model
 from .controller_manager import ControllerManager
 from .controllers.base import shortest_angular_distance_with_limits
 from .hardware import EFFORT, POSITION, VELOCITY, RobotHW, shortest_angular_distance
 from .pid import Pid
+from .rotations import compose
 
 CONTROL_PLUGIN = 'libgazebo_ros_control.so'
 
@@ -213,6 +214,34 @@ class Simulator(object):
             for hook in self.on_spawn:
                 hook(robot)
             return robot
+
+    def spawn_sdf_robot(self, model, robot_namespace=''):
+        """Spawns an SDF model with joints, plugins or sensors (sdf_world.Model.is_robot) through the URDF
+        path (sdf_urdf.py), at its <pose>; returns the Robot. SpawnError when it cannot be."""
+        try:
+            conversion = sdf_urdf.model_urdf(model)
+        except sdf_urdf.ConversionError as err:
+            raise SpawnError('SpawnModel: Failure - the SDF model %s cannot be simulated: %s' % (model.name, err))
+        for w in conversion.warnings:
+            self.log.warn(w)
+        position, orientation = compose(model.pose, conversion.root_pose)
+        robot = self.spawn_urdf(model.name, conversion.urdf, robot_namespace, position, orientation)
+        if conversion.root_pose != sdf_urdf.IDENTITY:  # the services report the SDF model frame
+            robot.body.model_offset = conversion.root_pose
+        return robot
+
+    def spawn_world_robots(self):
+        """Spawns the world file's robots (models with joints, plugins or sensors), once the plugin and
+        sensor managers listen to on_spawn; returns the Robots. One that cannot be spawned is warned about
+        and left out."""
+        robots = []
+        for model in self.spec.models:
+            if model.is_robot and model.name not in self.world.bodies:
+                try:
+                    robots.append(self.spawn_sdf_robot(model))
+                except SpawnError as err:
+                    self.log.warn('world: %s; the world loads without it' % err)
+        return robots
 
     def _pid_gains(self, name, robot_ns, hw_joints):
         """{joint: Pid} for the position and velocity joints whose `<ns>/gazebo_ros_control/pid_gains/<joint>`

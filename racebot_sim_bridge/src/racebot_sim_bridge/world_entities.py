@@ -1,9 +1,10 @@
 """The world's models and links as gazebo_ros's state services see them: found by name, posed, moved.
 
 No rospy. Callers hold `Simulator.lock`. A model's pose is its model frame (Gazebo's Model::WorldPose):
-a URDF model's root link frame; an SDF model's <pose> (its first link's body, less that link's pose in
-the model). Links: a URDF model's links after the fixed-joint merge (what Gazebo keeps as links); an
-SDF model's links, each its own PyBullet body. Twists are PyBullet's (centre-of-mass velocities).
+a URDF model's root link frame (of an SDF robot spawned as a URDF, less the root link's pose in the SDF
+model, Body.model_offset); an SDF model's <pose> (its first link's body, less that link's pose in the
+model). Links: a URDF model's links after the fixed-joint merge (what Gazebo keeps as links); an SDF
+model's links, each its own PyBullet body. Twists are PyBullet's (centre-of-mass velocities).
 
 PyBullet holds an articulated model in reduced coordinates, so one link cannot be put somewhere on its
 own: set_link_state on a URDF link moves its whole model rigidly (joint positions kept, joint velocities
@@ -67,8 +68,8 @@ class WorldEntities(object):
     def set_model_state(self, body, pose, twist):
         """Puts the model frame at `pose` (world) and gives every link `twist`."""
         offset = self._root_link_in_model(body)
-        if offset is None:
-            self._place_articulated(body, pose, twist)
+        if body.kind != 'sdf':
+            self._place_articulated(body, pose if offset is None else frames.in_world(pose, offset), twist)
             return
         old = self.model_state(body)[0]
         root = frames.in_world(pose, offset)
@@ -91,7 +92,7 @@ class WorldEntities(object):
         # (taken at the link's frame origin, which is close to its centre of mass)
         arm = tuple(b - a for a, b in zip(pose[0], body.com_pose_for_frame(*new_root).position))
         linear = tuple(v + w for v, w in zip(twist[0], _cross(twist[1], arm)))
-        if self._root_link_in_model(body) is None:
+        if body.kind != 'sdf':
             self._place_articulated(body, new_root, (linear, twist[1]))
         else:  # an SDF model's first link: its body alone
             self.world.set_base_state(body.id, new_root[0], new_root[1], linear, twist[1])
@@ -107,9 +108,9 @@ class WorldEntities(object):
 
     @staticmethod
     def _root_link_in_model(body):
-        """An SDF model's first link's pose in the model frame; None for URDF models (identity)."""
-        if body.source.kind != 'sdf':
-            return None
+        """The root link's (an SDF model's first link's) pose in the model frame; None for the identity."""
+        if body.kind != 'sdf':
+            return body.model_offset
         first = next(iter(body.link_index))
         return as_transform(body.source.model.link(first).pose)
 

@@ -195,6 +195,9 @@ class WorldServer(object):
             self.reconfigure = physics_reconfigure(self.services.properties, self.services.ns)
         else:
             rospy.loginfo('ROS gazebo topics/services are disabled (~enable_ros_network is false)')
+        for robot in self.sim.spawn_world_robots():  # the world file's models with joints, plugins or sensors
+            if self.services is not None:
+                self.services.adopt(robot)
         self.clock_msg = Clock()
         self.last_clock = -math.inf
         self.last_states = -math.inf
