@@ -11,7 +11,6 @@ moving replaces the first; a cancel stops the arm within stop_trajectory_duratio
 controller lacks is rejected with INVALID_JOINTS; the gripper reaches its goal.
 """
 import bisect
-import os
 import threading
 import unittest
 
@@ -27,11 +26,9 @@ from rosgraph_msgs.msg import Clock
 from sensor_msgs.msg import JointState
 from trajectory_msgs.msg import JointTrajectory, JointTrajectoryPoint
 
-from catkin_overlay import LaunchWatch, ShellCommand
+from catkin_overlay import fixture_launch
 from integration_common import Latest
 
-HERE = os.path.dirname(os.path.abspath(__file__))
-ROBOTS = os.path.join(os.path.dirname(HERE), 'fixtures', 'robots')
 STARTUP_TIMEOUT = 90.0  # wall s
 WALL_TIMEOUT = 30.0
 ARM = '/arm_bot/arm_controller'
@@ -67,10 +64,7 @@ class ArmTrajectoryTest(unittest.TestCase):
         cls.clock = Latest('/clock', Clock)
         cls.state = Latest(ARM + '/state', JointTrajectoryControllerState)
         cls.command_pub = rospy.Publisher(ARM + '/command', JointTrajectory, queue_size=1)
-        env = dict(os.environ, ROS_PACKAGE_PATH=ROBOTS + os.pathsep + os.environ['ROS_PACKAGE_PATH'])
-        log = os.path.join(os.environ.get('ROS_LOG_DIR', '/tmp'), 'arm_trajectory_roslaunch_%d.log' % os.getpid())
-        cls.launch = ShellCommand('exec roslaunch arm_bot arm_world.launch gui:=false', env, log)
-        cls.watch = LaunchWatch(cls.launch)
+        cls.launch, cls.watch = fixture_launch('arm_bot arm_world.launch gui:=false', 'arm_trajectory')
         cls.watch.wait(lambda: cls._running_controllers() >= {'joint_state_controller', 'arm_controller',
                                                               'gripper_controller'},
                        'the three controllers to run', STARTUP_TIMEOUT, period=0.2)

@@ -90,6 +90,21 @@ class ShellCommand(object):
 
 
 
+FIXTURE_ROBOTS = os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), 'fixtures', 'robots')
+
+
+def fixture_launch(args, name):
+    """`roslaunch ARGS` in a shell with the fixture robot packages (tests/fixtures/robots) on ROS_PACKAGE_PATH,
+    its output in a log under ROS_LOG_DIR named after `name`; returns (ShellCommand, LaunchWatch)."""
+    env = dict(os.environ, ROS_PACKAGE_PATH=FIXTURE_ROBOTS + os.pathsep + os.environ['ROS_PACKAGE_PATH'])
+    log_dir = os.environ.get('ROS_LOG_DIR', '/tmp')
+    os.makedirs(log_dir, exist_ok=True)
+    handle, log = tempfile.mkstemp(prefix='%s_roslaunch-' % name, suffix='.log', dir=log_dir)
+    os.close(handle)
+    shell = ShellCommand('exec roslaunch %s' % args, env, log)
+    return shell, LaunchWatch(shell)
+
+
 class LaunchWatch(object):
     """Waits on conditions while a ShellCommand runs roslaunch. A wait fails at once, with roslaunch's
     output, when roslaunch has ended or one of its nodes died; after one wait failed, later waits fail at

@@ -13,7 +13,6 @@ distance travelled of the true pose. The wheel TFs and joint states, the laser's
 IMU's message with its frame are checked on the way.
 """
 import math
-import os
 import threading
 import time
 import unittest
@@ -29,11 +28,9 @@ from sensor_msgs.msg import Imu, JointState, LaserScan
 from std_srvs.srv import Empty
 from tf2_msgs.msg import TFMessage
 
-from catkin_overlay import LaunchWatch, ShellCommand
+from catkin_overlay import fixture_launch
 from integration_common import Latest, yaw_of
 
-HERE = os.path.dirname(os.path.abspath(__file__))
-ROBOTS = os.path.join(os.path.dirname(HERE), 'fixtures', 'robots')
 STARTUP_TIMEOUT = 90.0  # wall s
 WALL_TIMEOUT = 30.0
 MODEL = 'diffbot'
@@ -69,11 +66,8 @@ class DiffDrivePluginTest(unittest.TestCase):
         cls.command = None
         cls.running = True
         threading.Thread(target=cls._drive, daemon=True).start()
-        env = dict(os.environ, ROS_PACKAGE_PATH=ROBOTS + os.pathsep + os.environ['ROS_PACKAGE_PATH'])
-        log = os.path.join(os.environ.get('ROS_LOG_DIR', '/tmp'), 'diff_drive_plugin_roslaunch_%d.log' % os.getpid())
-        cls.launch = ShellCommand('exec roslaunch diffbot_plugins diffbot_world.launch gui:=false '
-                                  'wheel_separation:=-0.34', env, log)
-        cls.watch = LaunchWatch(cls.launch)
+        cls.launch, cls.watch = fixture_launch(
+            'diffbot_plugins diffbot_world.launch gui:=false wheel_separation:=-0.34', 'diff_drive_plugin')
         cls.watch.wait(lambda: cls.models.msg is not None and MODEL in cls.models.msg.name,
                        'the robot to be spawned', STARTUP_TIMEOUT)
         for name in ('get_model_state', 'pause_physics', 'unpause_physics'):

@@ -20,7 +20,6 @@ Odometry, TF and p3d are compared with the ground truth at rest (poses) and whil
 """
 import math
 import os
-import tempfile
 import threading
 import time
 import unittest
@@ -36,13 +35,11 @@ from sensor_msgs.msg import JointState
 from std_srvs.srv import Empty
 from tf2_msgs.msg import TFMessage
 
-from catkin_overlay import LaunchWatch, ShellCommand
+from catkin_overlay import FIXTURE_ROBOTS, fixture_launch
 from integration_common import Latest, yaw_of
 from racebot_sim_bridge.kinematics import skid_steer
 from racebot_sim_bridge.kinematics.planar_move import integrate, world_to_base
 
-HERE = os.path.dirname(os.path.abspath(__file__))
-ROBOTS = os.path.join(os.path.dirname(HERE), 'fixtures', 'robots')
 STARTUP_TIMEOUT = 90.0  # wall s
 WALL_TIMEOUT = 30.0
 SKID, PLANAR = 'skid_steer_bot', 'planar_move_bot'
@@ -107,15 +104,9 @@ class DrivePluginsTest(unittest.TestCase):
     @classmethod
     def start(cls):
         rospy.init_node('drive_plugins_test')
-        env = dict(os.environ, ROS_PACKAGE_PATH=ROBOTS + os.pathsep + os.environ['ROS_PACKAGE_PATH'])
-        log_dir = os.environ.get('ROS_LOG_DIR', '/tmp')
-        os.makedirs(log_dir, exist_ok=True)
-        handle, log = tempfile.mkstemp(prefix='drive_plugins_roslaunch-', suffix='.log', dir=log_dir)
-        os.close(handle)
-        files = [os.path.join(ROBOTS, 'skid_steer_bot', 'launch', 'skid_steer_bot_world.launch'),
-                 os.path.join(ROBOTS, 'planar_move_bot', 'launch', 'spawn.launch')]
-        cls.launch = ShellCommand('exec roslaunch %s gui:=false yaw:=0.7 y:=3' % ' '.join(files), env, log)
-        cls.watch = LaunchWatch(cls.launch)
+        files = [os.path.join(FIXTURE_ROBOTS, 'skid_steer_bot', 'launch', 'skid_steer_bot_world.launch'),
+                 os.path.join(FIXTURE_ROBOTS, 'planar_move_bot', 'launch', 'spawn.launch')]
+        cls.launch, cls.watch = fixture_launch('%s gui:=false yaw:=0.7 y:=3' % ' '.join(files), 'drive_plugins')
         cls.clock = Latest('/clock', Clock)
         cls.models = Latest('/gazebo/model_states', ModelStates)
         cls.skid_odom = Latest('/skid/odom', Odometry)

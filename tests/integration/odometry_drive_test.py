@@ -10,7 +10,6 @@ message and on /tf) stays within 5 % of the distance travelled of the true pose.
 cmd_vel_timeout (0.25 s) stops the robot.
 """
 import math
-import os
 import threading
 import time
 import unittest
@@ -24,11 +23,9 @@ from rosgraph_msgs.msg import Clock
 from std_srvs.srv import Empty
 from tf2_msgs.msg import TFMessage
 
-from catkin_overlay import LaunchWatch, ShellCommand
+from catkin_overlay import fixture_launch
 from integration_common import Latest, yaw_of
 
-HERE = os.path.dirname(os.path.abspath(__file__))
-ROBOTS = os.path.join(os.path.dirname(HERE), 'fixtures', 'robots')
 STARTUP_TIMEOUT = 90.0  # wall s
 WALL_TIMEOUT = 30.0
 
@@ -65,11 +62,7 @@ class OdometryDriveTest(unittest.TestCase):
         cls.command = None
         cls.running = True
         threading.Thread(target=cls._drive, daemon=True).start()
-        env = dict(os.environ, ROS_PACKAGE_PATH=ROBOTS + os.pathsep + os.environ['ROS_PACKAGE_PATH'])
-        log = os.path.join(os.environ.get('ROS_LOG_DIR', '/tmp'),
-                           '%s_roslaunch_%d.log' % (cls.CONTROLLER, os.getpid()))
-        cls.launch = ShellCommand('exec roslaunch %s %s gui:=false' % (cls.PACKAGE, cls.LAUNCH), env, log)
-        cls.watch = LaunchWatch(cls.launch)
+        cls.launch, cls.watch = fixture_launch('%s %s gui:=false' % (cls.PACKAGE, cls.LAUNCH), cls.CONTROLLER)
         cls.watch.wait(lambda: cls._running_controllers() >= {'joint_state_controller', cls.CONTROLLER},
                        'the two controllers to run', STARTUP_TIMEOUT, period=0.2)
         for name in ('get_model_state', 'pause_physics', 'unpause_physics'):

@@ -14,7 +14,6 @@ puts the axle at 0.3 m/s, within 5 %. The world file's robot runs its plugins to
 (no robotNamespace): /parked_bot/cmd_vel drives it.
 """
 import math
-import os
 import threading
 import time
 import unittest
@@ -29,11 +28,9 @@ from rosgraph_msgs.msg import Clock
 from sensor_msgs.msg import JointState, LaserScan
 from std_srvs.srv import Empty
 
-from catkin_overlay import LaunchWatch, ShellCommand
+from catkin_overlay import fixture_launch
 from integration_common import Latest, yaw_of
 
-HERE = os.path.dirname(os.path.abspath(__file__))
-ROBOTS = os.path.join(os.path.dirname(HERE), 'fixtures', 'robots')
 STARTUP_TIMEOUT = 90.0  # wall s
 WALL_TIMEOUT = 30.0
 MODEL = 'sdf_diffbot'
@@ -66,10 +63,7 @@ class SdfRobotTest(unittest.TestCase):
         cls.command = None
         cls.running = True
         threading.Thread(target=cls._drive, daemon=True).start()
-        env = dict(os.environ, ROS_PACKAGE_PATH=ROBOTS + os.pathsep + os.environ['ROS_PACKAGE_PATH'])
-        log = os.path.join(os.environ.get('ROS_LOG_DIR', '/tmp'), 'sdf_robot_roslaunch_%d.log' % os.getpid())
-        cls.launch = ShellCommand('exec roslaunch sdf_diffbot sdf_diffbot_world.launch gui:=false', env, log)
-        cls.watch = LaunchWatch(cls.launch)
+        cls.launch, cls.watch = fixture_launch('sdf_diffbot sdf_diffbot_world.launch gui:=false', 'sdf_robot')
         cls.watch.wait(lambda: cls.models.msg is not None and MODEL in cls.models.msg.name,
                        'the robot to be spawned', STARTUP_TIMEOUT)
         for name in ('get_model_state', 'get_model_properties', 'pause_physics', 'unpause_physics'):

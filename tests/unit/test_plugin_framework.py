@@ -5,6 +5,7 @@ import pytest
 from racebot_sim_bridge.plugins import plugin_key
 from racebot_sim_bridge.plugins.base import ModelPlugin, PluginError, PluginParams
 from racebot_sim_bridge.plugins.manager import PluginManager
+from racebot_sim_bridge.simulator import Simulator
 from racebot_sim_bridge.urdf_model import GazeboPlugin, RobotModel
 
 
@@ -23,6 +24,8 @@ class Log(object):
 
 
 class Sim(object):
+    set_step_hook = Simulator.set_step_hook  # the Simulator's own hook bookkeeping
+
     def __init__(self):
         self.on_spawn, self.on_delete, self.on_reset, self.before_physics, self.after_step = [], [], [], [], []
         self.world = None

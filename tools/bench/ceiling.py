@@ -7,7 +7,6 @@ at the pose spawn_model gives it. Each step reads the six joint states and write
 steps. What the simulator adds on top (controllers, limits, /clock, services) is what the
 bridge/ceiling ratio measures.
 """
-import time
 
 import pybullet as pb
 
@@ -58,15 +57,7 @@ class Ceiling(object):
 
     def measure(self, wall_seconds, chunk=200):
         """Steps for about wall_seconds; returns steps per wall second."""
-        start = time.perf_counter()
-        end = start + wall_seconds
-        n = 0
-        while True:
-            self.run_steps(chunk)
-            n += chunk
-            now = time.perf_counter()
-            if now >= end:
-                return n / (now - start)
+        return common.steps_per_second(self.run_steps, wall_seconds, chunk)
 
     def close(self):
         self.world.close()

@@ -93,6 +93,19 @@ def rss_bytes(pid):
     raise BenchError('no VmRSS for process %d' % pid)
 
 
+def steps_per_second(run_steps, wall_seconds, chunk=200):
+    """Calls run_steps(chunk) for about wall_seconds (whole chunks); returns steps per wall second: the
+    measuring loop of the bare-PyBullet ceilings (ceiling.py, fleet.py)."""
+    start = time.perf_counter()
+    n = 0
+    while True:
+        run_steps(chunk)
+        n += chunk
+        now = time.perf_counter()
+        if now - start >= wall_seconds:
+            return n / (now - start)
+
+
 def free_port():
     s = socket.socket()
     s.bind(('localhost', 0))

@@ -86,14 +86,8 @@ class FleetCeiling(object):
                     pb.rayTestBatch(starts.tolist(), ends.tolist(), numThreads=1, physicsClientId=client)
 
     def measure(self, wall_seconds, chunk=200):
-        start = time.perf_counter()
-        n = 0
-        while True:
-            self.run_steps(chunk)
-            n += chunk
-            now = time.perf_counter()
-            if now - start >= wall_seconds:
-                return n / (now - start)
+        """Steps for about wall_seconds; returns steps per wall second."""
+        return common.steps_per_second(self.run_steps, wall_seconds, chunk)
 
     def close(self):
         self.world.close()

@@ -58,6 +58,7 @@ class ControllerManager(object):
         self._loading = set()  # names being loaded (built outside the lock, not in `loaded` yet)
         self._closed = False  # shut down: a load that finishes now is undone
         self.lock = threading.RLock()
+        self._running = []  # (name, controller) of the running ones in load order: what every update walks
 
     # -- the services' semantics ------------------------------------------------------------------
     def load(self, name):
@@ -137,6 +138,7 @@ class ControllerManager(object):
                 return False
             entry = self.loaded.pop(name)
             del self.state[name]
+            self._refresh_running()
         entry.controller.shutdown()
         self.log.info("Unloaded '%s'" % name)
         return True
@@ -265,8 +267,13 @@ class ControllerManager(object):
                 continue  # start_asap starts what does not run yet; without it every name is (re)started
             self.loaded[n].controller.starting(time)
             self.state[n] = 'running'
+        self._refresh_running()
         request.finish(True)
         self.pending = None
+
+    def _refresh_running(self):
+        """A new list (an update walking the old one is not disturbed) after any change of state."""
+        self._running = [(n, e.controller) for n, e in self.loaded.items() if self.state[n] == 'running']
 
     def _zero_claimed(self, name):
         # A stopped controller's joints get no effort (ros_control leaves the last one in force,
@@ -313,12 +320,11 @@ class ControllerManager(object):
                     if self.state[n] == 'running':
                         e.controller.stopping(time)
                         e.controller.starting(time)
-            for n, e in self.loaded.items():
-                if self.state[n] == 'running':
-                    try:  # free when nothing is raised (Python 3.11)
-                        e.controller.update(time, period)
-                    except Exception as err:  # one broken controller must not stop the simulation
-                        self._stop_failed(n, time, err)
+            for n, controller in self._running:
+                try:  # free when nothing is raised (Python 3.11)
+                    controller.update(time, period)
+                except Exception as err:  # one broken controller must not stop the simulation
+                    self._stop_failed(n, time, err)
             if self.pending is not None:
                 self._carry_out(self.pending, time)
 
@@ -332,6 +338,7 @@ class ControllerManager(object):
             pass
         self._zero_claimed(name)
         self.state[name] = 'stopped'
+        self._refresh_running()
 
     def shutdown(self):
         with self.lock:
@@ -343,6 +350,7 @@ class ControllerManager(object):
                 e.controller.shutdown()
             self.loaded.clear()
             self.state.clear()
+            self._running = []
 
 
 class ControllerManagerServices(object):

@@ -137,6 +137,17 @@ class Simulator(object):
         self.after_step = []
         self.before_physics = []
 
+    def set_step_hook(self, hooks, hook, wanted):
+        """Puts `hook` into (or takes it out of) the step hook list named `hooks` ('before_physics' or
+        'after_step'): a component whose work comes and goes (plugins, sensors) is called only while it
+        has some, as every hook costs each of the thousands of steps a second. The list is replaced, not
+        changed, so a step that is walking it (a hook leaving from its own call) is not disturbed."""
+        current = getattr(self, hooks)
+        if wanted and hook not in current:
+            setattr(self, hooks, current + [hook])
+        elif not wanted and hook in current:
+            setattr(self, hooks, [h for h in current if h != hook])
+
     # -- spawning -------------------------------------------------------------------------------
     def spawn_urdf(self, name, xml, robot_namespace='', position=(0, 0, 0), orientation=(0, 0, 0, 1)):
         """Spawns a URDF; returns the Robot. Raises SpawnError with gazebo_ros's status wording."""

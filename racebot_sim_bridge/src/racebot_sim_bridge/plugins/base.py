@@ -150,6 +150,29 @@ class ModelPlugin(object):
     def info(self, message):
         self.ctx.rospy.loginfo('%s: %s' % (self.label, message))
 
+    def root_link(self):
+        """The model's root link (the physics' base)."""
+        return next(name for name, index in self.robot.body.link_index.items() if index == -1)
+
+    def link_param(self, tag, what, default=None, name=None):
+        """The link <tag> names (``name`` when given, else the parameter, else ``default``): a link the
+        physics has. PluginError when it is missing and there is no default, when Gazebo merges it into its
+        parent (a fixed joint: the hint names that parent), or when the model has no such link."""
+        if name is None:
+            name = self.params.string(tag, default)
+        if name is None:
+            raise PluginError('<%s> is missing: give %s' % (tag, what))
+        model, body = self.robot.model, self.robot.body
+        if name in model.links and name not in body.link_index:
+            merged = model.lumped_link(name)
+            raise PluginError("<%s>%s</%s>: Gazebo merges this link into '%s' (a fixed joint), so the model has no "
+                              "link of that name; name '%s', or keep the joint with <preserveFixedJoint>"
+                              % (tag, name, tag, merged, merged))
+        if name not in body.link_index:
+            raise PluginError("<%s>%s</%s> is not a link of the model (its links: %s)"
+                              % (tag, name, tag, ', '.join(sorted(body.link_index))))
+        return name
+
     def publisher(self, topic, cls, queue_size=1):
         p = self.ctx.rospy.Publisher(topic, cls, queue_size=queue_size)
         self._topics.append(p)

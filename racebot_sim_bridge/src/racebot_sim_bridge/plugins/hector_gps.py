@@ -18,7 +18,7 @@ import random
 
 from ..kinematics.navsat import DEFAULT_REFERENCE, ErrorModel, GeoReference
 from ..plugin_namespace import model_plugin_namespace, name_in
-from .base import ModelPlugin, PluginError
+from .base import ModelPlugin
 from .link_motion import link_motion
 
 
@@ -36,12 +36,7 @@ class HectorGps(ModelPlugin):
     def __init__(self, ctx, robot, spec, rng=None):
         super(HectorGps, self).__init__(ctx, robot, spec)
         p = self.params
-        body = robot.body
-        root = next(name for name, index in body.link_index.items() if index == -1)
-        self.body_name = p.string('bodyName', root)
-        if self.body_name not in body.link_index:
-            raise PluginError("<bodyName>%s</bodyName> is not a link of the model (its links: %s)"
-                              % (self.body_name, ', '.join(sorted(body.link_index))))
+        self.body_name = self.link_param('bodyName', None, default=self.root_link())
         if p.boolean('useWorldSphericalCoordinates', False):
             self.warn('<useWorldSphericalCoordinates> is not supported (the world\'s <spherical_coordinates> are '
                       'not read); the reference parameters are used')

@@ -20,7 +20,7 @@ import random
 from ..kinematics.navsat import ErrorModel
 from ..plugin_namespace import model_plugin_namespace, name_in
 from ..rotations import conjugate, quaternion_multiply, rotate, rotate_back, rpy_to_quaternion
-from .base import ModelPlugin, PluginError
+from .base import ModelPlugin
 from .hector_gps import update_due
 from .link_motion import link_motion
 
@@ -48,12 +48,7 @@ class HectorImu(ModelPlugin):
     def __init__(self, ctx, robot, spec, rng=None):
         super(HectorImu, self).__init__(ctx, robot, spec)
         p = self.params
-        body = robot.body
-        root = next(name for name, index in body.link_index.items() if index == -1)
-        self.body_name = p.string('bodyName', root)
-        if self.body_name not in body.link_index:
-            raise PluginError("<bodyName>%s</bodyName> is not a link of the model (its links: %s)"
-                              % (self.body_name, ', '.join(sorted(body.link_index))))
+        self.body_name = self.link_param('bodyName', None, default=self.root_link())
         self.frame_id = p.string('frameId', self.body_name)
         topic = p.string('topicName', 'imu')
         bias_topic = p.string('biasTopicName', topic + '/bias' if topic else '')

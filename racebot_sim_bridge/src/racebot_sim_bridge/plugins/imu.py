@@ -19,7 +19,7 @@ import random
 
 from ..plugin_namespace import model_plugin_namespace, name_in
 from ..rotations import quaternion_multiply, rotate, rpy_to_quaternion
-from .base import ModelPlugin, PluginError
+from .base import ModelPlugin
 from .link_motion import link_motion
 from .update_timing import AtLeastPeriod
 
@@ -50,7 +50,7 @@ class Imu(ModelPlugin):
     def __init__(self, ctx, robot, spec, rng=None):
         super(Imu, self).__init__(ctx, robot, spec)
         p = self.params
-        self.body_name = self._body()
+        self.body_name = self.link_param('bodyName', 'the link whose motion the IMU reports')
         self.topic = p.string('topicName', DEFAULT_NAME)
         self.service_name = p.string('serviceName', DEFAULT_NAME)
         self.noise = p.number('gaussianNoise', 0.0)
@@ -73,20 +73,6 @@ class Imu(ModelPlugin):
             self.msg_class = ImuMsg
             self.pub = self.publisher(name_in(ns, self.topic), ImuMsg)
             self.service(name_in(ns, self.service_name), Empty, lambda request: EmptyResponse())
-
-    def _body(self):
-        name = self.params.string('bodyName', None)
-        if name is None:
-            raise PluginError('<bodyName> is missing: give the link whose motion the IMU reports')
-        model, body = self.robot.model, self.robot.body
-        if name in model.links and name not in body.link_index:
-            raise PluginError("<bodyName>%s</bodyName>: Gazebo merges this link into '%s' (a fixed joint), so the "
-                              "model has no link of that name; name '%s', or keep the joint with <preserveFixedJoint>"
-                              % (name, model.lumped_link(name), model.lumped_link(name)))
-        if name not in body.link_index:
-            raise PluginError("<bodyName>%s</bodyName> is not a link of the model (its links: %s)"
-                              % (name, ', '.join(sorted(body.link_index))))
-        return name
 
     def before_physics(self, time):
         if self.pub is None:

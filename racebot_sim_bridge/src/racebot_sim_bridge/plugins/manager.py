@@ -24,8 +24,7 @@ class PluginManager(object):
         sim.on_spawn.append(self.on_spawn)
         sim.on_delete.append(self.on_delete)
         sim.on_reset.append(self.on_reset)
-        sim.before_physics.append(self.before_physics)
-        sim.after_step.append(self.after_step)
+        # before_physics and after_step are hooked in only while a plugin is active (_refresh)
 
     def tf_publisher(self):
         """The one /tf publisher all plugins share (tf::TransformBroadcaster's topic)."""
@@ -87,7 +86,7 @@ class PluginManager(object):
             for plugin in group:
                 plugin.close()
         self.plugins = {}
-        self._active = []
+        self._refresh()
 
     def _stop(self, plugin, err):
         self.rospy.logerr('%s: stopped after an error in its update: %s: %s. The world goes on without it'
@@ -103,6 +102,8 @@ class PluginManager(object):
 
     def _refresh(self):
         self._active = [p for group in self.plugins.values() for p in group]
+        self.sim.set_step_hook('before_physics', self.before_physics, bool(self._active))
+        self.sim.set_step_hook('after_step', self.after_step, bool(self._active))
 
 
 __all__ = ['PluginManager', 'PluginError']

@@ -56,15 +56,15 @@ class P3D(ModelPlugin):
     def __init__(self, ctx, robot, spec, rng=None):
         super(P3D, self).__init__(ctx, robot, spec)
         p = self.params
-        self.body_name = self._link('bodyName', 'the link whose pose is published')
+        self.body_name = self.link_param('bodyName', 'the link whose pose is published')
         if not p.has('topicName'):
             raise PluginError('<topicName> is missing: give the topic to publish nav_msgs/Odometry on')
         for old, new in (('xyzOffsets', 'xyzOffset'), ('rpyOffsets', 'rpyOffset')):
             if p.has(old) and not p.has(new):
                 self.warn('<%s> is not read (gazebo_plugins noetic reads <%s>); no offset is applied' % (old, new))
         self.frame_name = p.string('frameName', 'world')
-        self.reference = None if self.frame_name in WORLD_FRAMES else self._link('frameName', 'the reference link',
-                                                                                self.frame_name)
+        self.reference = None if self.frame_name in WORLD_FRAMES else self.link_param('frameName', 'the reference link',
+                                                                                     name=self.frame_name)
         self.xyz_offset = p.vector('xyzOffset', 3, (0.0, 0.0, 0.0))
         self.rpy_offset = p.vector('rpyOffset', 3, (0.0, 0.0, 0.0))
         self.noise = p.number('gaussianNoise', 0.0)  # a negative sigma draws as its absolute value, as upstream
@@ -79,20 +79,6 @@ class P3D(ModelPlugin):
         if topic:
             from nav_msgs.msg import Odometry
             self.pub = self.publisher(name_in(ns, topic), Odometry)
-
-    def _link(self, tag, what, name=None):
-        name = self.params.string(tag, None) if name is None else name
-        if name is None:
-            raise PluginError('<%s> is missing: give %s' % (tag, what))
-        model, body = self.robot.model, self.robot.body
-        if name in model.links and name not in body.link_index:
-            raise PluginError("<%s>%s</%s>: Gazebo merges this link into '%s' (a fixed joint), so the model has no "
-                              "link of that name; name '%s', or keep the joint with <preserveFixedJoint>"
-                              % (tag, name, tag, model.lumped_link(name), model.lumped_link(name)))
-        if name not in body.link_index:
-            raise PluginError("<%s>%s</%s> is not a link of the model (its links: %s)"
-                              % (tag, name, tag, ', '.join(sorted(body.link_index))))
-        return name
 
     def before_physics(self, time):
         if self.pub is None:

@@ -73,14 +73,17 @@ class SensorManager(object):
         self._colours = None     # SceneColours of the physics world, for rendering in this thread
         self._snapshot = None    # the world's poses at this step, taken once for all cameras
         # after_step's shortcut: until sim time reaches the earliest next update of the sensors in
-        # _due_for (the list _active was when it was computed), no sensor has anything to do.
+        # _due_for (the list _active was when it was computed, at step size _due_step), no sensor has
+        # anything to do; then only those whose own wake time (_wakes, in _due_for's order) has come.
         self._next_due = -math.inf
         self._due_for = None
+        self._due_step = None
+        self._wakes = []
         self._last_step_time = -math.inf
         self._failures_logged = 0
         sim.on_spawn.append(self.on_spawn)
         sim.on_delete.append(self.on_delete)
-        sim.after_step.append(self.after_step)
+        # after_step is hooked in only while there are sensors (_set_active)
         if not self.noise_enabled:
             rospy.loginfo('sensors: noise off (~sensors/noise is false)')
         self._reporter = None
@@ -134,33 +137,47 @@ class SensorManager(object):
                 ', '.join(sorted(config.topics.values()))))
         if created:
             self.sensors[robot.name] = created
-            self._active = [s for group in self.sensors.values() for s in group]
+            self._set_active()
 
     def on_delete(self, robot):
         for sensor in self.sensors.pop(robot.name, []):
             sensor.close()
+        self._set_active()
+
+    def _set_active(self):
         self._active = [s for group in self.sensors.values() for s in group]
+        self.sim.set_step_hook('after_step', self.after_step, bool(self._active))
 
     def after_step(self, time):
         self._snapshot = None
         # Most steps have no sensor due (a 1 kHz world, sensors at 10-100 Hz): one comparison instead of
-        # asking each schedule. Time going back (a reset) or another set of sensors asks them all again.
+        # asking each schedule; at a due step, only the sensors due are stepped. Time going back (a
+        # reset), another set of sensors or another step size asks them all again.
         if self._last_step_time <= time < self._next_due and self._due_for is self._active:
             self._last_step_time = time
             return
+        active = self._active
+        if not (self._last_step_time <= time and self._due_for is active and self._due_step == self.sim.step_size):
+            self._due_for, self._due_step = active, self.sim.step_size
+            self._wakes = [-math.inf] * len(active)
         self._last_step_time = time
-        self._due_for = active = self._active
-        for sensor in active:
+        wakes = self._wakes
+        for i, sensor in enumerate(active):
+            if wakes[i] > time:
+                continue
             if sensor.failed:
+                wakes[i] = math.inf
                 continue
             try:
                 sensor.step(time)
             except Exception as err:  # one broken sensor must not stop the world
                 sensor.failed = True
+                wakes[i] = math.inf
                 self.rospy.logerr("sensor '%s' of %s failed and is switched off: %s: %s"
                                   % (sensor.spec.name, sensor.robot_name, type(err).__name__, err))
-        # UpdateSchedule.due: due from next - TIME_EPS on
-        self._next_due = min((s.wake_time() for s in active if not s.failed), default=math.inf) - TIME_EPS
+                continue
+            wakes[i] = sensor.wake_time() - TIME_EPS  # UpdateSchedule.due: due from next - TIME_EPS on
+        self._next_due = min(wakes, default=math.inf)
 
     # -- cameras ------------------------------------------------------------------------------
     def _start_rendering(self):
