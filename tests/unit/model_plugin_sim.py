@@ -18,7 +18,8 @@ GROUND = """<sdf version="1.6"><world name="default">
 def fixture_urdf(package):
     """The URDF of a fixture package's xacro (tests/fixtures/robots/<package>/urdf/<package>.urdf.xacro)."""
     import xacro
-    return xacro.process_file(str(ROBOTS / package / 'urdf' / ('%s.urdf.xacro' % package))).toxml()
+    # mappings: an argument context, which the xacro:args of a fixture need (their defaults are used)
+    return xacro.process_file(str(ROBOTS / package / 'urdf' / ('%s.urdf.xacro' % package)), mappings={}).toxml()
 
 
 class PluginRospy(FakeRospy):
@@ -40,13 +41,31 @@ class PluginRospy(FakeRospy):
         pass
 
 
+class Reconfigure(object):
+    """dynamic_reconfigure's Server as the plugins see it, without a master: the first call with level ~0
+    (the configuration the callback fills), then change(values) as a set_parameters call (level 1)."""
+
+    def __init__(self, config_type, callback):
+        self.config_type, self.callback = config_type, callback
+        self.config = callback(dict(config_type.defaults), ~0)
+
+    def change(self, **values):
+        self.config = self.callback(dict(self.config, **values), 1)
+        return self.config
+
+
 class PluginWorld(object):
     def __init__(self, tmp_path, params=None):
         path = tmp_path / 'ground.world'
         path.write_text(GROUND)
         self.sim = Simulator(sdf_world.load_world(str(path)), NullIO(), Log(), lambda path: None)
         self.fake = PluginRospy(params)
-        self.manager = PluginManager(self.fake, self.sim)
+        self.servers = {}  # namespace -> Reconfigure
+        self.manager = PluginManager(self.fake, self.sim, reconfigure=self._reconfigure)
+
+    def _reconfigure(self, namespace, config_type, callback):
+        server = self.servers[namespace] = Reconfigure(config_type, callback)
+        return server
 
     def spawn(self, name, urdf, namespace='/', pose=(0.0, 0.0, 0.0)):
         """As spawn_urdf_model places a robot: its root link frame at `pose` (x, y, z), level."""

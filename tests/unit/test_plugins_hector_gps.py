@@ -9,6 +9,7 @@ from geometry_msgs.msg import Twist
 
 from racebot_sim_bridge.kinematics.navsat import ErrorModel, GeoReference
 from racebot_sim_bridge.plugins.hector_gps import update_due
+from racebot_sim_bridge.rotations import rpy_to_quaternion
 
 from model_plugin_sim import PluginWorld, fixture_urdf
 
@@ -79,6 +80,47 @@ def test_fix_and_velocity_topics_on_a_driving_robot(tmp_path):
         assert x > 0.5 and last.latitude - 49.9 == pytest.approx(x / 6.366e6 * 180 / math.pi, rel=0.05)
         vel = w.fake.publishers['/skid/navsat/vel'].messages[-1]
         assert vel.vector.x == pytest.approx(0.5, abs=0.1)  # heading 0: x is north
+    finally:
+        w.close()
+
+
+def test_set_reference_geopose_and_the_reconfigure_servers(tmp_path):
+    from geographic_msgs.msg import GeoPoint, GeoPose
+    from geometry_msgs.msg import Quaternion
+    from hector_gazebo_plugins.srv import SetReferenceGeoPoseRequest
+    urdf = fixture_urdf('skid_steer_bot').replace('</robot>', GPS % (4, 0))
+    w = PluginWorld(tmp_path)
+    try:
+        robot = w.spawn('skid_steer_bot', urdf, '/skid', (0.0, 0.0, 0.1))
+        w.run(0.3)
+        # a new reference: the origin at 10 N 20 E, 100 m up; the pose's yaw pi/6 is hector's heading pi/3
+        q = rpy_to_quaternion(0.0, 0.0, math.pi / 6)
+        w.fake.services['/skid/navsat/fix/set_reference_geopose'](SetReferenceGeoPoseRequest(
+            geo_pose=GeoPose(GeoPoint(10.0, 20.0, 100.0), Quaternion(*q))))
+        cmd = Twist()
+        cmd.linear.x = 0.5
+        w.fake.subscribers['/skid/cmd_vel'](cmd)
+        w.run(2.0)
+        w.fake.subscribers['/skid/cmd_vel'](Twist())
+        w.run(1.0)  # stopped: the last fix is where it stands
+        fix = w.fake.publishers['/skid/navsat/fix'].messages[-1]
+        x, y, _ = robot.body.frame_pose().position
+        e2 = 2 / 298.257223563 - (1 / 298.257223563) ** 2  # WGS84; hector keeps the first reference's radii
+        north_radius = 6378137.0 * (1 - e2) / (1 - e2 * math.sin(math.radians(49.9)) ** 2) ** 1.5
+        north = math.cos(math.pi / 3) * x + math.sin(math.pi / 3) * y
+        assert fix.altitude == pytest.approx(100.0, abs=0.2)
+        assert fix.latitude - 10.0 == pytest.approx(north / north_radius * 180 / math.pi, rel=0.002)
+        assert fix.longitude > 20.0  # x turned by heading pi/3 has an east part
+        # status reconfigure: no fix
+        status = w.servers['/skid/navsat/fix/status']
+        assert status.config['STATUS_FIX'] and not status.config['SERVICE_GPS']  # hector's defaults: 0, 0
+        status.change(STATUS_FIX=False, SERVICE_GALILEO=True)
+        w.run(0.25)
+        fix = w.fake.publishers['/skid/navsat/fix'].messages[-1]
+        assert (fix.status.status, fix.status.service) == (-1, 8)
+        w.servers['/skid/navsat/fix/position'].change(offset=2.0)
+        w.run(0.25)
+        assert w.fake.publishers['/skid/navsat/fix'].messages[-1].altitude == pytest.approx(102.0, abs=0.2)
     finally:
         w.close()
 

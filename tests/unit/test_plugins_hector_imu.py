@@ -68,6 +68,33 @@ def test_biases_tilt_and_turn_the_orientation_and_calibrate_clears_the_rate_drif
         w.close()
 
 
+def test_set_bias_services_and_the_reconfigure_servers(tmp_path):
+    from geometry_msgs.msg import Vector3
+    from hector_gazebo_plugins.srv import SetBias, SetBiasRequest
+    w = spawn(tmp_path, '<rateGaussianNoise>0.1 0.2 0.3</rateGaussianNoise><yawOffset>0.25</yawOffset>')
+    try:
+        assert SetBias._type == 'hector_gazebo_plugins/SetBias'
+        w.fake.services['/skid/imu/data/set_accel_bias'](SetBiasRequest(bias=Vector3(0.5, 0.0, 0.0)))
+        w.fake.services['/skid/imu/data/set_rate_bias'](SetBiasRequest(bias=Vector3(0.0, 0.0, 0.05)))
+        w.run(0.01)
+        bias = w.fake.publishers['/skid/imu/data/bias'].messages[-1]
+        assert (bias.linear_acceleration.x, bias.angular_velocity.z) == (pytest.approx(0.5, abs=1e-3),
+                                                                          pytest.approx(0.05, abs=1e-3))
+        assert sorted(w.servers) == ['/skid/imu/data/accel', '/skid/imu/data/rate', '/skid/imu/data/yaw']
+        # first call: the configuration shows the model (a 3-axis model: the mean of its axes; the yaw its own)
+        assert w.servers['/skid/imu/data/rate'].config['gaussian_noise'] == pytest.approx(0.2)
+        assert w.servers['/skid/imu/data/yaw'].config['offset'] == pytest.approx(0.25)
+        assert w.servers['/skid/imu/data/accel'].config['scale_error'] == 1.0
+        # a change sets all three axes
+        w.servers['/skid/imu/data/accel'].change(offset=1.0, gaussian_noise=0.0)
+        w.run(0.01)
+        m = w.fake.publishers['/skid/imu/data'].messages[-1]
+        assert m.linear_acceleration.x == pytest.approx(1.5, abs=0.05)  # offset 1 + the bias set above
+        assert m.linear_acceleration.y == pytest.approx(1.0, abs=0.05)
+    finally:
+        w.close()
+
+
 def test_turning_shows_as_yaw_rate(tmp_path):
     w = spawn(tmp_path)
     try:

@@ -22,13 +22,21 @@ class GeoReference:
     longitude: float  # deg
     heading: float    # rad
     altitude: float   # m
+    radii_latitude: float = None  # deg: where the radii are taken; None: at `latitude`
 
     def radii(self):
-        """(north, east) radii of curvature (m) at the reference latitude."""
-        s = math.sin(math.radians(self.latitude))
+        """(north, east) radii of curvature (m) at radii_latitude (the reference latitude unless given)."""
+        latitude = self.latitude if self.radii_latitude is None else self.radii_latitude
+        s = math.sin(math.radians(latitude))
         temp = 1.0 / (1.0 - EXCENTRICITY2 * s * s)
         prime_vertical = EQUATORIAL_RADIUS * math.sqrt(temp)
-        return prime_vertical * (1 - EXCENTRICITY2) * temp, prime_vertical * math.cos(math.radians(self.latitude))
+        return prime_vertical * (1 - EXCENTRICITY2) * temp, prime_vertical * math.cos(math.radians(latitude))
+
+    def moved(self, latitude, longitude, heading, altitude):
+        """hector's set_reference_geopose: a new reference whose radii stay those of this one's latitude
+        (setGeoposeCb does not recompute them)."""
+        kept = self.latitude if self.radii_latitude is None else self.radii_latitude
+        return GeoReference(latitude, longitude, heading, altitude, kept)
 
     def fix(self, position):
         """(latitude, longitude, altitude) of a local position (x, y, z)."""

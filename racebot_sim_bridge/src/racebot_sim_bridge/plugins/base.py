@@ -188,6 +188,12 @@ class ModelPlugin(object):
         self._topics.append(_ServiceHandle(s))
         return s
 
+    def reconfigure_server(self, namespace, config_type, callback):
+        """A dynamic_reconfigure server under `namespace` (absolute), shut down with the plugin."""
+        server = self.ctx.reconfigure(namespace, config_type, callback)
+        self._topics.append(_ReconfigureHandle(server))
+        return server
+
     def stamp(self, time):
         return self.ctx.rospy.Time.from_sec(time)
 
@@ -222,3 +228,17 @@ class _ServiceHandle(object):
 
     def unregister(self):
         self.service.shutdown()
+
+
+class _ReconfigureHandle(object):
+    def __init__(self, server):
+        self.server = server
+
+    def unregister(self):
+        for name in ('descr_topic', 'update_topic'):  # dynamic_reconfigure's Server has no shutdown of its own
+            topic = getattr(self.server, name, None)
+            if topic is not None:
+                topic.unregister()
+        service = getattr(self.server, 'set_service', None)
+        if service is not None:
+            service.shutdown()

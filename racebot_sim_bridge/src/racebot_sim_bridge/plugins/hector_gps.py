@@ -9,15 +9,20 @@ status 0 (STATUS_FIX), service 0; the error models' offset, drift, driftFrequenc
 updatePeriod), on the world's clock as hector's UpdateTimer counts it. Every update publishes
 sensor_msgs/NavSatFix (position covariance: drift^2 + noise^2 per axis, DIAGONAL_KNOWN) and
 geometry_msgs/Vector3Stamped, whether or not anybody listens (as upstream). The maths are kinematics/navsat.py.
+`<fix topic>/set_reference_geopose` (hector_gazebo_plugins/SetReferenceGeoPose) moves the reference (heading
+pi/2 - the pose's yaw; the earth radii stay the first reference's, as upstream) and restarts the timer and
+the error models; dynamic_reconfigure servers `<fix topic>/position` and `/velocity` (SensorModel) and
+`/status` (GNSS: the fix status and service bits).
 Not here: useWorldSphericalCoordinates (the world's <spherical_coordinates> are not read: warned, the
-reference parameters are used), the set_reference_geopose service (its type is hector's own package) and
-the dynamic_reconfigure servers.
+reference parameters are used).
 """
 import math
 import random
 
 from ..kinematics.navsat import DEFAULT_REFERENCE, ErrorModel, GeoReference
 from ..plugin_namespace import model_plugin_namespace, name_in
+from ..rotations import yaw_of
+from . import hector_reconfigure
 from .base import ModelPlugin
 from .link_motion import link_motion
 
@@ -64,6 +69,24 @@ class HectorGps(ModelPlugin):
         self.velocity_pub = self.publisher(name_in(ns, p.string('velocityTopicName', 'fix_velocity')),
                                            Vector3Stamped, 10)
         self.NavSatFix, self.Vector3Stamped = NavSatFix, Vector3Stamped
+        from hector_gazebo_plugins.srv import SetReferenceGeoPose, SetReferenceGeoPoseResponse
+        self.SetReferenceGeoPoseResponse = SetReferenceGeoPoseResponse
+        self.service(self.fix_topic + '/set_reference_geopose', SetReferenceGeoPose, self._set_geopose)
+        sensor_model, gnss = hector_reconfigure.config_types()
+        self.reconfigure_server(self.fix_topic + '/position', sensor_model,
+                                hector_reconfigure.sensor_model_callback(self.position_error))
+        self.reconfigure_server(self.fix_topic + '/velocity', sensor_model,
+                                hector_reconfigure.sensor_model_callback(self.velocity_error))
+        self.reconfigure_server(self.fix_topic + '/status', gnss, hector_reconfigure.gnss_callback(self))
+
+    def _set_geopose(self, req):
+        """setGeoposeCb, then Reset(), under the world's lock (the update reads the reference)."""
+        p, q = req.geo_pose.position, req.geo_pose.orientation
+        with self.ctx.sim.lock:
+            self.reference = self.reference.moved(p.latitude, p.longitude,
+                                                  math.pi / 2.0 - yaw_of((q.x, q.y, q.z, q.w)), p.altitude)
+            self.reset()
+        return self.SetReferenceGeoPoseResponse()
 
     def _error_model(self, prefix):
         def tag(name):
@@ -77,14 +100,15 @@ class HectorGps(ModelPlugin):
                           values['gaussianNoise'], values['scaleError'])
 
     def reset(self):
-        self.last_update = 0.0
+        self.last_update = 0.0  # hector's updateTimer.Reset()
         self.position_error.reset()
         self.velocity_error.reset()
 
     def before_physics(self, time):
         if not update_due(time, self.period, self.ctx.sim.step_size):
             return
-        dt, self.last_update = time - self.last_update, time
+        # UpdateTimer::getTimeSinceLastUpdate: 0 until a first update (last update time 0 is "none")
+        dt, self.last_update = (time - self.last_update if self.last_update != 0.0 else 0.0), time
         position, _, linear, _ = link_motion(self.world, self.robot.body, self.body_name)
         velocity = self.velocity_error.apply(linear, dt)
         position = self.position_error.apply(position, dt)

@@ -11,8 +11,9 @@ acceleration = the change of the link's world velocity since the last update, mi
 link's (offset) axes; angular rate from the change of orientation; both through their error models; the
 orientation tilted by the accelerometer bias and turned by the yaw bias; covariances from the noises; the
 bias on <topic>/bias. Published whether or not anybody listens, as upstream.
-Not here: set_accel_bias / set_rate_bias (their type is hector's own package) and the dynamic_reconfigure
-servers.
+Services `<topic>/set_accel_bias` and `<topic>/set_rate_bias` (hector_gazebo_plugins/SetBias: that model's
+drift from now on); with a topic, dynamic_reconfigure servers `<topic>/accel`, `/rate` and `/yaw`
+(SensorModel).
 """
 import math
 import random
@@ -20,6 +21,7 @@ import random
 from ..kinematics.navsat import ErrorModel
 from ..plugin_namespace import model_plugin_namespace, name_in
 from ..rotations import conjugate, quaternion_multiply, rotate, rotate_back, rpy_to_quaternion
+from . import hector_reconfigure
 from .base import ModelPlugin
 from .hector_gps import update_due
 from .link_motion import link_motion
@@ -77,6 +79,15 @@ class HectorImu(ModelPlugin):
             from std_srvs.srv import Empty, EmptyResponse
             self.EmptyResponse = EmptyResponse
             self.service(name_in(ns, service), Empty, self._calibrate)
+        from hector_gazebo_plugins.srv import SetBias, SetBiasResponse
+        self.SetBiasResponse = SetBiasResponse
+        for name, model in (('set_accel_bias', self.accel_model), ('set_rate_bias', self.rate_model)):
+            self.service(name_in(ns, topic + '/' + name), SetBias, lambda req, model=model: self._set_bias(model, req))
+        if topic:
+            sensor_model, _ = hector_reconfigure.config_types()
+            for name, model in (('accel', self.accel_model), ('rate', self.rate_model), ('yaw', self.yaw_model)):
+                self.reconfigure_server(name_in(ns, topic + '/' + name), sensor_model,
+                                        hector_reconfigure.sensor_model_callback(model, scalar=name == 'yaw'))
         self.reset()
 
     def _model(self, prefix, scalar=False):
@@ -89,6 +100,12 @@ class HectorImu(ModelPlugin):
                 values[name] = self.params.vector(prefix + name, 3, (default,) * 3)
         return ErrorModel(self.rng, values['Offset'], values['Drift'], values['DriftFrequency'],
                           values['GaussianNoise'], values['ScaleError'])
+
+    def _set_bias(self, model, req):
+        """SetAccelBiasCallback / SetRateBiasCallback: the model's reset(bias), its drift set."""
+        with self.ctx.sim.lock:
+            model.current_drift = [req.bias.x, req.bias.y, req.bias.z]
+        return self.SetBiasResponse()
 
     def _calibrate(self, _req):
         self.rate_model.current_drift = [0.0, 0.0, 0.0]  # hector's rateModel.reset(Vector3(0, 0, 0))
@@ -106,7 +123,8 @@ class HectorImu(ModelPlugin):
     def before_physics(self, time):
         if not update_due(time, self.period, self.ctx.sim.step_size):
             return
-        dt, self.last_update = time - self.last_update, time
+        # UpdateTimer::getTimeSinceLastUpdate: 0 until a first update (last update time 0 is "none")
+        dt, self.last_update = (time - self.last_update if self.last_update != 0.0 else 0.0), time
         _, pose_rot, velocity, _ = link_motion(self.world, self.robot.body, self.body_name)
         rot = _normalized(quaternion_multiply(self.offset, pose_rot))
         if dt > 0.0:

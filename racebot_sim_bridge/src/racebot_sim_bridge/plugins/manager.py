@@ -13,11 +13,21 @@ README_TABLE = "the table 'Supported plugins, sensors and controllers' in racebo
 NOT_MODEL_PLUGINS = ('gazebo_ros_control',)  # simulator.py runs it
 
 
+def dynamic_reconfigure_server(namespace, config_type, callback):
+    """dynamic_reconfigure's Python server under `namespace` (its set_parameters service and its
+    parameter_descriptions and parameter_updates topics)."""
+    from dynamic_reconfigure.server import Server
+    return Server(config_type, callback, namespace=namespace)
+
+
 class PluginManager(object):
-    def __init__(self, rospy, sim, registry=None):
+    def __init__(self, rospy, sim, registry=None, reconfigure=dynamic_reconfigure_server):
+        """reconfigure(namespace, config_type, callback): makes a plugin's dynamic_reconfigure server
+        (tests without a master give a stand-in)."""
         self.rospy = rospy
         self.sim = sim
         self.registry = MODEL_PLUGINS if registry is None else registry
+        self.reconfigure = reconfigure
         self.plugins = {}  # robot name -> [ModelPlugin]
         self._active = []
         self._tf_pub = None

@@ -1,13 +1,12 @@
 """gazebo_ros's PhysicsConfig: the description dynamic_reconfigure's Python server reads.
 
 Upstream generates this module from gazebo_ros/cfg/Physics.cfg (noetic) at build time. Here it is
-written by hand, so that building racebot needs no cfg generator: the same 15 parameters with
+made at import from a table, so that building racebot needs no cfg generator: the same 15 parameters with
 upstream's names, types, levels, descriptions, defaults and limits, laid out as the generator lays out
 its modules (config_description, min, max, defaults, level, type, all_level).
 """
-from dynamic_reconfigure.encoding import extract_params
+from racebot_sim_bridge.reconfigure_config import config_type
 
-inf = float('inf')
 
 # name, type, level, description, default, min, max (gazebo_ros's Physics.cfg, noetic)
 _PARAMETERS = [
@@ -36,31 +35,6 @@ _PARAMETERS = [
     ('max_contacts', 'int', 1, 'Maximum number of contacts between any 2 bodies.', 100, 0, 10000000),
 ]
 
-_CTYPES = {'double': 'double', 'int': 'int', 'bool': 'bool'}
-
-
-def _parameter(name, type_, level, description, default, min_, max_):
-    return {'name': name, 'type': type_, 'default': default, 'level': level, 'description': description,
-            'min': min_, 'max': max_, 'srcline': 0, 'srcfile': 'Physics.cfg', 'edit_method': '',
-            'ctype': _CTYPES[type_], 'cconsttype': 'const ' + _CTYPES[type_]}
-
-
-config_description = {'name': 'Default', 'type': '', 'state': True, 'cstate': 'true', 'id': 0, 'parent': 0,
-                      'parameters': [_parameter(*p) for p in _PARAMETERS], 'groups': [],
-                      'srcline': 0, 'srcfile': 'Physics.cfg', 'class': 'DEFAULT', 'parentclass': '',
-                      'parentname': 'Default', 'field': 'default', 'upper': 'DEFAULT', 'lower': 'groups'}
-
-min = {}
-max = {}
-defaults = {}
-level = {}
-type = {}
-all_level = 0
-
-for param in extract_params(config_description):
-    min[param['name']] = param['min']
-    max[param['name']] = param['max']
-    defaults[param['name']] = param['default']
-    level[param['name']] = param['level']
-    type[param['name']] = param['type']
-    all_level = all_level | param['level']
+# The module's attributes (config_description, min, max, defaults, level, type, all_level), as the generator
+# writes them: made from the table by racebot_sim_bridge's one maker of config types.
+globals().update(vars(config_type(_PARAMETERS, 'Physics.cfg')))
