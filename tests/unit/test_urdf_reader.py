@@ -232,6 +232,17 @@ def test_ray_sensor(model):
     assert sensor.camera is None
 
 
+def test_ray_sensor_has_no_lens():
+    """<distortion> is a camera's (sdformat's <camera><distortion>); inside <ray> it means nothing, so a
+    bad value there cannot refuse the laser."""
+    model = parse_urdf(with_body(
+        '<link name="l"/><gazebo reference="l"><sensor type="ray" name="r"><ray><scan><horizontal>'
+        '<samples>8</samples></horizontal></scan><range><min>0.1</min><max>5</max></range>'
+        '<distortion><k1>abc</k1></distortion></ray></sensor></gazebo>'))
+    (sensor,) = model.sensors
+    assert sensor.ray.samples == 8 and not hasattr(sensor.ray, 'distortion')
+
+
 def test_camera_depth_and_imu_sensors():
     model = parse_urdf(with_body("""
       <link name="cam"/>

@@ -792,13 +792,6 @@ class _UrdfReader:
             raise UrdfError('%s needs at least 1 sample, got %d' % (what, spec.samples))
         spec.noise_type, spec.noise_mean, spec.noise_stddev = self.noise(elem.find('noise'),
                                                                          what)
-        distortion = elem.find('distortion')
-        if distortion is not None:
-            values = []
-            for key in ('k1', 'k2', 'k3', 'p1', 'p2'):
-                text = _child_text(distortion, key)
-                values.append(_number(text, '%s <distortion><%s>' % (what, key)) if text else 0.0)
-            spec.distortion = tuple(values)
         return spec
 
     def camera(self, elem, what):
