@@ -12,7 +12,6 @@ controller lacks is rejected with INVALID_JOINTS; the gripper reaches its goal.
 """
 import bisect
 import threading
-import unittest
 
 import actionlib
 import rospy
@@ -21,16 +20,12 @@ from actionlib_msgs.msg import GoalStatus
 from control_msgs.msg import (FollowJointTrajectoryAction, FollowJointTrajectoryGoal, FollowJointTrajectoryResult,
                               GripperCommandAction, GripperCommandGoal, JointTrajectoryControllerState)
 from control_msgs.srv import QueryTrajectoryState
-from controller_manager_msgs.srv import ListControllers
-from rosgraph_msgs.msg import Clock
 from sensor_msgs.msg import JointState
 from trajectory_msgs.msg import JointTrajectory, JointTrajectoryPoint
 
-from catkin_overlay import fixture_launch
+from fixture_robot import STARTUP_TIMEOUT, WALL_TIMEOUT, FixtureRobotTest, running_controllers
 from integration_common import Latest
 
-STARTUP_TIMEOUT = 90.0  # wall s
-WALL_TIMEOUT = 30.0
 ARM = '/arm_bot/arm_controller'
 GRIPPER = '/arm_bot/gripper_controller'
 JOINTS = ['shoulder_joint', 'elbow_joint']
@@ -44,29 +39,19 @@ def trajectory(points, joints=JOINTS):
     return t
 
 
-class ArmTrajectoryTest(unittest.TestCase):
-    launch = None
-
-    @classmethod
-    def setUpClass(cls):
-        try:
-            cls.start()
-        except BaseException:
-            cls.tearDownClass()
-            raise
+class ArmTrajectoryTest(FixtureRobotTest):
+    NODE = 'arm_trajectory_test'
 
     @classmethod
     def start(cls):
-        rospy.init_node('arm_trajectory_test')
         cls.lock = threading.Lock()
         cls.samples = []  # (sim time, {joint: position})
         rospy.Subscriber('/arm_bot/joint_states', JointState, cls._on_joint_states, queue_size=100)
-        cls.clock = Latest('/clock', Clock)
         cls.state = Latest(ARM + '/state', JointTrajectoryControllerState)
         cls.command_pub = rospy.Publisher(ARM + '/command', JointTrajectory, queue_size=1)
-        cls.launch, cls.watch = fixture_launch('arm_bot arm_world.launch gui:=false', 'arm_trajectory')
-        cls.watch.wait(lambda: cls._running_controllers() >= {'joint_state_controller', 'arm_controller',
-                                                              'gripper_controller'},
+        cls.launch_fixture('arm_bot arm_world.launch gui:=false', 'arm_trajectory')
+        cls.watch.wait(lambda: running_controllers('arm_bot') >= {'joint_state_controller', 'arm_controller',
+                                                                  'gripper_controller'},
                        'the three controllers to run', STARTUP_TIMEOUT, period=0.2)
         cls.arm = actionlib.SimpleActionClient(ARM + '/follow_joint_trajectory', FollowJointTrajectoryAction)
         cls.gripper = actionlib.SimpleActionClient(GRIPPER + '/gripper_cmd', GripperCommandAction)
@@ -75,37 +60,12 @@ class ArmTrajectoryTest(unittest.TestCase):
                 raise AssertionError('no action server %s' % client.action_client.ns)
 
     @classmethod
-    def _running_controllers(cls):
-        try:
-            rospy.wait_for_service('/arm_bot/controller_manager/list_controllers', timeout=0.1)
-            res = rospy.ServiceProxy('/arm_bot/controller_manager/list_controllers', ListControllers)()
-        except (rospy.ROSException, rospy.ServiceException):
-            return set()
-        return {c.name for c in res.controller if c.state == 'running'}
-
-    @classmethod
-    def tearDownClass(cls):
-        if cls.launch is not None:
-            cls.launch.stop()
-
-    @classmethod
     def _on_joint_states(cls, msg):
         with cls.lock:
             cls.samples.append((msg.header.stamp.to_sec(), dict(zip(msg.name, msg.position)),
                                 dict(zip(msg.name, msg.velocity))))
 
     # -- helpers ------------------------------------------------------------------------------
-    def wait_for(self, condition, what, timeout=WALL_TIMEOUT):
-        return self.watch.wait(condition, what, timeout, period=0.01)
-
-    def now(self):
-        self.wait_for(lambda: self.clock.msg, '/clock')
-        return self.clock.msg.clock.to_sec()
-
-    def sim_wait(self, seconds):
-        end = self.now() + seconds
-        self.wait_for(lambda: self.now() >= end, '%.1f s of sim time' % seconds)
-
     def at(self, sim_time):
         """The joint_states sample nearest sim_time (waits until one after it came)."""
         self.wait_for(lambda: self.samples and self.samples[-1][0] >= sim_time, 'joint_states at %.2f' % sim_time)

@@ -13,117 +13,50 @@ distance travelled of the true pose. The wheel TFs and joint states, the laser's
 IMU's message with its frame are checked on the way.
 """
 import math
-import threading
-import time
-import unittest
 
 import rospy
 import rostest
 from gazebo_msgs.msg import ModelStates
-from gazebo_msgs.srv import GetModelState
 from geometry_msgs.msg import Twist
 from nav_msgs.msg import Odometry
-from rosgraph_msgs.msg import Clock, Log
+from rosgraph_msgs.msg import Log
 from sensor_msgs.msg import Imu, JointState, LaserScan
-from std_srvs.srv import Empty
-from tf2_msgs.msg import TFMessage
 
-from catkin_overlay import fixture_launch
+from fixture_robot import STARTUP_TIMEOUT, FixtureRobotTest
 from integration_common import Latest, yaw_of
 
-STARTUP_TIMEOUT = 90.0  # wall s
-WALL_TIMEOUT = 30.0
 MODEL = 'diffbot'
 COMMAND = (0.3, 0.5)  # m/s, rad/s
 BAD_SEPARATION = "<wheelSeparation>-0.34</wheelSeparation> must be > 0; using 0.34"
 
 
-class DiffDrivePluginTest(unittest.TestCase):
-    launch = None
-
-    @classmethod
-    def setUpClass(cls):
-        try:
-            cls.start()
-        except BaseException:
-            cls.tearDownClass()
-            raise
+class DiffDrivePluginTest(FixtureRobotTest):
+    NODE = 'diff_drive_plugin_test'
 
     @classmethod
     def start(cls):
-        rospy.init_node('diff_drive_plugin_test')
         cls.log = []
         rospy.Subscriber('/rosout', Log, lambda m: cls.log.append(m), queue_size=1000)
-        cls.tf = {}
-        rospy.Subscriber('/tf', TFMessage, cls._on_tf, queue_size=100)
-        cls.clock = Latest('/clock', Clock)
+        cls.collect_tf()
         cls.models = Latest('/gazebo/model_states', ModelStates)
         cls.odom = Latest('/odom', Odometry)
         cls.scan = Latest('/scan', LaserScan)
         cls.imu = Latest('/imu', Imu)
         cls.joint_states = Latest('/joint_states', JointState)
-        cls.cmd_pub = rospy.Publisher('/cmd_vel', Twist, queue_size=1)
-        cls.command = None
-        cls.running = True
-        threading.Thread(target=cls._drive, daemon=True).start()
-        cls.launch, cls.watch = fixture_launch(
-            'diffbot_plugins diffbot_world.launch gui:=false wheel_separation:=-0.34', 'diff_drive_plugin')
+        cls.cmd = cls.driver('/cmd_vel')
+        cls.launch_fixture('diffbot_plugins diffbot_world.launch gui:=false wheel_separation:=-0.34',
+                           'diff_drive_plugin')
         cls.watch.wait(lambda: cls.models.msg is not None and MODEL in cls.models.msg.name,
                        'the robot to be spawned', STARTUP_TIMEOUT)
-        for name in ('get_model_state', 'pause_physics', 'unpause_physics'):
-            rospy.wait_for_service('/gazebo/' + name, timeout=WALL_TIMEOUT)
-        cls.get_state = rospy.ServiceProxy('/gazebo/get_model_state', GetModelState)
-        cls.pause = rospy.ServiceProxy('/gazebo/pause_physics', Empty)
-        cls.unpause = rospy.ServiceProxy('/gazebo/unpause_physics', Empty)
-
-    @classmethod
-    def tearDownClass(cls):
-        cls.running = False
-        if cls.launch is not None:
-            cls.launch.stop()
-
-    @classmethod
-    def _on_tf(cls, msg):
-        for t in msg.transforms:
-            cls.tf[(t.header.frame_id, t.child_frame_id)] = t
-
-    @classmethod
-    def _drive(cls):
-        """Publishes the latest command at 20 Hz (wall time)."""
-        while cls.running and not rospy.is_shutdown():
-            if cls.command is not None:
-                cls.cmd_pub.publish(cls.command)
-            time.sleep(0.05)
-
-    # -- helpers ------------------------------------------------------------------------------
-    def wait_for(self, condition, what, timeout=WALL_TIMEOUT):
-        return self.watch.wait(condition, what, timeout, period=0.01)
-
-    def now(self):
-        return self.clock.msg.clock.to_sec()
-
-    def sim_wait(self, seconds):
-        end = self.wait_for(lambda: self.clock.msg and self.now(), '/clock') + seconds
-        self.wait_for(lambda: self.now() >= end, '%.1f s of sim time' % seconds)
+        cls.gazebo_services()
 
     def snapshot(self):
         """(sim time, x, y, yaw, forward speed) of the robot with physics paused, and the latest odometry."""
-        self.pause()
-        try:
-            count = self.clock.count
-            self.wait_for(lambda: self.clock.count >= count + 2, 'a /clock while paused')
-            res = self.get_state(MODEL, '')
-            odom = self.odom.msg
-        finally:
-            self.unpause()
+        t, (res, odom) = self.paused(lambda: (self.get_state(MODEL, ''), self.odom.msg))
         p, q = res.pose.position, res.pose.orientation
         yaw = yaw_of(q)
         speed = res.twist.linear.x * math.cos(yaw) + res.twist.linear.y * math.sin(yaw)
-        return (self.now(), p.x, p.y, yaw, speed), odom
-
-    def assertWithin(self, value, expected, fraction, what):
-        self.assertLessEqual(abs(value - expected), fraction * abs(expected),
-                             '%s: %.4f, expected %.4f within %.0f %%' % (what, value, expected, 100 * fraction))
+        return (t, p.x, p.y, yaw, speed), odom
 
     # -- the test -------------------------------------------------------------------------------
     def test_drive_odometry_tf_laser_imu_and_the_bad_parameter(self):
@@ -139,7 +72,7 @@ class DiffDrivePluginTest(unittest.TestCase):
         # drive: once the ramp is done, the ground truth follows the command
         cmd = Twist()
         cmd.linear.x, cmd.angular.z = COMMAND
-        type(self).command = cmd
+        self.cmd.command = cmd
         self.wait_for(lambda: self.odom.msg and self.odom.msg.twist.twist.angular.z > 0.95 * COMMAND[1]
                       and self.odom.msg.twist.twist.linear.x > 0.95 * COMMAND[0], 'the ramp to end')
         self.sim_wait(0.2)
@@ -177,7 +110,7 @@ class DiffDrivePluginTest(unittest.TestCase):
         imu = self.wait_for(lambda: self.imu.count > count and self.imu.msg, '/imu')
         self.assertEqual(imu.header.frame_id, 'imu_link')
         self.assertWithin(imu.angular_velocity.z, COMMAND[1], 0.05, 'IMU yaw rate')
-        type(self).command = Twist()
+        self.cmd.command = Twist()
 
 
 if __name__ == '__main__':

@@ -20,56 +20,24 @@ Odometry, TF and p3d are compared with the ground truth at rest (poses) and whil
 """
 import math
 import os
-import threading
-import time
-import unittest
 
 import rospy
 import rostest
 from gazebo_msgs.msg import ModelStates
-from gazebo_msgs.srv import GetModelState
-from geometry_msgs.msg import Twist
 from nav_msgs.msg import Odometry
-from rosgraph_msgs.msg import Clock
 from sensor_msgs.msg import JointState
-from std_srvs.srv import Empty
-from tf2_msgs.msg import TFMessage
 
-from catkin_overlay import FIXTURE_ROBOTS, fixture_launch
+from catkin_overlay import FIXTURE_ROBOTS
+from fixture_robot import STARTUP_TIMEOUT, FixtureRobotTest, twist
 from integration_common import Latest, yaw_of
 from racebot_sim_bridge.kinematics import skid_steer
 from racebot_sim_bridge.kinematics.planar_move import integrate, world_to_base
 
-STARTUP_TIMEOUT = 90.0  # wall s
-WALL_TIMEOUT = 30.0
 SKID, PLANAR = 'skid_steer_bot', 'planar_move_bot'
 WHEELS = ['left_front_wheel_joint', 'right_front_wheel_joint', 'left_rear_wheel_joint', 'right_rear_wheel_joint']
 WHEEL_RADIUS = 0.1
 SEPARATION = 0.4
 P3D_SIGMA = 0.01
-
-
-def twist(vx, vy, wz):
-    t = Twist()
-    t.linear.x, t.linear.y, t.angular.z = vx, vy, wz
-    return t
-
-
-class Driver(object):
-    """Publishes the latest command at 20 Hz (wall time) until stopped (None: nothing is sent)."""
-
-    def __init__(self, topic):
-        self.pub = rospy.Publisher(topic, Twist, queue_size=1)
-        self.command = None
-        self.running = True
-        threading.Thread(target=self._loop, daemon=True).start()
-
-    def _loop(self):
-        while self.running and not rospy.is_shutdown():
-            cmd = self.command
-            if cmd is not None:
-                self.pub.publish(cmd)
-            time.sleep(0.05)
 
 
 class State(object):
@@ -86,86 +54,35 @@ class State(object):
         return world_to_base(self.linear[0], self.linear[1], self.yaw)
 
 
-def wait_for(condition, what, timeout=WALL_TIMEOUT):
-    return DrivePluginsTest.watch.wait(condition, what, timeout, period=0.01)
-
-
-class DrivePluginsTest(unittest.TestCase):
-    launch = None
-
-    @classmethod
-    def setUpClass(cls):
-        try:
-            cls.start()
-        except BaseException:
-            cls.tearDownClass()
-            raise
+class DrivePluginsTest(FixtureRobotTest):
+    NODE = 'drive_plugins_test'
 
     @classmethod
     def start(cls):
-        rospy.init_node('drive_plugins_test')
         files = [os.path.join(FIXTURE_ROBOTS, 'skid_steer_bot', 'launch', 'skid_steer_bot_world.launch'),
                  os.path.join(FIXTURE_ROBOTS, 'planar_move_bot', 'launch', 'spawn.launch')]
-        cls.launch, cls.watch = fixture_launch('%s gui:=false yaw:=0.7 y:=3' % ' '.join(files), 'drive_plugins')
-        cls.clock = Latest('/clock', Clock)
+        cls.launch_fixture('%s gui:=false yaw:=0.7 y:=3' % ' '.join(files), 'drive_plugins')
         cls.models = Latest('/gazebo/model_states', ModelStates)
         cls.skid_odom = Latest('/skid/odom', Odometry)
         cls.ground_truth = Latest('/skid/ground_truth/state', Odometry)
         cls.joint_states = Latest('/skid/joint_states', JointState)
         cls.planar_odom = Latest('/planar/odom', Odometry)
-        cls.tf = {}
-        rospy.Subscriber('/tf', TFMessage, cls._on_tf, queue_size=100)
-        cls.skid = Driver('/skid/cmd_vel')
-        cls.planar = Driver('/planar/cmd_vel')
+        cls.collect_tf()
+        cls.skid = cls.driver('/skid/cmd_vel')
+        cls.planar = cls.driver('/planar/cmd_vel')
         cls.watch.wait(lambda: cls.models.msg is not None and {SKID, PLANAR} <= set(cls.models.msg.name),
                        'both robots to be spawned', STARTUP_TIMEOUT)
-        for name in ('get_model_state', 'pause_physics', 'unpause_physics'):
-            rospy.wait_for_service('/gazebo/' + name, timeout=WALL_TIMEOUT)
-        cls.get_state = rospy.ServiceProxy('/gazebo/get_model_state', GetModelState)
-        cls.pause = rospy.ServiceProxy('/gazebo/pause_physics', Empty)
-        cls.unpause = rospy.ServiceProxy('/gazebo/unpause_physics', Empty)
+        cls.gazebo_services()
 
-    @classmethod
-    def tearDownClass(cls):
-        for driver in ('skid', 'planar'):
-            if hasattr(cls, driver):
-                getattr(cls, driver).running = False
-        if cls.launch is not None:
-            cls.launch.stop()
-
-    @classmethod
-    def _on_tf(cls, msg):
-        for t in msg.transforms:
-            cls.tf[(t.header.frame_id, t.child_frame_id)] = t
-
-    # -- helpers ------------------------------------------------------------------------------
-    def now(self):
-        return self.clock.msg.clock.to_sec()
-
-    def sim_wait(self, seconds):
-        end = wait_for(lambda: self.clock.msg and self.now(), '/clock') + seconds
-        wait_for(lambda: self.now() >= end, '%.1f s of sim time' % seconds)
-
-    def snapshot(self, *models):
-        """Ground truth of `models` with physics paused, and the messages that had come by then."""
-        self.pause()
-        try:
-            count = self.clock.count
-            wait_for(lambda: self.clock.count >= count + 2, 'a /clock while paused')
-            t = self.now()
-            states = [State(t, self.get_state(m, '')) for m in models]
-        finally:
-            self.unpause()
-        return states if len(states) > 1 else states[0]
-
-    def assertClose(self, value, expected, tolerance, what):
-        self.assertLessEqual(abs(value - expected), tolerance, '%s: %.4f, expected %.4f +- %.4f'
-                             % (what, value, expected, tolerance))
+    def snapshot(self, model):
+        """Ground truth of `model` with physics paused."""
+        t, res = self.paused(lambda: self.get_state(model, ''))
+        return State(t, res)
 
     def check_wheels(self, expected):
         """joint_state_publisher's latest message: the named joints in order, at these velocities (5 %)."""
         count = self.joint_states.count
-        js = wait_for(lambda: self.joint_states.count > count and self.joint_states.msg, 'joint_states')
+        js = self.wait_for(lambda: self.joint_states.count > count and self.joint_states.msg, 'joint_states')
         self.assertEqual(list(js.name), WHEELS)
         for name, v, e in zip(js.name, js.velocity, expected):
             self.assertClose(v, e, 0.05 * abs(e), '%s velocity' % name)
@@ -174,8 +91,8 @@ class DrivePluginsTest(unittest.TestCase):
     def test_1_planar_move_follows_cmd_vel_in_its_own_axes(self):
         command = (0.3, 0.2, 0.5)
         self.planar.command = twist(*command)
-        wait_for(lambda: self.planar_odom.msg and self.planar_odom.msg.twist.twist.angular.z > 0.4,
-                 'the planar base to turn')
+        self.wait_for(lambda: self.planar_odom.msg and self.planar_odom.msg.twist.twist.angular.z > 0.4,
+                      'the planar base to turn')
         a = self.snapshot(PLANAR)
         self.sim_wait(1.0)
         b = self.snapshot(PLANAR)
@@ -199,16 +116,16 @@ class DrivePluginsTest(unittest.TestCase):
         # cmdTimeout 0.5: with no more commands the base stops; its odometry and TF then equal the truth
         self.planar.command = None
         self.sim_wait(0.6)
-        wait_for(lambda: abs(self.planar_odom.msg.twist.twist.linear.x) < 1e-3, 'the planar base to stop')
+        self.wait_for(lambda: abs(self.planar_odom.msg.twist.twist.linear.x) < 1e-3, 'the planar base to stop')
         count = self.planar_odom.count
-        wait_for(lambda: self.planar_odom.count > count, 'odometry at rest')
+        self.wait_for(lambda: self.planar_odom.count > count, 'odometry at rest')
         rest = self.snapshot(PLANAR)
         self.assertLess(math.hypot(*rest.linear[:2]), 1e-3, 'the base still moves after cmdTimeout')
         pose = self.planar_odom.msg.pose.pose
         self.assertClose(pose.position.x, rest.x, 1e-3, 'odometry x')
         self.assertClose(pose.position.y, rest.y, 1e-3, 'odometry y')
         self.assertClose(yaw_of(pose.orientation), rest.yaw, 1e-3, 'odometry yaw')
-        tf = wait_for(lambda: self.tf.get(('planar_odom', 'planar_base')), 'TF planar_odom -> planar_base')
+        tf = self.wait_for(lambda: self.tf.get(('planar_odom', 'planar_base')), 'TF planar_odom -> planar_base')
         self.assertClose(tf.transform.translation.x, rest.x, 1e-3, 'TF x')
         self.assertClose(tf.transform.translation.y, rest.y, 1e-3, 'TF y')
 
@@ -217,7 +134,8 @@ class DrivePluginsTest(unittest.TestCase):
         # a left turn
         turn = (0.2, 0.8)
         self.skid.command = twist(turn[0], 0.0, turn[1])
-        wait_for(lambda: self.skid_odom.msg and self.skid_odom.msg.twist.twist.angular.z > 0.1, 'the skid base to turn')
+        self.wait_for(lambda: self.skid_odom.msg and self.skid_odom.msg.twist.twist.angular.z > 0.1,
+                      'the skid base to turn')
         self.sim_wait(0.3)
         a = self.snapshot(SKID)
         self.sim_wait(1.0)
@@ -234,8 +152,8 @@ class DrivePluginsTest(unittest.TestCase):
         # straight ahead, heading more than 0.7 rad from the world's x axis
         speed = 0.4
         self.skid.command = twist(speed, 0.0, 0.0)
-        wait_for(lambda: abs(self.skid_odom.msg.twist.twist.angular.z) < 0.02
-                 and self.skid_odom.msg.twist.twist.linear.x > 0.95 * speed, 'the skid base to drive straight')
+        self.wait_for(lambda: abs(self.skid_odom.msg.twist.twist.angular.z) < 0.02
+                      and self.skid_odom.msg.twist.twist.linear.x > 0.95 * speed, 'the skid base to drive straight')
         c = self.snapshot(SKID)
         self.sim_wait(1.0)
         d = self.snapshot(SKID)
@@ -261,7 +179,7 @@ class DrivePluginsTest(unittest.TestCase):
         self.check_wheels([speed / WHEEL_RADIUS] * 4)
         # at rest: odometry, TF and p3d poses equal the ground truth
         self.skid.command = twist(0.0, 0.0, 0.0)
-        wait_for(lambda: abs(self.skid_odom.msg.twist.twist.linear.x) < 0.002, 'the skid base to stop')
+        self.wait_for(lambda: abs(self.skid_odom.msg.twist.twist.linear.x) < 0.002, 'the skid base to stop')
         self.sim_wait(0.2)
         rest = self.snapshot(SKID)
         for what, msg in (('odometry', self.skid_odom.msg), ('p3d', self.ground_truth.msg)):
@@ -271,7 +189,7 @@ class DrivePluginsTest(unittest.TestCase):
             self.assertClose(yaw_of(p.orientation), rest.yaw, 2e-3, '%s yaw' % what)
         self.assertClose(self.ground_truth.msg.pose.pose.position.z, rest.z, 2e-3, 'p3d z')
         self.assertEqual(self.skid_odom.msg.pose.pose.position.z, 0.0)  # upstream leaves it 0
-        tf = wait_for(lambda: self.tf.get(('odom', 'base_link')), 'TF odom -> base_link')
+        tf = self.wait_for(lambda: self.tf.get(('odom', 'base_link')), 'TF odom -> base_link')
         self.assertClose(tf.transform.translation.x, rest.x, 2e-3, 'TF x')
         self.assertClose(tf.transform.translation.z, rest.z, 2e-3, 'TF z')  # the TF has it
 

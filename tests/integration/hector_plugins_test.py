@@ -8,7 +8,6 @@ acceleration); `set_reference_geopose` (hector_gazebo_plugins/SetReferenceGeoPos
 status server switching the fix off.
 """
 import math
-import unittest
 
 import rospy
 import rostest
@@ -18,39 +17,23 @@ from geometry_msgs.msg import Quaternion, Vector3
 from hector_gazebo_plugins.srv import SetBias, SetReferenceGeoPose
 from sensor_msgs.msg import Imu, NavSatFix
 
-from catkin_overlay import fixture_launch
+from fixture_robot import STARTUP_TIMEOUT, WALL_TIMEOUT, FixtureRobotTest
 from integration_common import Latest
 
-STARTUP_TIMEOUT = 90.0  # wall s
-WALL_TIMEOUT = 30.0
 IMU, FIX = '/skid/imu/data', '/skid/navsat/fix'
 
 
-class HectorPluginsTest(unittest.TestCase):
-    launch = None
+class HectorPluginsTest(FixtureRobotTest):
+    NODE = 'hector_plugins_test'
 
     @classmethod
-    def setUpClass(cls):
-        try:
-            rospy.init_node('hector_plugins_test')
-            cls.imu = Latest(IMU, Imu)
-            cls.bias = Latest(IMU + '/bias', Imu)
-            cls.fix = Latest(FIX, NavSatFix)
-            cls.launch, cls.watch = fixture_launch('skid_steer_bot skid_steer_bot_world.launch gui:=false hector:=true',
-                                                   'hector_plugins')
-            cls.watch.wait(lambda: cls.imu.msg is not None and cls.fix.msg is not None, 'the IMU and the fix',
-                           STARTUP_TIMEOUT)
-        except BaseException:
-            cls.tearDownClass()
-            raise
-
-    @classmethod
-    def tearDownClass(cls):
-        if cls.launch is not None:
-            cls.launch.stop()
-
-    def wait_for(self, condition, what, timeout=WALL_TIMEOUT):
-        return self.watch.wait(condition, what, timeout, period=0.02)
+    def start(cls):
+        cls.imu = Latest(IMU, Imu)
+        cls.bias = Latest(IMU + '/bias', Imu)
+        cls.fix = Latest(FIX, NavSatFix)
+        cls.launch_fixture('skid_steer_bot skid_steer_bot_world.launch gui:=false hector:=true', 'hector_plugins')
+        cls.watch.wait(lambda: cls.imu.msg is not None and cls.fix.msg is not None, 'the IMU and the fix',
+                       STARTUP_TIMEOUT)
 
     def test_imu_bias_service_and_reconfigure(self):
         self.assertEqual(self.imu.msg.header.frame_id, 'base_link')

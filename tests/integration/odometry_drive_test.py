@@ -10,32 +10,20 @@ message and on /tf) stays within 5 % of the distance travelled of the true pose.
 cmd_vel_timeout (0.25 s) stops the robot.
 """
 import math
-import threading
-import time
-import unittest
 
 import rospy
-from controller_manager_msgs.srv import ListControllers
-from gazebo_msgs.srv import GetModelState
 from geometry_msgs.msg import Twist
 from nav_msgs.msg import Odometry
-from rosgraph_msgs.msg import Clock
-from std_srvs.srv import Empty
-from tf2_msgs.msg import TFMessage
 
-from catkin_overlay import fixture_launch
+from fixture_robot import STARTUP_TIMEOUT, FixtureRobotTest, running_controllers
 from integration_common import Latest, yaw_of
 
-STARTUP_TIMEOUT = 90.0  # wall s
-WALL_TIMEOUT = 30.0
 
-
-class OdometryDriveTest(unittest.TestCase):
+class OdometryDriveTest(FixtureRobotTest):
     """A base on an odometry drive controller, driven through its cmd_vel. A subclass names the robot package
     and what to expect: PACKAGE and LAUNCH (the package's world launch file), NS (the robot's namespace),
     MODEL, CONTROLLER (its name), COMMAND (linear.x, angular.z published) and YAW_RATE (what the robot must
     turn at)."""
-    launch = None
     PACKAGE = LAUNCH = NS = MODEL = CONTROLLER = None
     COMMAND = YAW_RATE = None
 
@@ -44,97 +32,32 @@ class OdometryDriveTest(unittest.TestCase):
         return '/%s/%s/%s' % (cls.NS, cls.CONTROLLER, leaf)
 
     @classmethod
-    def setUpClass(cls):
-        try:
-            cls.start()
-        except BaseException:
-            cls.tearDownClass()
-            raise
+    def node_name(cls):
+        return '%s_test' % cls.CONTROLLER
 
     @classmethod
     def start(cls):
-        rospy.init_node('%s_test' % cls.CONTROLLER)
-        cls.tf = {}
-        rospy.Subscriber('/tf', TFMessage, cls._on_tf, queue_size=100)
-        cls.clock = Latest('/clock', Clock)
+        cls.collect_tf()
         cls.odom = Latest(cls.topic('odom'), Odometry)
-        cls.cmd_pub = rospy.Publisher(cls.topic('cmd_vel'), Twist, queue_size=1)
-        cls.command = None
-        cls.running = True
-        threading.Thread(target=cls._drive, daemon=True).start()
-        cls.launch, cls.watch = fixture_launch('%s %s gui:=false' % (cls.PACKAGE, cls.LAUNCH), cls.CONTROLLER)
-        cls.watch.wait(lambda: cls._running_controllers() >= {'joint_state_controller', cls.CONTROLLER},
+        cls.cmd = cls.driver(cls.topic('cmd_vel'))
+        cls.launch_fixture('%s %s gui:=false' % (cls.PACKAGE, cls.LAUNCH), cls.CONTROLLER)
+        cls.watch.wait(lambda: running_controllers(cls.NS) >= {'joint_state_controller', cls.CONTROLLER},
                        'the two controllers to run', STARTUP_TIMEOUT, period=0.2)
-        for name in ('get_model_state', 'pause_physics', 'unpause_physics'):
-            rospy.wait_for_service('/gazebo/' + name, timeout=WALL_TIMEOUT)
-        cls.get_state = rospy.ServiceProxy('/gazebo/get_model_state', GetModelState)
-        cls.pause = rospy.ServiceProxy('/gazebo/pause_physics', Empty)
-        cls.unpause = rospy.ServiceProxy('/gazebo/unpause_physics', Empty)
-
-    @classmethod
-    def _running_controllers(cls):
-        try:
-            service = '/%s/controller_manager/list_controllers' % cls.NS
-            rospy.wait_for_service(service, timeout=0.1)
-            res = rospy.ServiceProxy(service, ListControllers)()
-        except (rospy.ROSException, rospy.ServiceException):
-            return set()
-        return {c.name for c in res.controller if c.state == 'running'}
-
-    @classmethod
-    def tearDownClass(cls):
-        cls.running = False
-        if cls.launch is not None:
-            cls.launch.stop()
-
-    @classmethod
-    def _on_tf(cls, msg):
-        for t in msg.transforms:
-            cls.tf[(t.header.frame_id, t.child_frame_id)] = t
-
-    @classmethod
-    def _drive(cls):
-        """Publishes the latest command at 20 Hz (wall time); None publishes nothing."""
-        while cls.running and not rospy.is_shutdown():
-            if cls.command is not None:
-                cls.cmd_pub.publish(cls.command)
-            time.sleep(0.05)
-
-    # -- helpers ------------------------------------------------------------------------------
-    def wait_for(self, condition, what, timeout=WALL_TIMEOUT):
-        return self.watch.wait(condition, what, timeout, period=0.01)
-
-    def now(self):
-        return self.clock.msg.clock.to_sec()
-
-    def sim_wait(self, seconds):
-        end = self.wait_for(lambda: self.clock.msg and self.now(), '/clock') + seconds
-        self.wait_for(lambda: self.now() >= end, '%.1f s of sim time' % seconds)
+        cls.gazebo_services()
 
     def snapshot(self):
         """(sim time, x, y, yaw, forward speed, yaw rate) of the robot with physics paused, and the odometry."""
-        self.pause()
-        try:
-            count = self.clock.count
-            self.wait_for(lambda: self.clock.count >= count + 2, 'a /clock while paused')
-            res = self.get_state(self.MODEL, '')
-            odom = self.odom.msg
-        finally:
-            self.unpause()
+        t, (res, odom) = self.paused(lambda: (self.get_state(self.MODEL, ''), self.odom.msg))
         p, q = res.pose.position, res.pose.orientation
         yaw = yaw_of(q)
         speed = res.twist.linear.x * math.cos(yaw) + res.twist.linear.y * math.sin(yaw)
-        return (self.now(), p.x, p.y, yaw, speed, res.twist.angular.z), odom
-
-    def assertWithin(self, value, expected, fraction, what):
-        self.assertLessEqual(abs(value - expected), fraction * abs(expected),
-                             '%s: %.4f, expected %.4f within %.0f %%' % (what, value, expected, 100 * fraction))
+        return (t, p.x, p.y, yaw, speed, res.twist.angular.z), odom
 
     # -- the test -------------------------------------------------------------------------------
     def test_drive_odometry_tf_and_timeout(self):
         cmd = Twist()
         cmd.linear.x, cmd.angular.z = self.COMMAND
-        type(self).command = cmd
+        self.cmd.command = cmd
         self.wait_for(lambda: self.odom.msg and self.odom.msg.twist.twist.angular.z > 0.95 * self.YAW_RATE
                       and self.odom.msg.twist.twist.linear.x > 0.95 * self.COMMAND[0], 'the ramp to end')
         self.sim_wait(0.2)
@@ -164,7 +87,7 @@ class OdometryDriveTest(unittest.TestCase):
         self.assertLess(math.hypot(tf.transform.translation.x - x1, tf.transform.translation.y - y1),
                         0.05 * travelled)
         # the publisher goes quiet: cmd_vel_timeout (0.25 s) brakes the wheels, the robot stops
-        type(self).command = None
+        self.cmd.command = None
         self.sim_wait(1.5)
         (_, _, _, _, speed, yaw_rate), _ = self.snapshot()
         self.assertLess(abs(speed), 0.02, 'still moving %.3f m/s after the timeout' % speed)

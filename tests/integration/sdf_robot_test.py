@@ -14,105 +14,46 @@ puts the axle at 0.3 m/s, within 5 %. The world file's robot runs its plugins to
 (no robotNamespace): /parked_bot/cmd_vel drives it.
 """
 import math
-import threading
-import time
-import unittest
 
 import rospy
 import rostest
 from gazebo_msgs.msg import ModelStates
-from gazebo_msgs.srv import GetModelProperties, GetModelState
+from gazebo_msgs.srv import GetModelProperties
 from geometry_msgs.msg import Twist
 from nav_msgs.msg import Odometry
-from rosgraph_msgs.msg import Clock
 from sensor_msgs.msg import JointState, LaserScan
-from std_srvs.srv import Empty
 
-from catkin_overlay import fixture_launch
+from fixture_robot import STARTUP_TIMEOUT, WALL_TIMEOUT, FixtureRobotTest
 from integration_common import Latest, yaw_of
 
-STARTUP_TIMEOUT = 90.0  # wall s
-WALL_TIMEOUT = 30.0
 MODEL = 'sdf_diffbot'
 COMMAND = (0.3, 0.5)  # m/s, rad/s
 CHASSIS_AHEAD = 0.1  # m: the chassis origin ahead of the wheel axle
 
 
-class SdfRobotTest(unittest.TestCase):
-    launch = None
-
-    @classmethod
-    def setUpClass(cls):
-        try:
-            cls.start()
-        except BaseException:
-            cls.tearDownClass()
-            raise
+class SdfRobotTest(FixtureRobotTest):
+    NODE = 'sdf_robot_test'
 
     @classmethod
     def start(cls):
-        rospy.init_node('sdf_robot_test')
-        cls.clock = Latest('/clock', Clock)
         cls.models = Latest('/gazebo/model_states', ModelStates)
         cls.odom = Latest('/odom', Odometry)
         cls.scan = Latest('/scan', LaserScan)
         cls.joint_states = Latest('/joint_states', JointState)
-        cls.cmd_pub = rospy.Publisher('/cmd_vel', Twist, queue_size=1)
-        cls.parked_pub = rospy.Publisher('/parked_bot/cmd_vel', Twist, queue_size=1)
         cls.parked_odom = Latest('/parked_bot/odom', Odometry)
-        cls.command = None
-        cls.running = True
-        threading.Thread(target=cls._drive, daemon=True).start()
-        cls.launch, cls.watch = fixture_launch('sdf_diffbot sdf_diffbot_world.launch gui:=false', 'sdf_robot')
+        cls.cmd = cls.driver('/cmd_vel', '/parked_bot/cmd_vel')  # both robots get the same command
+        cls.launch_fixture('sdf_diffbot sdf_diffbot_world.launch gui:=false', 'sdf_robot')
         cls.watch.wait(lambda: cls.models.msg is not None and MODEL in cls.models.msg.name,
                        'the robot to be spawned', STARTUP_TIMEOUT)
-        for name in ('get_model_state', 'get_model_properties', 'pause_physics', 'unpause_physics'):
-            rospy.wait_for_service('/gazebo/' + name, timeout=WALL_TIMEOUT)
-        cls.get_state = rospy.ServiceProxy('/gazebo/get_model_state', GetModelState)
+        cls.gazebo_services()
+        rospy.wait_for_service('/gazebo/get_model_properties', timeout=WALL_TIMEOUT)
         cls.get_properties = rospy.ServiceProxy('/gazebo/get_model_properties', GetModelProperties)
-        cls.pause = rospy.ServiceProxy('/gazebo/pause_physics', Empty)
-        cls.unpause = rospy.ServiceProxy('/gazebo/unpause_physics', Empty)
-
-    @classmethod
-    def tearDownClass(cls):
-        cls.running = False
-        if cls.launch is not None:
-            cls.launch.stop()
-
-    @classmethod
-    def _drive(cls):
-        """Publishes the latest command at 20 Hz (wall time)."""
-        while cls.running and not rospy.is_shutdown():
-            if cls.command is not None:
-                cls.cmd_pub.publish(cls.command)
-                cls.parked_pub.publish(cls.command)
-            time.sleep(0.05)
-
-    def wait_for(self, condition, what, timeout=WALL_TIMEOUT):
-        return self.watch.wait(condition, what, timeout, period=0.01)
-
-    def now(self):
-        return self.clock.msg.clock.to_sec()
-
-    def sim_wait(self, seconds):
-        end = self.wait_for(lambda: self.clock.msg and self.now(), '/clock') + seconds
-        self.wait_for(lambda: self.now() >= end, '%.1f s of sim time' % seconds)
 
     def snapshot(self):
         """(sim time, x, y, yaw) of the model with physics paused."""
-        self.pause()
-        try:
-            count = self.clock.count
-            self.wait_for(lambda: self.clock.count >= count + 2, 'a /clock while paused')
-            res = self.get_state(MODEL, '')
-        finally:
-            self.unpause()
+        t, res = self.paused(lambda: self.get_state(MODEL, ''))
         p = res.pose.position
-        return self.now(), p.x, p.y, yaw_of(res.pose.orientation)
-
-    def assertWithin(self, value, expected, fraction, what):
-        self.assertLessEqual(abs(value - expected), fraction * abs(expected),
-                             '%s: %.4f, expected %.4f within %.0f %%' % (what, value, expected, 100 * fraction))
+        return t, p.x, p.y, yaw_of(res.pose.orientation)
 
     def test_links_laser_and_drive(self):
         props = self.get_properties(MODEL)
@@ -125,14 +66,14 @@ class SdfRobotTest(unittest.TestCase):
         self.assertEqual((len(scan.ranges), scan.header.frame_id), (360, 'laser_link'))
         cmd = Twist()
         cmd.linear.x, cmd.angular.z = COMMAND
-        type(self).command = cmd
+        self.cmd.command = cmd
         self.wait_for(lambda: self.odom.msg and self.odom.msg.twist.twist.angular.z > 0.95 * COMMAND[1],
                       'the robot to turn')
         self.sim_wait(0.3)
         t0, x0, y0, yaw0 = self.snapshot()
         self.sim_wait(1.0)
         t1, x1, y1, yaw1 = self.snapshot()
-        type(self).command = Twist()
+        self.cmd.command = Twist()
         dt, turned = t1 - t0, math.remainder(yaw1 - yaw0, 2 * math.pi)
         chord = math.hypot(x1 - x0, y1 - y0)
         arc = chord * (turned / 2) / math.sin(turned / 2)
