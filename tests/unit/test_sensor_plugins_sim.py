@@ -2,6 +2,7 @@
 the rospy stand-in of test_sensors_sim: no master. The test robot (tests/fixtures/sensor_plugins)
 stands on a ground plane, its front 1 m from a static box."""
 import math
+import os
 from pathlib import Path
 
 import numpy as np
@@ -69,7 +70,11 @@ def test_topics_and_one_warning_for_the_plugin_not_simulated(world):
     warned = [msg for level, msg in fake.logs if level == 'warn' and 'libgazebo_ros_block_laser.so' in msg]
     assert len(warned) == 1
     assert "'block_laser'" in warned[0]
-    assert "see 'Supported plugins, sensors and controllers' in racebot_sim_bridge's README" in warned[0]
+    # the README by its path in this checkout: a user can open it from the log line
+    readme = os.path.join(os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)))), 'README.md')
+    assert "see the table 'Supported plugins, sensors and controllers' in %s" % readme in warned[0]
+    with open(readme) as f:
+        assert '## Supported plugins, sensors and controllers' in f.read()
 
 
 def test_a_plugin_not_simulated_beside_one_that_is(tmp_path):

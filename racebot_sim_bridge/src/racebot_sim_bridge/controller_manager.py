@@ -17,6 +17,7 @@ from time import monotonic
 
 from .controllers import CONTROLLER_TYPES, ControllerInitError
 from .hardware import cpp_name
+from .supported_table import WHERE
 
 BEST_EFFORT = 1
 STRICT = 2
@@ -111,9 +112,8 @@ class ControllerManager(object):
         if cls is None:
             self.log.error("Could not load controller '%s' because controller type '%s' does not exist. "
                            "Use 'rosservice call %s/controller_manager/list_controller_types' to get the "
-                           "available types; the table 'Supported plugins, sensors and controllers' in "
-                           "racebot_sim_bridge's README says which ros_controllers racebot has and which not yet"
-                           % (name, type_name, self.ns))
+                           "available types; %s says which ros_controllers racebot has and which not yet"
+                           % (name, type_name, self.ns, WHERE))
             return None
         try:
             return Entry(cls(name, self.ns, params, self.hw, self.io), type_name)

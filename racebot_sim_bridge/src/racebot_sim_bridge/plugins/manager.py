@@ -8,8 +8,7 @@ world server: a plugin whose update fails is stopped with an error, the world go
 """
 from . import MODEL_PLUGINS, plugin_key
 from .base import PluginError
-
-README_TABLE = "the table 'Supported plugins, sensors and controllers' in racebot_sim_bridge's README"
+from ..supported_table import WHERE as README_TABLE
 NOT_MODEL_PLUGINS = ('gazebo_ros_control',)  # simulator.py runs it
 
 

@@ -39,11 +39,12 @@ from .render import RENDERER_CHOICES, RENDERER_NAMES, TINY
 from .render_worker import RenderWorker
 from .scene import SceneColours
 from .schedule import TIME_EPS, RenderBudget
+from .. import supported_table
 from ..world_copy import snapshot
 
 DEFAULT_RENDER_BUDGET = 0.5
 DEFAULT_REPORT_PERIOD = 10.0
-SUPPORTED_TABLE = "see 'Supported plugins, sensors and controllers' in racebot_sim_bridge's README"
+SUPPORTED_TABLE = 'see ' + supported_table.WHERE
 
 
 class RospyLog(object):
