@@ -105,6 +105,23 @@ def test_continuous_joint_accumulates_many_turns(hw, direction):
     assert h.velocity == direction * 30.0
 
 
+@pytest.mark.parametrize('readings', [
+    [0.0, math.pi, 0.0, -math.pi, 0.0],               # steps of exactly +pi and -pi
+    [3.0, -3.0, 3.0, math.pi, -math.pi, 1e-300, 0.0],  # across the wrap both ways, and a step of 2 pi
+    [0.1 * k for k in range(80)] + [-0.1 * k for k in range(80)],  # beyond pi without wrapping
+])
+def test_unwrapping_adds_exactly_what_shortest_angular_distance_gives(hw, readings):
+    # read() adds a small step as it is (the common case, no fmod); the sum must stay bit for bit the one
+    # shortest_angular_distance gives, as a run repeats to the last bit.
+    h = hw.handles['wheel']
+    h.read(readings[0], 0.0)
+    expected = readings[0]
+    for previous, raw in zip(readings, readings[1:]):
+        h.read(raw, 0.0)
+        expected += shortest_angular_distance(previous, raw)
+        assert h.position == expected
+
+
 def test_revolute_joint_is_unwrapped_too(hw):
     # DefaultRobotHWSim accumulates every non-prismatic joint.
     h = hw.handles['hinge']

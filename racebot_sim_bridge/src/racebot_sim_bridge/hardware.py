@@ -60,10 +60,14 @@ class JointHandle(object):
         self._wraps = kind != 'prismatic'  # angles are unwrapped; prismatic positions are taken as they are
 
     def read(self, raw_position, velocity):
-        if not self._wraps or self._raw_position is None:
-            self.position = raw_position
+        previous = self._raw_position
+        if self._wraps and previous is not None:
+            step = raw_position - previous
+            if not -math.pi < step <= math.pi:  # what shortest_angular_distance returns for a step in (-pi, pi]
+                step = shortest_angular_distance(previous, raw_position)
+            self.position += step
         else:
-            self.position += shortest_angular_distance(self._raw_position, raw_position)
+            self.position = raw_position
         self._raw_position = raw_position
         self.velocity = velocity
 

@@ -207,17 +207,19 @@ class PidCommandController(CommandController):
         self._state_wanted = (lambda: connections() > 0) if connections is not None else (lambda: True)
 
     def _publish_state(self, time, period, set_point, process_value, process_value_dot, error, command):
-        if self.loop_count % STATE_PUBLISH_EVERY == 0 and self._state_wanted():
-            s = self.state
-            s.header.stamp = self.io.stamp(time)
-            s.set_point = set_point
-            s.process_value = process_value
-            s.process_value_dot = process_value_dot
-            s.error = error
-            s.time_step = period
-            s.command = command
-            g = self.pid
-            s.p, s.i, s.d = g.p, g.i, g.d
-            s.i_clamp, s.antiwindup = g.i_clamp_max, bool(g.antiwindup)
-            self.state_pub.publish(s)
-        self.loop_count += 1
+        """Fills and publishes the state message (ros_controllers' JointControllerState). The caller's
+        update counts its updates in `loop_count` and calls this at the first and every
+        STATE_PUBLISH_EVERY-th after it while `_state_wanted()`: inline, as a call per update per
+        controller is measurable in the world's step."""
+        s = self.state
+        s.header.stamp = self.io.stamp(time)
+        s.set_point = set_point
+        s.process_value = process_value
+        s.process_value_dot = process_value_dot
+        s.error = error
+        s.time_step = period
+        s.command = command
+        g = self.pid
+        s.p, s.i, s.d = g.p, g.i, g.d
+        s.i_clamp, s.antiwindup = g.i_clamp_max, bool(g.antiwindup)
+        self.state_pub.publish(s)

@@ -3,7 +3,7 @@ JointPositionController (PID on the error, effort out)."""
 import math  # noqa: F401
 
 from ..hardware import EFFORT, shortest_angular_distance
-from .base import PidCommandController, shortest_angular_distance_with_limits
+from .base import STATE_PUBLISH_EVERY, PidCommandController, shortest_angular_distance_with_limits
 from .forward_command import ForwardCommandController, ForwardJointGroupCommandController
 
 
@@ -28,7 +28,10 @@ class JointVelocityController(PidCommandController):
         error = cmd - self.joint.velocity
         effort = self.pid.compute(error, period)
         self.joint.command = effort
-        self._publish_state(time, period, cmd, self.joint.velocity, 0.0, error, effort)
+        n = self.loop_count
+        self.loop_count = n + 1
+        if n % STATE_PUBLISH_EVERY == 0 and self._state_wanted():
+            self._publish_state(time, period, cmd, self.joint.velocity, 0.0, error, effort)
         if self.observer is not None:
             self.observer.command_applied(self, cmd)
 
@@ -62,17 +65,17 @@ class JointPositionController(PidCommandController):
 
     def update(self, time, period):
         cmd = self.command
-        target = self.clamp(cmd)
+        j = self.joint
+        target = min(max(cmd, j.lower), j.upper) if j.has_position_limits else cmd  # clamp(), inline
         error = self.position_error(target)
         out = self.pid.compute(error, period)
-        self.joint.command = self._output(out)
-        self._publish_state(time, period, target, self.joint.position, self.joint.velocity, error, out)
+        j.command = out
+        n = self.loop_count
+        self.loop_count = n + 1
+        if n % STATE_PUBLISH_EVERY == 0 and self._state_wanted():
+            self._publish_state(time, period, target, j.position, j.velocity, error, out)
         if self.observer is not None:
             self.observer.command_applied(self, cmd)
-
-    def _output(self, out):
-        return out
-
 
 
 class JointGroupEffortController(ForwardJointGroupCommandController):
