@@ -265,9 +265,9 @@ class AttachedWindows(object):
             pass
         with self._new_lock:
             new, self._new = self._new, []
-        for sock in new:
-            sock.close()
-        for link in self.links:
+        # connections accepted since the last sync are windows too (one that connected just now): told as well
+        now = time.monotonic()
+        for link in self.links + [WindowLink(sock, now) for sock in new]:
             link.stop(why)
         self.links = []
         shutil.rmtree(self._dir, ignore_errors=True)

@@ -77,9 +77,25 @@ def serve(conn, window):
             if message[0] == 'stop':
                 return EXIT_STOPPED
             window.show(*message[1:])
-            conn.send(('shown',))
         except (EOFError, OSError):
             return EXIT_LOST
+        try:
+            conn.send(('shown',))
+        except OSError:
+            # The server may have said 'stop' and closed while this update was shown: the answer cannot go
+            # (EPIPE), but the stop waits in the socket.
+            return EXIT_STOPPED if _stop_waiting(conn) else EXIT_LOST
+
+
+def _stop_waiting(conn):
+    """Whether a 'stop' is among what the closed connection still holds."""
+    try:
+        while conn.poll(0):
+            if conn.recv()[0] == 'stop':
+                return True
+    except (EOFError, OSError):
+        pass
+    return False
 
 
 def window_main(fd, node_name):
