@@ -258,36 +258,32 @@ class SlowWindow(FakeWindow):
         super(SlowWindow, self).show(*update)
 
 
+def serve_closed_while_showing(then_stop):
+    """serve()'s exit code when the server closes (after a 'stop' if then_stop) while an update is shown."""
+    server, conn = pair()
+    window = SlowWindow()
+    result = []
+    thread = threading.Thread(target=lambda: result.append(viewer_process.serve(conn, window)))
+    thread.start()
+    server.send(('sync', {}, ['wall'], {}, None))
+    assert window.showing.wait(WAIT)
+    if then_stop:
+        server.send(('stop', 'it shuts down'))
+    server.close()
+    window.go_on.set()
+    thread.join(WAIT)
+    return result
+
+
 def test_a_stop_that_comes_while_an_update_is_shown_is_read_though_the_answer_cannot_go():
     # The world server sends 'stop' and closes while the window is still showing the last update (a
     # fresh-root CI run hit this): the window's ('shown',) then fails (EPIPE), but the stop is waiting
     # in its socket, so it ends as told (EXIT_STOPPED), not as if the server had crashed.
-    server, conn = pair()
-    window = SlowWindow()
-    result = []
-    thread = threading.Thread(target=lambda: result.append(viewer_process.serve(conn, window)))
-    thread.start()
-    server.send(('sync', {}, ['wall'], {}, None))
-    assert window.showing.wait(WAIT)
-    server.send(('stop', 'it shuts down'))
-    server.close()
-    window.go_on.set()
-    thread.join(WAIT)
-    assert result == [viewer_process.EXIT_STOPPED]
+    assert serve_closed_while_showing(then_stop=True) == [viewer_process.EXIT_STOPPED]
 
 
 def test_an_answer_that_cannot_go_without_a_stop_is_a_lost_server():
-    server, conn = pair()
-    window = SlowWindow()
-    result = []
-    thread = threading.Thread(target=lambda: result.append(viewer_process.serve(conn, window)))
-    thread.start()
-    server.send(('sync', {}, ['wall'], {}, None))
-    assert window.showing.wait(WAIT)
-    server.close()
-    window.go_on.set()
-    thread.join(WAIT)
-    assert result == [viewer_process.EXIT_LOST]
+    assert serve_closed_while_showing(then_stop=False) == [viewer_process.EXIT_LOST]
 
 
 def test_a_closed_window_is_told_apart_by_its_exit_code():
