@@ -14,6 +14,10 @@ VELOCITY = 'hardware_interface/VelocityJointInterface'
 POSITION = 'hardware_interface/PositionJointInterface'
 STATE = 'hardware_interface/JointStateInterface'
 COMMAND_INTERFACES = (EFFORT, VELOCITY, POSITION)
+# JointHandle's interface as a number, compared every update
+_EFFORT_MODE, _VELOCITY_MODE, _POSITION_MODE, _OTHER = 0, 1, 2, 3
+_MODES = {EFFORT: _EFFORT_MODE, VELOCITY: _VELOCITY_MODE, POSITION: _POSITION_MODE}
+_PI = math.pi
 
 
 def cpp_name(interface):
@@ -32,15 +36,33 @@ def shortest_angular_distance(a, b):
     return d
 
 
+def shortest_angular_distance_with_limits(current, target, lower, upper):
+    """Error that takes `current` to `target` without leaving [lower, upper] (angles' idea of
+    shortest_angular_distance_with_large_limits): the short way round if it stays inside the
+    limits, else the long way."""
+    delta = shortest_angular_distance(current, target)
+    if lower - 1e-12 <= current + delta <= upper + 1e-12:
+        return delta
+    other = delta - math.copysign(2.0 * _PI, delta) if delta != 0.0 else 0.0
+    if lower - 1e-12 <= current + other <= upper + 1e-12:
+        return other
+    return delta
+
+
 class HardwareError(ValueError):
     """A controller asked for a joint or an interface this robot does not offer."""
 
 
 class JointHandle(object):
-    """State of one joint and its command, as the controllers see it."""
+    """State of one joint and its command, as the controllers see it.
+
+    When built (CMakeLists.txt), hardware.pxd compiles this class with typed fields: read() and
+    limited_command() run every world update for every joint."""
 
     __slots__ = ('name', 'kind', 'interface', 'lower', 'upper', 'max_effort', 'max_velocity',
-                 'position', 'velocity', 'effort', 'command', '_raw_position', 'has_position_limits', '_wraps')
+                 'position', 'velocity', 'effort', 'command', 'has_position_limits',
+                 '_raw_position', '_has_raw', '_wraps', '_angular', '_mode', '_lower', '_upper', '_effort_limit',
+                 '_velocity_limit')
 
     def __init__(self, name, kind, interface, lower=None, upper=None, max_effort=None, max_velocity=None):
         self.name = name
@@ -53,51 +75,94 @@ class JointHandle(object):
         self.velocity = 0.0
         self.effort = 0.0
         self.command = 0.0
-        self._raw_position = None
+        self._raw_position = 0.0
+        self._has_raw = False
         # Fixed at construction (the URDF's), read by every update: plain attributes, not properties.
         self.has_position_limits = kind in ('revolute', 'prismatic') and lower is not None and upper is not None \
             and lower < upper
         self._wraps = kind != 'prismatic'  # angles are unwrapped; prismatic positions are taken as they are
+        self._angular = kind in ('revolute', 'continuous')
+        # The same limits as floats for limited_command (+inf where the URDF sets none).
+        self._mode = _MODES.get(interface, _OTHER)
+        self._lower = float(lower) if self.has_position_limits else -math.inf
+        self._upper = float(upper) if self.has_position_limits else math.inf
+        self._effort_limit = float(self.max_effort) if self.max_effort is not None else math.inf
+        self._velocity_limit = float(self.max_velocity) if self.max_velocity is not None else math.inf
 
     def read(self, raw_position, velocity):
-        previous = self._raw_position
-        if self._wraps and previous is not None:
+        if self._wraps and self._has_raw:
+            previous = self._raw_position
             step = raw_position - previous
-            if not -math.pi < step <= math.pi:  # what shortest_angular_distance returns for a step in (-pi, pi]
+            if not -_PI < step <= _PI:  # what shortest_angular_distance returns for a step in (-pi, pi]
                 step = shortest_angular_distance(previous, raw_position)
             self.position += step
         else:
             self.position = raw_position
         self._raw_position = raw_position
+        self._has_raw = True
         self.velocity = velocity
 
     def reset_position(self, raw_position):
-        self._raw_position = None
+        self._has_raw = False
         self.read(raw_position, 0.0)
+
+    def clamped_position(self, value):
+        """`value` within the joint's position limits (as it is without limits)."""
+        if self.has_position_limits:
+            return min(max(value, self._lower), self._upper)
+        return value
 
     def limited_command(self):
         """The command after joint_limits_interface's saturation (effort) or clamping (others)."""
         cmd = self.command
-        if not math.isfinite(cmd):
+        if not cmd - cmd == 0.0:  # inf or NaN (x - x is 0 for every finite x)
             return 0.0
-        if self.interface == EFFORT:
-            lo, hi = (-self.max_effort, self.max_effort) if self.max_effort is not None else (-math.inf, math.inf)
+        mode = self._mode
+        if mode == _EFFORT_MODE:
+            lo = -self._effort_limit
+            hi = self._effort_limit
             if self.has_position_limits:
-                if self.position < self.lower:
+                if self.position < self._lower:
                     lo = 0.0
-                elif self.position > self.upper:
+                elif self.position > self._upper:
                     hi = 0.0
-            if self.max_velocity is not None:
-                if self.velocity < -self.max_velocity:
-                    lo = 0.0
-                elif self.velocity > self.max_velocity:
-                    hi = 0.0
+            if self.velocity < -self._velocity_limit:
+                lo = 0.0
+            elif self.velocity > self._velocity_limit:
+                hi = 0.0
             return min(max(cmd, lo), hi)
-        if self.interface == VELOCITY and self.max_velocity is not None:
-            return min(max(cmd, -self.max_velocity), self.max_velocity)
-        if self.interface == POSITION and self.has_position_limits:
-            return min(max(cmd, self.lower), self.upper)
+        if mode == _VELOCITY_MODE:
+            return min(max(cmd, -self._velocity_limit), self._velocity_limit)
+        if mode == _POSITION_MODE and self.has_position_limits:
+            return min(max(cmd, self._lower), self._upper)
         return cmd
+
+
+def position_error(joint, target):
+    """effort_controllers/JointPositionController's error: the angle from the joint's position to
+    `target` (within its limits, if it has them) or, for a prismatic joint, the difference."""
+    if not joint._angular:
+        return target - joint.position
+    if joint.has_position_limits:
+        return shortest_angular_distance_with_limits(joint.position, target, joint._lower, joint._upper)
+    return shortest_angular_distance(joint.position, target)
+
+
+def read_joint_states(handles, states):
+    """Each handle reads its joint's state: `states` are PyBullet's getJointStates tuples (position,
+    velocity, ...), in the handles' order."""
+    for h, s in zip(handles, states):
+        h.read(s[0], s[1])
+
+
+def limited_efforts(handles):
+    """The limited command of each (effort) handle, also kept as its effort: what is applied."""
+    efforts = []
+    for h in handles:
+        e = h.limited_command()
+        h.effort = e
+        efforts.append(e)
+    return efforts
 
 
 class RobotHW(object):

@@ -9,8 +9,8 @@ import threading
 
 from . import physics, plugin_namespace, sdf_urdf, urdf_model
 from .controller_manager import ControllerManager
-from .controllers.base import shortest_angular_distance_with_limits
-from .hardware import EFFORT, POSITION, VELOCITY, RobotHW, shortest_angular_distance
+from .hardware import (EFFORT, POSITION, VELOCITY, RobotHW, limited_efforts, read_joint_states,
+                       shortest_angular_distance, shortest_angular_distance_with_limits)
 from .pid import Pid
 from .rotations import compose
 
@@ -65,8 +65,7 @@ class Robot(object):
         if not self.handles:
             return
         # one PyBullet call for all joints; raw tuples (position, velocity, ...), no per-joint objects
-        for h, s in zip(self.handles, world.joint_states_raw(self.body, self.indices)):
-            h.read(s[0], s[1])
+        read_joint_states(self.handles, world.joint_states_raw(self.body, self.indices))
 
     def write(self, world, dt):
         """gazebo_ros_control's writeSim: `dt` is the time since the last write (one world update)."""
@@ -76,11 +75,7 @@ class Robot(object):
             efforts = [self._pid_effort(h, pid, dt) for h, pid, _ in self.pid_joints]
             world.apply_efforts(self.body, [i for _, _, i in self.pid_joints], efforts)
         if self.effort_handles:
-            efforts = []
-            for h in self.effort_handles:
-                h.effort = e = h.limited_command()
-                efforts.append(e)
-            world.apply_efforts(self.body, self.effort_idx, efforts)
+            world.apply_efforts(self.body, self.effort_idx, limited_efforts(self.effort_handles))
         for hs, drive, indices, forces in self._drives:
             getattr(world, drive)(self.body, indices, [h.limited_command() for h in hs], forces)
 

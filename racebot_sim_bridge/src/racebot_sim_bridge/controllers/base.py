@@ -6,7 +6,8 @@ from std_msgs.msg import Float64
 from control_msgs.msg import JointControllerState
 
 from .. import hardware
-from ..hardware import EFFORT, POSITION, STATE, VELOCITY, shortest_angular_distance  # noqa: F401 (re-exported)
+from ..hardware import (EFFORT, POSITION, STATE, VELOCITY, shortest_angular_distance,  # noqa: F401 (re-exported)
+                        shortest_angular_distance_with_limits)
 from ..pid import Pid
 
 
@@ -18,19 +19,6 @@ LIMIT_WARN_TOLERANCE = 1e-6
 
 class ControllerInitError(ValueError):
     """init() of a controller failed; the message names the parameter or joint at fault."""
-
-
-def shortest_angular_distance_with_limits(current, target, lower, upper):
-    """Error that takes `current` to `target` without leaving [lower, upper] (angles' idea of
-    shortest_angular_distance_with_large_limits): the short way round if it stays inside the
-    limits, else the long way."""
-    delta = shortest_angular_distance(current, target)
-    if lower - 1e-12 <= current + delta <= upper + 1e-12:
-        return delta
-    other = delta - math.copysign(2.0 * math.pi, delta) if delta != 0.0 else 0.0
-    if lower - 1e-12 <= current + other <= upper + 1e-12:
-        return other
-    return delta
 
 
 class Controller(object):

@@ -1,9 +1,7 @@
 """effort_controllers: JointEffortController (forward), JointVelocityController and
 JointPositionController (PID on the error, effort out)."""
-import math  # noqa: F401
-
-from ..hardware import EFFORT, shortest_angular_distance
-from .base import STATE_PUBLISH_EVERY, PidCommandController, shortest_angular_distance_with_limits
+from ..hardware import EFFORT, position_error
+from .base import STATE_PUBLISH_EVERY, PidCommandController
 from .forward_command import ForwardCommandController, ForwardJointGroupCommandController
 
 
@@ -44,30 +42,20 @@ class JointPositionController(PidCommandController):
     setpoint = 'position'
 
     def clamp(self, position):
-        j = self.joint
-        if j.has_position_limits:
-            return min(max(position, j.lower), j.upper)
-        return position
+        return self.joint.clamped_position(position)
 
     def starting(self, time):
         self.command = self.clamp(self.joint.position)
         self.pid.reset()
 
     def position_error(self, target):
-        j = self.joint
-        if j.kind == 'revolute':
-            if j.has_position_limits:
-                return shortest_angular_distance_with_limits(j.position, target, j.lower, j.upper)
-            return shortest_angular_distance(j.position, target)
-        if j.kind == 'continuous':
-            return shortest_angular_distance(j.position, target)
-        return target - j.position
+        return position_error(self.joint, target)
 
     def update(self, time, period):
         cmd = self.command
         j = self.joint
-        target = min(max(cmd, j.lower), j.upper) if j.has_position_limits else cmd  # clamp(), inline
-        error = self.position_error(target)
+        target = j.clamped_position(cmd)
+        error = position_error(j, target)
         out = self.pid.compute(error, period)
         j.command = out
         n = self.loop_count

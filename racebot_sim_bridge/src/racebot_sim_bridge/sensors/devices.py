@@ -65,8 +65,11 @@ class Sensor(object):
 
     def listened(self, *roles):
         """True when any of the roles' topics (all, if none named) has a subscriber."""
-        pubs = [self.publishers[r] for r in roles] if roles else self.publishers.values()
-        return any(p.get_num_connections() > 0 for p in pubs)
+        publishers = self.publishers
+        for role in roles or publishers:  # a loop, not any(...): every sensor asks at every update
+            if publishers[role].get_num_connections() > 0:
+                return True
+        return False
 
     def wake_time(self):
         """The sim time this sensor next needs a step(): its next update (the manager skips it till then)."""
@@ -307,7 +310,11 @@ class ImuSensor(Sensor):
         self.advertise('imu', Imu, 10)
 
     def wake_time(self):
-        return self.schedule.next - self.sim.step_size  # the step before an update: prime the velocity
+        # The step before an update primes the velocity, while somebody listens; unheard, only the update
+        # (which resets the kinematics: the first update heard again primes the next).
+        if self.listened():
+            return self.schedule.next - self.sim.step_size
+        return self.schedule.next
 
     def step(self, time):
         if not self.schedule.due(time):
