@@ -101,7 +101,7 @@ def test_the_loop_helpers_compiled_read_and_limit_as_plain_python():
         handles[module] = [module.JointHandle('a', 'revolute', module.EFFORT, -0.5, 0.5, 2.0, 1.0),
                            module.JointHandle('b', 'continuous', module.EFFORT, None, None, 3.0, None)]
         module.read_joint_states(handles[module], [(0.7, 1.5, (0.0,) * 6, 0.0), (-3.0, -0.25, (0.0,) * 6, 0.0)])
-        for h, command in zip(handles[module], (5.0, -4.0)):  # past the limit: none; the saturation
+        for h, command in zip(handles[module], (5.0, -4.0)):  # a: no push past its limits; b: saturated
             h.command = command
     efforts = hardware.limited_efforts(handles[hardware])
     assert efforts == PLAIN_HARDWARE.limited_efforts(handles[PLAIN_HARDWARE]) == [0.0, -3.0]

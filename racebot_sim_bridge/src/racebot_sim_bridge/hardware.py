@@ -133,8 +133,8 @@ class JointHandle(object):
             return min(max(cmd, lo), hi)
         if mode == _VELOCITY_MODE:
             return min(max(cmd, -self._velocity_limit), self._velocity_limit)
-        if mode == _POSITION_MODE and self.has_position_limits:
-            return min(max(cmd, self._lower), self._upper)
+        if mode == _POSITION_MODE:
+            return self.clamped_position(cmd)
         return cmd
 
 

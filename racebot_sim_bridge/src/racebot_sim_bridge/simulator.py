@@ -9,8 +9,7 @@ import threading
 
 from . import physics, plugin_namespace, sdf_urdf, urdf_model
 from .controller_manager import ControllerManager
-from .hardware import (EFFORT, POSITION, VELOCITY, RobotHW, limited_efforts, read_joint_states,
-                       shortest_angular_distance, shortest_angular_distance_with_limits)
+from .hardware import EFFORT, POSITION, VELOCITY, RobotHW, limited_efforts, position_error, read_joint_states
 from .pid import Pid
 from .rotations import compose
 
@@ -84,12 +83,8 @@ class Robot(object):
         target = h.limited_command()
         if h.interface == VELOCITY:
             error = target - h.velocity
-        elif h.kind == 'revolute' and h.has_position_limits:
-            error = shortest_angular_distance_with_limits(h.position, target, h.lower, h.upper)
-        elif h.kind in ('revolute', 'continuous'):
-            error = shortest_angular_distance(h.position, target)
         else:
-            error = target - h.position
+            error = position_error(h, target)
         effort = pid.compute(error, dt)
         if h.max_effort is not None:
             effort = min(max(effort, -h.max_effort), h.max_effort)

@@ -48,9 +48,6 @@ class JointPositionController(PidCommandController):
         self.command = self.clamp(self.joint.position)
         self.pid.reset()
 
-    def position_error(self, target):
-        return position_error(self.joint, target)
-
     def update(self, time, period):
         cmd = self.command
         j = self.joint

@@ -68,8 +68,8 @@ class ForwardJointGroupCommandController(Controller):
 
     def update(self, time, period):
         for joint, cmd in zip(self.joints, self.commands):
-            if self.interface == POSITION and joint.has_position_limits:
-                cmd = min(max(cmd, joint.lower), joint.upper)
+            if self.interface == POSITION:
+                cmd = joint.clamped_position(cmd)
             joint.command = cmd
 
     def claimed_resources(self):
