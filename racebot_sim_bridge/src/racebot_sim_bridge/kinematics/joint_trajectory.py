@@ -20,6 +20,8 @@ import bisect
 import math
 from dataclasses import dataclass, field, replace
 
+from ..hardware import shortest_angular_distance
+
 
 class TrajectoryError(ValueError):
     """A trajectory message that cannot be followed; the message is upstream's error string."""
@@ -191,15 +193,6 @@ def stop_trajectory(time, positions, velocities, duration):
         end = longer.sample(time + duration)
         out.append([Segment.between(time, (p, v, 0.0), time + duration, end)])
     return out
-
-
-def shortest_angular_distance(a, b):
-    d = math.fmod(b - a, 2.0 * math.pi)
-    if d > math.pi:
-        d -= 2.0 * math.pi
-    elif d <= -math.pi:
-        d += 2.0 * math.pi
-    return d
 
 
 def wraparound_offset(previous, following, wraps):
