@@ -368,7 +368,9 @@ def command_path(n, rate_hz, trace_path):
         delay = next_t - time.monotonic()
         if delay > 0:
             time.sleep(delay)
-    time.sleep(1.0)
+    # The last command has nothing to overtake it, so an update applies it: waited for, not slept on.
+    common.wait_for(lambda: analyse_trace(trace_path, sent, expected)['last_applied'], 30.0,
+                    'the last command applied (%s)' % trace_path)
     msg.drive.speed = 0.0
     pub.publish(msg)
     time.sleep(0.3)
@@ -407,6 +409,7 @@ def analyse_trace(trace_path, sent, expected):
     to_update = [(max(a[k] for a in applied) - max(a[k] for a in arrived)) * 1e3 for k in both]
     p50_p99 = lambda xs: {'p50': stats.percentile(xs, 50), 'p99': stats.percentile(xs, 99)}
     return {'sent': len(sent), 'delivered': delivered, 'applied': len(to_applied),
+            'last_applied': all(len(sent) - 1 in a for a in applied),
             'callback_ms': dict(p50_p99(to_callback), max=max(to_callback) if to_callback else None),
             'applied_ms': dict(p50_p99(to_applied), max=max(to_applied) if to_applied else None),
             'segments_ms': {'publish_to_first_callback': p50_p99(first),
