@@ -118,7 +118,13 @@ class SensorPluginsTest(unittest.TestCase):
         self.assertTrue(all(n.x < -0.9 for n in state.contact_normals), state.contact_normals)
         self.assertTrue(all(abs(p.x - BOX_FACE) < 0.02 for p in state.contact_positions), state.contact_positions)
         self.assertEqual(len(state.wrenches), len(state.depths))
-        self.assertLess(state.total_wrench.force.x, 0.0)  # the box pushes back
+        # The box pushes back once the robot presses on it: half a second of sim time into the push.
+        # (The first touch can carry no force yet, touching is not pushing; or the impact's, -2500 N.)
+        pressed = bumper.after(hit.header.stamp.to_sec() + 0.5, 'a ContactsState 0.5 s into the push', WALL_TIMEOUT)
+        self.assertEqual([(s.collision1_name, s.collision2_name) for s in pressed.states],
+                         [(BUMPER, 'obstacle::link::collision')])
+        # It holds the robot against the 30 N push less what the ground's friction takes (seen: -24.25 N).
+        self.assertTrue(-31.0 < pressed.states[0].total_wrench.force.x < -10.0, pressed.states[0].total_wrench)
 
 
 if __name__ == '__main__':
