@@ -128,9 +128,10 @@ class FaultsTest(unittest.TestCase):
         p = self.sim.state().pose
         return p.position.x, p.position.y, yaw_of(p.orientation)
 
-    def pid_states_after(self, t):
+    def pid_states_after(self, t, since=0):
+        """The states stamped after sim time t, of those received from index `since` on."""
         with self.lock:
-            return [s for s in self.pid_states if s[0] > t]
+            return [s for s in self.pid_states[since:] if s[0] > t]
 
     def wind_up(self):
         """Drive the PID wheel far beyond what it can reach: its integral term saturates at i_clamp."""
@@ -267,8 +268,7 @@ class FaultsTest(unittest.TestCase):
                 self.sim.sim_sleep(0.2)
                 self.assertAlmostEqual(self.forward_speed(), speed, delta=0.15,
                                        msg='the speed jumped across pause/unpause')
-                with self.lock:
-                    steps = [s[2] for s in self.pid_states[mark:] if s[0] > clock]
+                steps = [s[2] for s in self.pid_states_after(clock, since=mark)]
                 self.assertTrue(steps)
                 self.assertAlmostEqual(max(steps), CONTROL_PERIOD, delta=1e-6,
                                        msg='a control period longer than one step after unpause: %r' % max(steps))

@@ -93,10 +93,6 @@ class SimBridgeTest(unittest.TestCase):
         for n in names:
             self.cmd[n].publish(Float64(value))
 
-    def joint(self, name):
-        msg = wait_for(lambda: self.joint_state, '/racebot/joint_states')
-        return msg.position[msg.name.index(name)]
-
     def stop(self):
         self.command(WHEELS, 0.0)
         self.command(HINGES, 0.0)
@@ -163,8 +159,9 @@ class SimBridgeTest(unittest.TestCase):
         msg = wait_for(lambda: self.joint_state if self.joint_state.header.stamp.to_sec() >= settled else None,
                        'joint_states at sim %.3f s' % settled)
         for joint in ('left_steering_hinge_joint', 'right_steering_hinge_joint'):
-            self.assertLessEqual(msg.position[msg.name.index(joint)], target + 0.02, joint)
-            self.assertGreaterEqual(msg.position[msg.name.index(joint)], target - SCRUB_SHORT, joint)
+            position = msg.position[msg.name.index(joint)]
+            self.assertLessEqual(position, target + 0.02, joint)
+            self.assertGreaterEqual(position, target - SCRUB_SHORT, joint)
         self.command(HINGES, 0.0)
 
     def test_4_pause_stops_clock_and_car(self):
