@@ -297,3 +297,13 @@ def test_a_body_declares_where_it_came_from_and_its_extra_bodies(make_world, car
     copy = pickle.loads(pickle.dumps(pair.source))  # what the viewer and the render worker receive
     other = make_world(world_text='<sdf version="1.6"><world name="other"/></sdf>')
     assert copy == pair.source and other.add_copy('pair', copy).extra_bodies[0][0] == 'b'
+
+
+def test_a_spawn_leaves_no_file_behind(make_world, racebot_model, racebot_xml, tmp_path, monkeypatch):
+    # A world server is often killed, not closed (roslaunch, CI timeouts): what a spawn writes for
+    # PyBullet must be gone once the robot is in the world, not when the world is closed.
+    monkeypatch.setattr('tempfile.tempdir', str(tmp_path))
+    world = make_world()
+    world.spawn_urdf('racebot', racebot_model, racebot_xml, position=(0, 0, 0.05))
+    assert 'racebot' in world.bodies
+    assert list(tmp_path.iterdir()) == []

@@ -25,7 +25,6 @@ URDF before loadURDF), so any copy built from `Body.source` (the viewer's) looks
 """
 import math
 import os
-import shutil
 import tempfile
 import xml.etree.ElementTree as ET
 from collections import namedtuple
@@ -151,7 +150,6 @@ class PhysicsWorld(object):
         # (PyBullet body id, link index) -> laser_retro of its collisions (a laser ray's intensity); 0 if absent
         self.laser_retro = {}
         self.ground_mu = 1.0
-        self._tmpdir = tempfile.mkdtemp(prefix='racebot_urdf_')
 
     # -- world --------------------------------------------------------------------------------
     def load_world(self, world, warn=None):
@@ -325,17 +323,20 @@ class PhysicsWorld(object):
         if name in self.bodies:
             raise PhysicsError("a model named '%s' already exists" % name)
         urdf_xml = urdf_assets.resolve_assets(urdf_xml, urdf_model, warn)
-        path = os.path.join(self._tmpdir, '%s.urdf' % name.replace('/', '_'))
-        with open(path, 'w') as f:
-            f.write(prepare_urdf_for_bullet(urdf_xml, urdf_model, self.visuals))
         flags = pb.URDF_USE_INERTIA_FROM_FILE | pb.URDF_MAINTAIN_LINK_ORDER | pb.URDF_USE_IMPLICIT_CYLINDER
         # A root link named world is the world (sdformat's URDF reader): its joints hold the robot to the world.
         fixed = urdf_model.root_link == 'world'
-        try:
-            body_id = self.client.loadURDF(path, basePosition=position, baseOrientation=orientation, flags=flags,
-                                           useFixedBase=fixed)
-        except pb.error as err:
-            raise PhysicsError("PyBullet could not load the URDF of '%s': %s" % (name, err))
+        # PyBullet reads a URDF from a file, once: the file lives only as long as the load, so a process
+        # that is killed leaves nothing behind in /tmp.
+        with tempfile.TemporaryDirectory(prefix='racebot_urdf_') as tmp:
+            path = os.path.join(tmp, 'robot.urdf')
+            with open(path, 'w') as f:
+                f.write(prepare_urdf_for_bullet(urdf_xml, urdf_model, self.visuals))
+            try:
+                body_id = self.client.loadURDF(path, basePosition=position, baseOrientation=orientation,
+                                               flags=flags, useFixedBase=fixed)
+            except pb.error as err:
+                raise PhysicsError("PyBullet could not load the URDF of '%s': %s" % (name, err))
         # urdf_xml has its meshes resolved: a copy needs no package path
         body = Body(self.client, name, body_id, False, BodySource('urdf', urdf_model, urdf_xml))
         for link, index in body.link_index.items():
@@ -499,7 +500,6 @@ class PhysicsWorld(object):
 
     def close(self):
         self.client.close()
-        shutil.rmtree(self._tmpdir, ignore_errors=True)
 
 
 def _mesh_flags(static):
