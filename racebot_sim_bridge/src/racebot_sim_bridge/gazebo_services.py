@@ -369,11 +369,11 @@ class GazeboServices(object):
 
     # -- physics control ------------------------------------------------------------------------
     def pause_physics(self, _req):
-        self.sim.paused = True
+        self.sim.set_paused(True)
         return EmptyResponse()
 
     def unpause_physics(self, _req):
-        self.sim.paused = False
+        self.sim.set_paused(False)
         return EmptyResponse()
 
     def reset_simulation(self, _req):

@@ -276,6 +276,22 @@ class Simulator(object):
             self.world.remove(name)
 
     # -- time ---------------------------------------------------------------------------------
+    def set_paused(self, paused):
+        """pause_physics / unpause_physics. Taken under the step lock, as Gazebo's World::SetPaused takes
+        the lock its World::Step holds: once a pause has returned, the update under way is done and
+        step_unless_paused starts no other, so a request made after the pause (a controller switch,
+        a state read) sees the world stand still."""
+        with self.lock:
+            self.paused = paused
+
+    def step_unless_paused(self):
+        """step() unless paused, the flag read under the lock that step holds; whether it stepped."""
+        with self.lock:
+            if self.paused:
+                return False
+            self.step()
+            return True
+
     def step(self):
         """One world update (physics step), gazebo_ros_control's read-update-write around it."""
         with self.lock:

@@ -177,7 +177,7 @@ class WorldServer(object):
         self.windows = AttachedWindows(self.sim.world, RospyLog)  # gzclient attaches here
         rospy.set_param('~gzclient_address', self.windows.address)
         self.sim.rendering = False
-        self.sim.paused = paused
+        self.sim.set_paused(paused)
         self.update_rate = ph.real_time_update_rate
         self.clock_period = self._rate_param('~pub_clock_frequency', 0.0)
         self.clock_wall_period = 0.0
@@ -271,7 +271,7 @@ class WorldServer(object):
                 with self.sim.lock:
                     self.windows.sync()
                     self.sim.rendering = self.windows.count > 0
-            if self.sim.paused:
+            if not self.sim.step_unless_paused():  # no update starts once pause_physics has answered
                 now = time.perf_counter()
                 # at once if the latest update's time was held back (fast mode), then now and then
                 if self.last_clock != self.sim.time or now - last_paused_clock >= PAUSED_CLOCK_PERIOD:
@@ -280,7 +280,6 @@ class WorldServer(object):
                 time.sleep(0.002)
                 wall_start, steps_since = time.perf_counter(), 0
                 continue
-            self.sim.step()
             steps_since += 1
             # A reset sent time back (perhaps while paused, between two of our steps): publish at once.
             if self.sim.time < self.last_clock or self.sim.time < self.last_states:
