@@ -19,6 +19,7 @@ from .controller_manager import ControllerManagerServices
 from .gazebo_forces import GazeboForces
 from .gazebo_properties import GazeboProperties
 from .rotations import as_transform, as_xyz_rpy
+from .sim_time import ros_time
 from .simulator import SpawnError
 from .world_entities import WorldEntities
 
@@ -239,7 +240,7 @@ class GazeboServices(object):
                 res.success, res.status_message = False, 'GetModelState: model does not exist'
                 return res
             # header.seq: rospy numbers every response itself (upstream counts calls per model)
-            res.header.stamp = self.rospy.Time.from_sec(self.sim.time)
+            res.header.stamp = ros_time(self.rospy.Time, self.sim.time)
             res.header.frame_id = req.relative_entity_name
             pose, twist = self.entities.model_state(body)
             frame, frame_twist = self._frame_state(req.relative_entity_name)

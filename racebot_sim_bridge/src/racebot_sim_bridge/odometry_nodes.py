@@ -34,6 +34,7 @@ from sensor_msgs.msg import JointState
 
 from . import odometry
 from .rotations import rotate_back, rpy_to_quaternion
+from .sim_time import ros_time
 
 # Diagonal covariances (x, y, z, roll, pitch, yaw): ground truth is exact; the wheel estimate
 # drifts with slip (a few percent of the distance driven).
@@ -162,7 +163,7 @@ class WheelOdometry(object):
             x, y, yaw = self.model.pose
             vx, vy, wz = self.model.twist
         odom = Odometry()
-        odom.header.stamp = rospy.Time.from_sec(t)
+        odom.header.stamp = ros_time(rospy.Time, t)
         odom.header.frame_id = self.frame_id
         odom.child_frame_id = self.child_frame_id
         odom.pose.pose.position.x, odom.pose.pose.position.y = x, y

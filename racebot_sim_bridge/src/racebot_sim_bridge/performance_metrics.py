@@ -14,6 +14,8 @@ MetricsWindow is the arithmetic (no ROS); PerformanceMetricsPublisher the thread
 import threading
 import time as walltime
 
+from .sim_time import ros_time
+
 PUBLISH_PERIOD = 0.2  # wall seconds: Gazebo advertises /gazebo/performance_metrics at 5 Hz
 NO_FPS = -1.0  # gazebo_ros's value for a sensor without frames
 
@@ -96,7 +98,7 @@ class PerformanceMetricsPublisher(object):
             return
         from gazebo_msgs.msg import PerformanceMetrics, SensorPerformanceMetric
         msg = PerformanceMetrics()
-        msg.header.stamp = self.rospy.Time.from_sec(self.sim.time)
+        msg.header.stamp = ros_time(self.rospy.Time, self.sim.time)
         msg.real_time_factor = result[0]
         msg.sensors = [SensorPerformanceMetric(name=n, sim_update_rate=s, real_update_rate=r, fps=f)
                        for n, s, r, f in result[1]]

@@ -53,6 +53,7 @@ from .performance_metrics import PerformanceMetricsPublisher
 from .physics import PhysicsError
 from .plugins.manager import PluginManager
 from .sensors import SensorManager
+from .sim_time import ros_time
 from .simulator import Simulator
 from .viewer import SYNC_PERIOD as VIEWER_SYNC_PERIOD, AttachedWindows
 
@@ -248,7 +249,7 @@ class WorldServer(object):
                     return
                 self.last_clock_wall = now
         self.last_clock = t
-        self.clock_msg.clock = rospy.Time.from_sec(t)
+        self.clock_msg.clock = ros_time(rospy.Time, t)
         try:
             self.clock_pub.publish(self.clock_msg)
         except rospy.ROSException:

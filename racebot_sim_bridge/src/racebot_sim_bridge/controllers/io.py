@@ -2,6 +2,8 @@
 command path that make bench uses (`CommandObserver`, `CommandTrace`)."""
 import math
 
+from ..sim_time import ros_time
+
 
 class CommandObserver(object):
     """What a command controller tells an observer of its command path (the I/O object's
@@ -79,7 +81,7 @@ class RosIO(object):
         return _Unregisters(server, 'stop')
 
     def stamp(self, time):
-        return self.rospy.Time.from_sec(time)
+        return ros_time(self.rospy.Time, time)
 
     def warn_throttle(self, key, period, message):
         """A warning at most every `period` wall seconds per key (one bad publisher must not flood

@@ -15,6 +15,8 @@ assignment, atomic), which the physics thread reads.
 """
 import math
 
+from ..sim_time import ros_time
+
 
 class PluginError(ValueError):
     """The plugin cannot work with these parameters; the message says which and what to do."""
@@ -195,7 +197,7 @@ class ModelPlugin(object):
         return server
 
     def stamp(self, time):
-        return self.ctx.rospy.Time.from_sec(time)
+        return ros_time(self.ctx.rospy.Time, time)
 
     def joint(self, tag, default=None):
         """The movable joint named by <tag> (a physics.JointInfo); PluginError when it is missing or

@@ -16,6 +16,7 @@ from sensor_msgs.srv import SetCameraInfo
 
 from . import messages as msgs
 from ..rotations import quaternion_multiply, rpy_to_quaternion
+from ..sim_time import ros_time
 from .camera import PinholeCamera, mask_depth
 from .contact import contact_collision_after_lumping, group_contacts, urdf_collision_shapes
 from .contact_points import CollisionKinds, CollisionNames, link_com, read_contacts
@@ -79,7 +80,7 @@ class Sensor(object):
         if not self.schedule.due(time):
             return
         self.schedule.advance(time)
-        self.update(time, self.manager.rospy.Time.from_sec(time))
+        self.update(time, ros_time(self.manager.rospy.Time, time))
 
     def update(self, time, stamp):
         raise NotImplementedError
