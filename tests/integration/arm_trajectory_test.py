@@ -66,23 +66,22 @@ class ArmTrajectoryTest(FixtureRobotTest):
                                 dict(zip(msg.name, msg.velocity))))
 
     # -- helpers ------------------------------------------------------------------------------
-    def at(self, sim_time):
-        """The joint_states sample nearest sim_time (waits until one after it came)."""
+    def around(self, sim_time):
+        """The joint_states samples just before (or at) and at or after sim_time (waits for the second)."""
         self.wait_for(lambda: self.samples and self.samples[-1][0] >= sim_time, 'joint_states at %.2f' % sim_time)
         with self.lock:
-            times = [s[0] for s in self.samples]
-            i = bisect.bisect_left(times, sim_time)
-            return min(self.samples[max(i - 1, 0):i + 1], key=lambda s: abs(s[0] - sim_time))
+            i = bisect.bisect_left([s[0] for s in self.samples], sim_time)
+            return self.samples[max(i - 1, 0)], self.samples[i]
+
+    def at(self, sim_time):
+        """The joint_states sample nearest sim_time."""
+        return min(self.around(sim_time), key=lambda s: abs(s[0] - sim_time))
 
     def interpolated(self, sim_time):
         """The joint positions at sim_time, interpolated between the joint_states samples around it.
         The nearest sample can be half a publish period (10 ms) away, and the arm moves at up to 1 rad/s
         into a point: 0.01 rad of the 0.02 tolerance from when the sample was taken alone."""
-        self.wait_for(lambda: self.samples and self.samples[-1][0] >= sim_time, 'joint_states at %.2f' % sim_time)
-        with self.lock:
-            times = [s[0] for s in self.samples]
-            i = bisect.bisect_left(times, sim_time)
-            (t0, p0, _), (t1, p1, _) = self.samples[max(i - 1, 0)], self.samples[i]
+        (t0, p0, _), (t1, p1, _) = self.around(sim_time)
         w = (sim_time - t0) / (t1 - t0) if t1 > t0 else 1.0
         return sim_time, {j: p0[j] + w * (p1[j] - p0[j]) for j in p1}
 

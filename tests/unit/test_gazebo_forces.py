@@ -5,9 +5,10 @@ import math
 import pytest
 
 from racebot_sim_bridge import sdf_world
-from racebot_sim_bridge.gazebo_forces import (ForceSchedule, NSEC_PER_SEC, Job, job_due, job_over, link_address,
+from racebot_sim_bridge.gazebo_forces import (ForceSchedule, Job, job_due, job_over, link_address,
                                               shift_wrench, start_and_duration, truncate_effort, wrench_in_link)
 from racebot_sim_bridge.rotations import rpy_to_quaternion
+from racebot_sim_bridge.sim_time import NS as NSEC_PER_SEC
 from racebot_sim_bridge.simulator import Simulator
 
 MS = 10 ** 6  # ns

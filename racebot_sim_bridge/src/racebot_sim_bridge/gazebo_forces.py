@@ -27,9 +27,9 @@ from collections import namedtuple
 
 from . import frames
 from .rotations import compose, inverse, rotate
+from .sim_time import to_ns
 from .world_entities import WorldEntities
 
-NSEC_PER_SEC = 10 ** 9
 
 # times in ns; duration < 0: until cleared; owner: the Body the target belongs to (a model deleted and
 # spawned again under the same name is another body, which the old jobs do not touch)
@@ -216,7 +216,7 @@ class GazeboForces(object):
             return
         world = self.sim.world
         self.schedule.drop_orphans(lambda body: world.bodies.get(body.name) is body)
-        wrenches, efforts = self.schedule.due(int(round(time * NSEC_PER_SEC)))
+        wrenches, efforts = self.schedule.due(to_ns(time))
         for (_, link), (force, torque, body) in wrenches.items():
             body_id, index = link_address(body, link)
             world.apply_wrench(body_id, index, force, torque)
@@ -228,7 +228,7 @@ class GazeboForces(object):
 
     # -- names ------------------------------------------------------------------------------------
     def _now(self):
-        return int(round(self.sim.time * NSEC_PER_SEC))
+        return to_ns(self.sim.time)
 
     def _link(self, name):
         """(model, link) of the link Gazebo's EntityByName finds under `name`; None for a model or nothing."""

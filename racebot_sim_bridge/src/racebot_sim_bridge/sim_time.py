@@ -1,4 +1,11 @@
-"""Sim time (float seconds) as the ROS time every message, /clock included, is stamped with."""
+"""Sim time (float seconds) on Gazebo's clock: common::Time counts whole nanoseconds, so sim times are
+compared (`to_ns`) and stamped (`ros_time`, every message and /clock) as integer nanoseconds."""
+
+NS = 1000000000
+
+
+def to_ns(seconds):
+    return int(round(seconds * NS))
 
 
 def ros_time(time_class, t):
@@ -6,5 +13,5 @@ def ros_time(time_class, t):
     truncates: the float nearest 2.134 is a hair below it, so from_sec gives 2 s 133999999 ns, and
     35 % of the 1 ms updates of a world came out 1 ns early. Gazebo's common::Time counts whole
     nanoseconds: its update at 2.134 s is stamped 2 s 134000000 ns, and so is ours."""
-    ns = int(round(t * 1e9))
-    return time_class(ns // 1000000000, ns % 1000000000)
+    ns = to_ns(t)
+    return time_class(ns // NS, ns % NS)

@@ -22,10 +22,11 @@ import math
 from ..kinematics import diff_drive as kin
 from ..plugin_namespace import model_plugin_namespace, name_in
 from ..rotations import conjugate, quaternion_multiply, rotate_back, yaw_of
+from ..sim_time import NS, to_ns
 from .base import ModelPlugin, PluginError
 from .link_motion import link_motion
 from .odometry_output import odometry, tf_prefix, tf_resolve, transform
-from .update_timing import NS, FixedPeriod, to_ns
+from .update_timing import FixedPeriod
 
 ODOMETRY_SOURCES = ('encoder', 'world')
 LOG_LEVELS = ('debug', 'info', 'warn', 'error', 'fatal')  # rosDebugLevel's values, any case

@@ -14,9 +14,10 @@ in the robot's axes; fixed covariances 1e-5, 1e-5, 1e-3) and the odom -> base TF
 from ..kinematics.planar_move import covariance, finite_difference_twist, model_velocity
 from ..plugin_namespace import model_plugin_namespace, name_in
 from ..rotations import yaw_of
+from ..sim_time import to_ns
 from .base import ModelPlugin
 from .odometry_output import odometry, tf_prefix, tf_resolve, transform
-from .update_timing import SincePublished, to_ns
+from .update_timing import SincePublished
 
 COVARIANCE = covariance(0.00001, 0.00001, 0.001)
 

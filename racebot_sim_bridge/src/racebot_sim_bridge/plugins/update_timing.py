@@ -11,12 +11,7 @@ A rate <= 0 means every world update. Time going backwards (reset_simulation) re
 the new time, as p3d and joint_state_publisher do (skid_steer_drive and planar_move would wait until
 the old time came round again).
 """
-
-NS = 1000000000
-
-
-def to_ns(seconds):
-    return int(round(seconds * NS))
+from ..sim_time import NS, to_ns
 
 
 class _Clock(object):
