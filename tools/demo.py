@@ -34,7 +34,7 @@ CONTROLLERS = 7
 
 def wall_footprints(world_file):
     """2-D outlines (lists of corner points) of every box, cylinder and sphere in the world."""
-    from racebot_sim_bridge import sdf_world
+    from racebot_sim_bridge.description import sdf_world
     world = sdf_world.load_world(world_file)
     shapes = []
     for model in world.models:

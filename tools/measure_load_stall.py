@@ -20,9 +20,9 @@ sys.path.insert(0, HERE)
 import rospy  # noqa: E402
 
 from bench import common  # noqa: E402
-from racebot_sim_bridge import sdf_world  # noqa: E402
-from racebot_sim_bridge.controllers import RosIO  # noqa: E402
-from racebot_sim_bridge.simulator import Simulator  # noqa: E402
+from racebot_sim_bridge.description import sdf_world  # noqa: E402
+from racebot_sim_bridge.ros_controllers import RosIO  # noqa: E402
+from racebot_sim_bridge.engine.simulator import Simulator  # noqa: E402
 
 
 class _Log(object):

@@ -31,7 +31,7 @@ from catkin_overlay import FIXTURE_ROBOTS
 from fixture_robot import STARTUP_TIMEOUT, FixtureRobotTest, twist
 from integration_common import Latest, yaw_of
 from racebot_sim_bridge.kinematics import skid_steer
-from racebot_sim_bridge.kinematics.planar_move import integrate, world_to_base
+from racebot_sim_bridge.kinematics.planar import integrate, world_to_base
 
 SKID, PLANAR = 'skid_steer_bot', 'planar_move_bot'
 WHEELS = ['left_front_wheel_joint', 'right_front_wheel_joint', 'left_rear_wheel_joint', 'right_rear_wheel_joint']

@@ -1,6 +1,6 @@
 """Mesh files, Gazebo model folders and ROS packages written by the tests themselves (no binary fixtures).
 
-Used by tests/unit/test_meshes.py and tests/integration/meshes_test.py. trimesh writes the meshes; the
+Used by tests/unit/description/test_meshes.py and tests/integration/meshes_test.py. trimesh writes the meshes; the
 OBJ writer leaves normals out (they would need scipy) and the DAE gets its diffuse colour set here
 (trimesh's exporter writes black).
 """

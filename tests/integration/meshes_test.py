@@ -23,8 +23,9 @@ import rostest
 from controller_manager_msgs.srv import ListControllers
 from gazebo_msgs.srv import DeleteModel, SpawnModel
 from geometry_msgs.msg import Pose
-from racebot_sim_bridge import rotations, urdf_model
-from racebot_sim_bridge.sensors.imu import quaternion_to_matrix as rotation
+from racebot_sim_bridge.kinematics import rotations
+from racebot_sim_bridge.description import urdf_model
+from racebot_sim_bridge.sensors.imu_reading import quaternion_to_matrix as rotation
 from sensor_msgs.msg import Image, LaserScan
 from std_msgs.msg import Float64
 

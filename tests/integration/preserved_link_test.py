@@ -16,7 +16,8 @@ import integration_common  # next to this file
 from gazebo_msgs.msg import LinkStates
 from gazebo_msgs.srv import GetLinkState, GetModelState
 from integration_common import Latest
-from racebot_sim_bridge import rotations, urdf_model
+from racebot_sim_bridge.kinematics import rotations
+from racebot_sim_bridge.description import urdf_model
 from rosgraph_msgs.msg import Clock
 from sensor_msgs.msg import LaserScan
 from std_srvs.srv import Empty

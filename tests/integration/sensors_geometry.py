@@ -8,7 +8,7 @@ the sensors rostest and its unit-level twin. Needs numpy only.
 import math
 
 import numpy as np
-from racebot_sim_bridge import sdf_world
+from racebot_sim_bridge.description import sdf_world
 
 
 def _yaw_only(q, tol=1e-6):

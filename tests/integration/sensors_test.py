@@ -19,8 +19,9 @@ from gazebo_msgs.msg import ModelStates
 from gazebo_msgs.srv import DeleteModel, GetPhysicsProperties, SpawnModel
 from geometry_msgs.msg import Pose
 from integration_common import Latest
-from racebot_sim_bridge import rotations, urdf_model
-from racebot_sim_bridge.sensors.imu import quaternion_to_matrix as rotation
+from racebot_sim_bridge.kinematics import rotations
+from racebot_sim_bridge.description import urdf_model
+from racebot_sim_bridge.sensors.imu_reading import quaternion_to_matrix as rotation
 from rosgraph_msgs.msg import Clock
 from sensor_msgs.msg import CameraInfo, Image, Imu, LaserScan, PointCloud2
 

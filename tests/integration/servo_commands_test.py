@@ -8,7 +8,7 @@ comes (no timeout stop when ~command_timeout is 0). `timeout` checks that, with 
 ~command_timeout > 0, one speed-0 command follows the last command after that long, only one, and
 that driving resumes on the next command.
 The expected values come from racebot_control.wheel_commands with the node's own parameters;
-that module's geometry is checked by tests/unit/test_servo_logic.py.
+that module's geometry is checked by tests/unit/tutorial/test_servo_logic.py.
 """
 
 import math

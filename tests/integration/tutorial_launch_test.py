@@ -2,7 +2,7 @@
 """The tutorial's own launch files, as printed, drive the car (issue 16, point 2).
 
 tests/fixtures/tutorial_launch holds the seed's racebot.launch and its final racebot_control.launch byte
-for byte (tests/unit/test_tutorial_launch_fixtures.py), each in an overlay package named like ours. This
+for byte (tests/unit/tutorial/test_tutorial_launch_fixtures.py), each in an overlay package named like ours. This
 node links both into a catkin workspace under /tmp, builds it on top of racebot's devel space, and runs
 the tutorial's command there from a shell: `roslaunch racebot_gazebo racebot.launch gui:=false` (with no
 DISPLAY: the keyboard node says so in one line and exits). Then, as a user would:

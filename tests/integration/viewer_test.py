@@ -39,7 +39,7 @@ from robustness_common import ROOT, Process, Rosout, SimProbe, node_pid, pid_ali
 sys.path.insert(0, os.path.join(ROOT, 'tools'))
 from bench.common import child_pids  # noqa: E402
 
-WINDOW_MODULE = 'racebot_sim_bridge.viewer_process'
+WINDOW_MODULE = 'racebot_sim_bridge.window.viewer_process'
 
 START_TIMEOUT = 120.0
 # Where the car is put (x, y, quaternion z, w): with the camera 1.5 m behind it, nothing in between.

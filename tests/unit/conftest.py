@@ -1,5 +1,10 @@
-"""Shared fixtures of the unit tests: the racebot model rendered from its xacro, once per session."""
+"""Shared fixtures of the unit tests: the racebot model rendered from its xacro, once per session.
+
+The tests mirror racebot_sim_bridge's layout (one folder per subpackage; upstream_compat, tutorial, tools and
+nodes for the rest). Some import another folder's test module for its fakes or worlds (test_controllers,
+test_sensors_sim, test_plugin_namespace): every folder is on sys.path, so a test module has one name."""
 import os
+import sys
 from pathlib import Path
 
 import pytest
@@ -13,6 +18,9 @@ settings.register_profile('explore', derandomize=False)
 settings.load_profile(os.environ.get('HYPOTHESIS_PROFILE', 'suite'))
 
 REPO = Path(__file__).resolve().parents[2]
+for _folder in sorted(Path(__file__).resolve().parent.iterdir()):
+    if _folder.is_dir() and not _folder.name.startswith(('.', '_')) and str(_folder) not in sys.path:
+        sys.path.append(str(_folder))
 XACRO_FILE = REPO / 'racebot_description' / 'urdf' / 'ackermann' / 'racecar.xacro'
 
 

@@ -2,9 +2,9 @@
 (no master): what the unit tests of the drive plugins (test_plugins_*.py) spawn their robots into."""
 from pathlib import Path
 
-from racebot_sim_bridge import sdf_world
-from racebot_sim_bridge.plugins.manager import PluginManager
-from racebot_sim_bridge.simulator import Simulator
+from racebot_sim_bridge.description import sdf_world
+from racebot_sim_bridge.gazebo_plugins.plugin_manager import PluginManager
+from racebot_sim_bridge.engine.simulator import Simulator
 
 from test_sensors_sim import FakeRospy, Log, NullIO
 

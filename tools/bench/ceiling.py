@@ -10,8 +10,8 @@ bridge/ceiling ratio measures.
 
 import pybullet as pb
 
-from racebot_sim_bridge import sdf_world, urdf_model
-from racebot_sim_bridge.physics import PhysicsWorld
+from racebot_sim_bridge.description import sdf_world, urdf_model
+from racebot_sim_bridge.engine.physics import PhysicsWorld
 
 from . import common
 

@@ -32,14 +32,14 @@ BRIDGE_LAUNCH = """<?xml version="1.0"?>
   <arg name="world_name"/>
   <arg name="servo" default="false"/>
   <arg name="steering_mode" default="parallel"/>
-  <include file="$(find racebot_sim_bridge)/launch/empty_world.launch">
+  <include file="$(find gazebo_ros)/launch/empty_world.launch">
     <arg name="world_name" value="$(arg world_name)"/>
     <arg name="gui" value="false"/>
     <arg name="output" value="log"/>
   </include>
   <param name="robot_description"
          command="$(find xacro)/xacro '$(find racebot_description)/urdf/ackermann/racecar.xacro'"/>
-  <node name="urdf_spawner" pkg="racebot_sim_bridge" type="spawn_model"
+  <node name="urdf_spawner" pkg="gazebo_ros" type="spawn_model"
         args="-urdf -model racebot -param robot_description -x 0 -y 0 -z 0"/>
   <rosparam file="$(find racebot_control)/config/racebot_control.yaml" command="load"/>
   <node name="controller_manager" pkg="controller_manager" type="spawner" ns="/racebot"

@@ -42,8 +42,8 @@ class FleetCeiling(object):
     IMUs' reads at their rates."""
 
     def __init__(self, world_file, urdf_xml, n):
-        from racebot_sim_bridge import sdf_world, urdf_model
-        from racebot_sim_bridge.physics import PhysicsWorld
+        from racebot_sim_bridge.description import sdf_world, urdf_model
+        from racebot_sim_bridge.engine.physics import PhysicsWorld
         import pybullet as pb
         spec = sdf_world.load_world(world_file)
         self.step_size = spec.physics.max_step_size

@@ -11,8 +11,8 @@ import math
 import rospy  # only for rospy.Time in message stamps (no master, no node)
 
 from racebot_control.wheel_commands import CarGeometry, wheel_commands
-from racebot_sim_bridge import sdf_world
-from racebot_sim_bridge.simulator import Simulator
+from racebot_sim_bridge.description import sdf_world
+from racebot_sim_bridge.engine.simulator import Simulator
 
 from . import common
 

@@ -32,9 +32,9 @@ from geometry_msgs.msg import TransformStamped
 from nav_msgs.msg import Odometry
 from sensor_msgs.msg import JointState
 
-from . import odometry
-from .rotations import rotate_back, rpy_to_quaternion
-from .sim_time import ros_time
+from racebot_sim_bridge import odometry
+from racebot_sim_bridge.kinematics.rotations import rotate_back, rpy_to_quaternion
+from racebot_sim_bridge.engine.sim_time import ros_time
 
 # Diagonal covariances (x, y, z, roll, pitch, yaw): ground truth is exact; the wheel estimate
 # drifts with slip (a few percent of the distance driven).

@@ -46,16 +46,16 @@ import time
 import rospy
 from rosgraph_msgs.msg import Clock
 
-from . import sdf_world
-from .controllers import CommandTrace, RosIO
-from .gazebo_services import GazeboServices
-from .performance_metrics import PerformanceMetricsPublisher
-from .physics import PhysicsError
-from .plugins.manager import PluginManager
-from .sensors import SensorManager
-from .sim_time import ros_time
-from .simulator import Simulator
-from .viewer import SYNC_PERIOD as VIEWER_SYNC_PERIOD, AttachedWindows
+from racebot_sim_bridge.description import sdf_world
+from racebot_sim_bridge.ros_controllers import CommandTrace, RosIO
+from racebot_sim_bridge.gazebo_ros_api.services import GazeboServices
+from racebot_sim_bridge.gazebo_ros_api.performance_metrics import PerformanceMetricsPublisher
+from racebot_sim_bridge.engine.physics import PhysicsError
+from racebot_sim_bridge.gazebo_plugins.plugin_manager import PluginManager
+from racebot_sim_bridge.sensors import SensorManager
+from racebot_sim_bridge.engine.sim_time import ros_time
+from racebot_sim_bridge.engine.simulator import Simulator
+from racebot_sim_bridge.window.viewer import SYNC_PERIOD as VIEWER_SYNC_PERIOD, AttachedWindows
 
 PAUSED_CLOCK_PERIOD = 0.2  # wall seconds between /clock repeats while paused (late joiners get the time)
 # As fast as possible, /clock at every update (10,000+ a second) costs the world server and every
@@ -321,10 +321,10 @@ _OWN_SIM_TIME = False  # True when this node's ROS time is set by publish_clock 
 
 
 def physics_reconfigure(properties, ns):
-    """gazebo_ros's physics dynamic_reconfigure server under `ns`, or None (said why) where our
-    gazebo_ros or dynamic_reconfigure's Python side is not installed."""
+    """gazebo_ros's physics dynamic_reconfigure server under `ns`, or None (said why) where
+    dynamic_reconfigure's Python side is not installed."""
     try:
-        from gazebo_ros.physics_reconfigure import PhysicsReconfigure
+        from racebot_sim_bridge.gazebo_ros_api.physics_reconfigure import PhysicsReconfigure
         return PhysicsReconfigure(rospy, properties, ns)
     except ImportError as err:
         rospy.logwarn('no physics dynamic_reconfigure server (%s/set_parameters): %s; install '

@@ -20,4 +20,4 @@ The pipeline, module by module:
   manager.py       SensorManager: sensors of every spawned robot, hooked into the Simulator
 Only devices.py, manager.py and messages.py touch ROS (message classes; manager gets rospy passed in).
 """
-from .manager import SensorManager  # noqa: F401
+from racebot_sim_bridge.sensors.sensor_manager import SensorManager  # noqa: F401

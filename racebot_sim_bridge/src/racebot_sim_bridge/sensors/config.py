@@ -27,8 +27,8 @@ frames (params['update_rate'], schedule.FrameThrottle), as upstream's OnNewFrame
 """
 from dataclasses import dataclass, field, replace
 
-from ..plugin_namespace import sensor_namespace
-from ..rotations import as_xyz_rpy, compose
+from racebot_sim_bridge.gazebo_plugins.plugin_namespace import sensor_namespace
+from racebot_sim_bridge.kinematics.rotations import as_xyz_rpy, compose
 
 KINDS = {
     'gazebo_ros_laser': 'laser',

@@ -24,7 +24,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..rotations import compose, rotate_back
+from racebot_sim_bridge.kinematics.rotations import compose, rotate_back
 
 LUMP_PREFIX = '_fixed_joint_lump__'
 COLLISION_SUFFIX = '_collision'
@@ -139,7 +139,7 @@ def friction_reversed(ours, other):
     compound side against a plain convex one; else the one created first (its broadphase proxy
     has the lower id). Measured in PyBullet 3.2.7 for boxes, compounds, URDF links with one and
     two collisions, against box, compound, plane and concave-mesh grounds, both creation orders
-    (tests/unit/test_sensor_plugins_sim.py checks it on real physics)."""
+    (tests/unit/gazebo_plugins/test_sensor_plugins_sim.py checks it on real physics)."""
     if other.concave:
         return False
     if ours.compound != other.compound:

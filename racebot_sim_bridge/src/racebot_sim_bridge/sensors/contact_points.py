@@ -13,9 +13,9 @@ from each side's creation order and shape: CollisionKinds read once per link).
 import numpy as np
 import pybullet as pb
 
-from .contact import (CollisionKind, ContactPoint, friction_reversed, nearest_shape, sdf_collision_shapes,
-                      urdf_collision_shapes)
-from ..rotations import rotate_back
+from racebot_sim_bridge.sensors.contact import (CollisionKind, ContactPoint, friction_reversed, nearest_shape,
+                                                sdf_collision_shapes, urdf_collision_shapes)
+from racebot_sim_bridge.kinematics.rotations import rotate_back
 
 
 class CollisionNames(object):

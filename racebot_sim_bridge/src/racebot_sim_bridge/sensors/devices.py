@@ -14,21 +14,21 @@ from gazebo_msgs.msg import ContactsState
 from sensor_msgs.msg import CameraInfo, Image, Imu, LaserScan, PointCloud2, Range
 from sensor_msgs.srv import SetCameraInfo
 
-from . import messages as msgs
-from ..rotations import quaternion_multiply, rpy_to_quaternion
-from ..sim_time import ros_time
-from .camera import PinholeCamera, mask_depth
-from .contact import contact_collision_after_lumping, group_contacts, urdf_collision_shapes
-from .contact_points import CollisionKinds, CollisionNames, link_com, read_contacts
-from .imu import ImuKinematics, quaternion_to_matrix
-from .mount import SensorMount
-from .noise import AxisNoise, make_noise
-from .ray import ScanGeometry
-from .range_reading import radiation_type, range_reading, ray_lengths
-from .raycast import cast_rays
-from .render import TINY, CameraFrames
-from .render_worker import FrameBuffers, InFlight
-from .schedule import FrameThrottle, RateMeter, UpdateSchedule
+from racebot_sim_bridge.sensors import messages as msgs
+from racebot_sim_bridge.kinematics.rotations import quaternion_multiply, rpy_to_quaternion
+from racebot_sim_bridge.engine.sim_time import ros_time
+from racebot_sim_bridge.sensors.camera import PinholeCamera, mask_depth
+from racebot_sim_bridge.sensors.contact import contact_collision_after_lumping, group_contacts, urdf_collision_shapes
+from racebot_sim_bridge.sensors.contact_points import CollisionKinds, CollisionNames, link_com, read_contacts
+from racebot_sim_bridge.sensors.imu_reading import ImuKinematics, quaternion_to_matrix
+from racebot_sim_bridge.sensors.mount import SensorMount
+from racebot_sim_bridge.sensors.noise import AxisNoise, make_noise
+from racebot_sim_bridge.sensors.ray import ScanGeometry
+from racebot_sim_bridge.sensors.range_reading import radiation_type, range_reading, ray_lengths
+from racebot_sim_bridge.sensors.raycast import cast_rays
+from racebot_sim_bridge.sensors.render import TINY, CameraFrames
+from racebot_sim_bridge.sensors.render_worker import FrameBuffers, InFlight
+from racebot_sim_bridge.sensors.schedule import FrameThrottle, RateMeter, UpdateSchedule
 
 
 # Frames of one camera the worker may hold at once. With one, the worker sat idle after each frame

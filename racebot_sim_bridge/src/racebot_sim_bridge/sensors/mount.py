@@ -9,7 +9,7 @@ No rospy here. Calls run on the physics client; callers hold the simulator's loc
 import numpy as np
 import pybullet as pb
 
-from ..rotations import compose
+from racebot_sim_bridge.kinematics.rotations import compose
 
 
 class SensorMount(object):

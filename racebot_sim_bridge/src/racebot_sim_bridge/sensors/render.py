@@ -18,9 +18,9 @@ import threading
 import numpy as np
 import pybullet as pb
 
-from . import egl_shadow_map
-from .camera import PinholeCamera
-from .noise import ImageNoise
+from racebot_sim_bridge.sensors import egl_shadow_map
+from racebot_sim_bridge.sensors.camera import PinholeCamera
+from racebot_sim_bridge.sensors.noise import ImageNoise
 
 TINY = 'tiny'
 EGL = 'egl'

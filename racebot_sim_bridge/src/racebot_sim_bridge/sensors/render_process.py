@@ -10,14 +10,14 @@ import sys
 
 import numpy as np
 
-from ..child_process import helper_main
-from ..physics import PhysicsWorld
-from .camera import PinholeCamera
-from .noise import GaussianNoise
-from .render import CameraFrames, RendererError, load_renderer
-from .render_worker import view_slot
-from .scene import SceneColours
-from ..world_copy import WorldCopy
+from racebot_sim_bridge.engine.child_process import helper_main
+from racebot_sim_bridge.engine.physics import PhysicsWorld
+from racebot_sim_bridge.sensors.camera import PinholeCamera
+from racebot_sim_bridge.sensors.noise import GaussianNoise
+from racebot_sim_bridge.sensors.render import CameraFrames, RendererError, load_renderer
+from racebot_sim_bridge.sensors.render_worker import view_slot
+from racebot_sim_bridge.sensors.scene import SceneColours
+from racebot_sim_bridge.engine.world_copy import WorldCopy
 
 
 def worker_main(fd):

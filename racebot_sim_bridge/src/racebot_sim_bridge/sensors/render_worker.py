@@ -23,8 +23,8 @@ import time
 
 import numpy as np
 
-from .. import child_process
-from ..world_copy import sources
+from racebot_sim_bridge.engine import child_process
+from racebot_sim_bridge.engine.world_copy import sources
 
 MAX_RESTARTS = 3
 START_TIMEOUT = 60.0  # s: EGL with llvmpipe takes about a second to start; the machine may be loaded

@@ -8,8 +8,8 @@ for the TinyRenderer it is drawn analytically (see SceneColours).
 import numpy as np
 import pybullet as pb
 
-from .. import rotations
-from .render import TINY, render
+from racebot_sim_bridge.kinematics import rotations
+from racebot_sim_bridge.sensors.render import TINY, render
 
 
 class GroundPlane(object):

@@ -138,7 +138,7 @@ def prepare_xml(text, to_model=False):
 def quaternion_from_euler(roll, pitch, yaw):
     """(x, y, z, w) of fixed-axis roll, then pitch, then yaw (tf.transformations' default 'sxyz'):
     the simulator's own rotation maths (racebot_sim_bridge runs behind this gazebo_ros anyway)."""
-    from racebot_sim_bridge.rotations import rpy_to_quaternion
+    from racebot_sim_bridge.kinematics.rotations import rpy_to_quaternion
     return rpy_to_quaternion(roll, pitch, yaw)
 
 

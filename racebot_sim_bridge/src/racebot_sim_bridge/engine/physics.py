@@ -1,0 +1,566 @@
+"""One PyBullet physics client: the world's static and dynamic bodies, spawned robots, stepping.
+
+No ROS here. PhysicsWorld owns its client through a pybullet_client.PybulletClient (`world.client`),
+whose functions carry the client's id, so several worlds can live in one process (tests do that).
+Bodies are addressed by model name; joints and links by their URDF names.
+
+Gazebo behaviours reproduced here, because the car drives differently without them:
+- fixed-joint children are merged into their parent link as Gazebo lumps them (urdf_lumping.py, not
+  PyBullet's URDF_MERGE_FIXED_LINKS, which would also merge a joint Gazebo keeps: preserveFixedJoint);
+- a URDF link without <inertial> would get 1 kg in PyBullet; Gazebo ignores its mass, so it gets
+  a negligible one here (the racebot would otherwise be ~6 kg too heavy);
+- friction: ODE takes the smaller mu of two touching surfaces, Bullet multiplies them. Static world
+  surfaces get friction 1 and a robot link gets min(its mu, the ground's mu), so the product is
+  Gazebo's minimum for the contacts that matter (robot on ground);
+- joint velocity motors (PyBullet's default) are switched off: joints move only by applied effort;
+- URDF cylinders (the wheels) stay true cylinders (URDF_USE_IMPLICIT_CYLINDER): PyBullet's default
+  convex-hull approximation makes the contact point jump between hull vertices, and the car veered
+  ~2 degrees per metre driving straight with the hinges locked.
+
+Meshes (URDF and SDF) arrive as checked OBJ files in the mesh cache (meshes.py; urdf_assets.py for
+URDFs, sdf_world.py for SDF). A static SDF body collides with the exact triangles (concave triangle
+mesh, as Gazebo does); a dynamic body (every URDF link) with one convex hull per part of the mesh.
+Colours are given when a body is built (visual shapes with their rgba; URDF colours written into the
+URDF before loadURDF), so any copy built from `Body.source` (the viewer's) looks the same.
+"""
+import math
+import os
+import tempfile
+import xml.etree.ElementTree as ET
+from collections import namedtuple
+from dataclasses import dataclass
+
+import pybullet as pb
+
+from racebot_sim_bridge.description import urdf_assets, urdf_lumping
+from racebot_sim_bridge.engine.pybullet_client import PybulletClient
+from racebot_sim_bridge.kinematics.rotations import as_transform
+
+# Mass and inertia given to links that declare no <inertial> (Gazebo drops such links' mass).
+NEGLIGIBLE_MASS = 1e-4
+NEGLIGIBLE_INERTIA = 1e-9
+
+JointInfo = namedtuple('JointInfo', 'index name type lower upper max_effort max_velocity child_link')
+JointState = namedtuple('JointState', 'position velocity')
+Pose = namedtuple('Pose', 'position orientation')  # xyz, quaternion xyzw
+Twist = namedtuple('Twist', 'linear angular')
+LinkDynamics = namedtuple('LinkDynamics', 'mass inertia_diagonal inertial_position inertial_orientation')
+
+JOINT_TYPES = {pb.JOINT_REVOLUTE: 'revolute', pb.JOINT_PRISMATIC: 'prismatic',
+               pb.JOINT_FIXED: 'fixed', pb.JOINT_SPHERICAL: 'spherical', pb.JOINT_PLANAR: 'planar'}
+
+
+class PhysicsError(RuntimeError):
+    """A request the physics world cannot carry out; the message says why."""
+
+
+@dataclass(frozen=True)
+class BodySource:
+    """What a body was built from, all another client needs to build a copy (picklable: the viewer and
+    the render worker get it through a pipe). kind 'sdf': `model` is the sdf_world.Model; kind 'urdf':
+    `model` is the urdf_model.RobotModel and `urdf_xml` its URDF, meshes resolved to files."""
+    kind: str
+    model: object
+    urdf_xml: str = None
+
+
+class Body(object):
+    """A body in the world: its PyBullet id, links by name and movable joints by name. `client`: the
+    PybulletClient of the world it is in.
+
+    `source`: the BodySource it was built from. `extra_bodies`: [(link name, PyBullet id)] of an SDF
+    model's links after the first (each link its own body; the first is `id`). `copy_key`: None until
+    world_copy.body_key gives the body its identity across a delete and respawn under the same name.
+    `model_offset`: for an SDF robot spawned as a URDF (sdf_urdf.py), its root link's pose in the SDF model
+    frame, (xyz, quaternion), when not the identity; else None (a URDF's model frame is its root link's)."""
+
+    def __init__(self, client, name, body_id, static, source, extra_bodies=()):
+        self.client = client
+        self.name = name
+        self.id = body_id
+        self.static = static
+        self.source = source
+        self.kind = source.kind  # 'urdf' or 'sdf'
+        self.extra_bodies = list(extra_bodies)
+        self.copy_key = None
+        self.model_offset = None
+        dyn = client.getDynamicsInfo(body_id, -1)
+        self._inertial = (tuple(dyn[3]), tuple(dyn[4]))  # base inertial frame in the link frame
+        self.spawn_pose = self.pose()
+        self.initial_joint_positions = {}
+        base_name = client.getBodyInfo(body_id)[0].decode()
+        self.link_index = {base_name: -1}
+        self.joints = {}
+        for j in range(client.getNumJoints(body_id)):
+            info = client.getJointInfo(body_id, j)
+            link = info[12].decode()
+            self.link_index[link] = j
+            if info[2] == pb.JOINT_FIXED:
+                continue
+            name_j = info[1].decode()
+            self.joints[name_j] = JointInfo(j, name_j, JOINT_TYPES.get(info[2], 'unknown'), info[8], info[9],
+                                            info[10], info[11], link)
+
+    def pose(self):
+        """The base's centre-of-mass pose (what PyBullet's base calls take and give)."""
+        pos, orn = self.client.getBasePositionAndOrientation(self.id)
+        return Pose(tuple(pos), tuple(orn))
+
+    def frame_pose(self):
+        """The pose of the root link's frame, as Gazebo reports a model's pose."""
+        pos, orn = self.pose()
+        inv_pos, inv_orn = pb.invertTransform(self._inertial[0], self._inertial[1])
+        p, o = pb.multiplyTransforms(pos, orn, inv_pos, inv_orn)
+        return Pose(tuple(p), tuple(o))
+
+    def com_pose_for_frame(self, position, orientation):
+        """The centre-of-mass pose that puts the root link's frame at (position, orientation)."""
+        p, o = pb.multiplyTransforms(position, orientation, self._inertial[0], self._inertial[1])
+        return Pose(tuple(p), tuple(o))
+
+    def twist(self):
+        lin, ang = self.client.getBaseVelocity(self.id)
+        return Twist(tuple(lin), tuple(ang))
+
+    def link_names(self):
+        return list(self.link_index)
+
+
+class PhysicsWorld(object):
+    """Owns one PyBullet client (`client`, a pybullet_client.PybulletClient). `gui=True` opens
+    PyBullet's own window (needs a display). `visuals=False` builds no visual shapes (no meshes to
+    draw, no colours): for a client that only steps physics and casts rays while another client draws."""
+
+    def __init__(self, step_size=0.001, gravity=(0.0, 0.0, -9.8), gui=False, visuals=True):
+        if not (step_size > 0 and math.isfinite(step_size)):
+            raise PhysicsError('physics step size must be a positive number of seconds, got %r' % (step_size,))
+        self.gui = gui
+        self.visuals = visuals
+        try:
+            self.client = PybulletClient(pb.GUI if gui else pb.DIRECT)
+        except pb.error as err:
+            raise PhysicsError(str(err))
+        if gui:
+            self.client.configureDebugVisualizer(pb.COV_ENABLE_GUI, 0)
+        self.step_size = step_size
+        self.gravity = tuple(gravity)
+        self.client.setGravity(*self.gravity)
+        self.client.setTimeStep(step_size)
+        self.bodies = {}
+        # (PyBullet body id, link index) -> laser_retro of its collisions (a laser ray's intensity); 0 if absent
+        self.laser_retro = {}
+        self.ground_mu = 1.0
+
+    # -- world --------------------------------------------------------------------------------
+    def load_world(self, world, warn=None):
+        """Creates every model of a parsed sdf_world.World but its robots (Model.is_robot, spawned through
+        the URDF path by the Simulator); returns the names created. With `warn`,
+        a model that cannot be built (no link with usable geometry left) is skipped and warn(message)
+        told, as the reader skips degenerate elements; without it, PhysicsError."""
+        created = []
+        for model in world.models:
+            if model.is_robot:
+                continue  # joints, plugins or sensors: Simulator.spawn_world_robots spawns it as a URDF
+            try:
+                self.add_sdf_model(model)
+            except PhysicsError as err:
+                if warn is None:
+                    raise
+                warn('%s; the model is skipped, the world loads without it' % err)
+                continue
+            created.append(model.name)
+        return created
+
+    def add_sdf_model(self, model):
+        """One PyBullet body per SDF link (joints between SDF links are not supported)."""
+        if model.name in self.bodies:
+            raise PhysicsError("a model named '%s' already exists" % model.name)
+        ids = []
+        for link in model.links:
+            body_id = self._create_sdf_link(model, link)
+            if body_id is not None:
+                ids.append((link.name, body_id))
+                retro = next((c.laser_retro for c in link.collisions if c.laser_retro), 0.0)
+                if retro:
+                    self.laser_retro[(body_id, -1)] = retro
+        if not ids:
+            raise PhysicsError("model '%s' has no link with supported geometry (give it a box, cylinder, sphere, "
+                               "plane or mesh of positive size)" % model.name)
+        # A multi-link SDF model is kept as its first link's body plus extra bodies named model::link.
+        first_link, first_id = ids[0]
+        body = Body(self.client, model.name, first_id, model.static, BodySource('sdf', model), extra_bodies=ids[1:])
+        body.link_index = {first_link: -1}
+        self.bodies[model.name] = body
+        return body
+
+    def _create_sdf_link(self, model, link):
+        shapes, visuals = [], []
+        static = model.static or link.mass is None or link.mass <= 0
+        try:
+            for col in link.collisions:
+                pos, orn = as_transform(col.pose)
+                shape = self._collision_shape(col.shape, pos, orn, static)
+                if shape is not None:
+                    shapes.append((shape, col))
+            visuals = [v for v in link.visuals if self._drawable(v.shape)] if self.visuals else []
+            vis_id = self._visual_shapes(visuals)
+        except pb.error as err:
+            raise PhysicsError("model '%s' link '%s': PyBullet could not build its shapes (%s)"
+                               % (model.name, link.name, err))
+        if not shapes and vis_id < 0:
+            return None
+        world_pos, world_orn = model.world_pose_of(link)
+        mass = 0.0 if static else link.mass
+        col_id = shapes[0][0] if len(shapes) == 1 else self._compound(link, static) if shapes else -1
+        body = self.client.createMultiBody(baseMass=mass, baseCollisionShapeIndex=col_id, baseVisualShapeIndex=vis_id,
+                                           basePosition=world_pos, baseOrientation=world_orn)
+        if len(visuals) > 1:  # createVisualShapeArray takes no colours: one call per shape
+            for i, vis in enumerate(visuals):
+                self.client.changeVisualShape(body, -1, shapeIndex=i, rgbaColor=_rgba(vis))
+        if not static and link.inertia is not None:
+            ixx, _, _, iyy, _, izz = link.inertia
+            self.client.changeDynamics(body, -1, localInertiaDiagonal=(ixx, iyy, izz))
+        mus = [c.mu for _, c in shapes if c.mu is not None]
+        is_ground = any(c.shape.kind == 'plane' for _, c in shapes)
+        if is_ground and mus:
+            self.ground_mu = min(mus)
+        # Static world surfaces get 1 so that Bullet's product equals the robot side's min(mu).
+        friction = 1.0 if static else (min(mus) if mus else 1.0)
+        self.client.changeDynamics(body, -1, lateralFriction=friction)
+        return body
+
+    def _compound(self, link, static):
+        kwargs = dict(shapeTypes=[], radii=[], halfExtents=[], lengths=[], planeNormals=[], fileNames=[],
+                      meshScales=[], flags=[], collisionFramePositions=[], collisionFrameOrientations=[])
+        for col in link.collisions:
+            s = col.shape
+            if s.kind == 'plane':
+                continue
+            pos, orn = as_transform(col.pose)
+            kwargs['shapeTypes'].append({'box': pb.GEOM_BOX, 'cylinder': pb.GEOM_CYLINDER,
+                                         'sphere': pb.GEOM_SPHERE, 'mesh': pb.GEOM_MESH}[s.kind])
+            kwargs['fileNames'].append(s.filename or '')
+            kwargs['meshScales'].append(list(s.scale or (1.0, 1.0, 1.0)))
+            kwargs['flags'].append(_mesh_flags(static) if s.kind == 'mesh' else 0)
+            kwargs['radii'].append(s.radius or 0.0)
+            kwargs['halfExtents'].append([x / 2.0 for x in (s.size or (0, 0, 0))])
+            kwargs['lengths'].append(s.length or 0.0)
+            kwargs['planeNormals'].append([0, 0, 1])
+            kwargs['collisionFramePositions'].append(pos)
+            kwargs['collisionFrameOrientations'].append(orn)
+        if not kwargs['shapeTypes']:
+            return -1
+        return self.client.createCollisionShapeArray(**kwargs)
+
+    def _collision_shape(self, shape, pos, orn, static):
+        c = self.client
+        if shape.kind == 'mesh':
+            return c.createCollisionShape(pb.GEOM_MESH, fileName=shape.filename, meshScale=list(shape.scale),
+                                          flags=_mesh_flags(static), collisionFramePosition=pos,
+                                          collisionFrameOrientation=orn)
+        if shape.kind == 'box':
+            return c.createCollisionShape(pb.GEOM_BOX, halfExtents=[x / 2.0 for x in shape.size],
+                                          collisionFramePosition=pos, collisionFrameOrientation=orn)
+        if shape.kind == 'cylinder':
+            return c.createCollisionShape(pb.GEOM_CYLINDER, radius=shape.radius, height=shape.length,
+                                          collisionFramePosition=pos, collisionFrameOrientation=orn)
+        if shape.kind == 'sphere':
+            return c.createCollisionShape(pb.GEOM_SPHERE, radius=shape.radius, collisionFramePosition=pos)
+        if shape.kind == 'plane':
+            return c.createCollisionShape(pb.GEOM_PLANE, planeNormal=list(shape.normal or (0, 0, 1)),
+                                          collisionFramePosition=pos)
+        return None
+
+    @staticmethod
+    def _drawable(shape):
+        return shape.kind in ('box', 'cylinder', 'sphere', 'plane', 'mesh')
+
+    def _visual_shapes(self, visuals):
+        """One visual shape index for a link's visuals (sdf_world.Visual), -1 for none."""
+        if not visuals:
+            return -1
+        c = self.client
+        if len(visuals) == 1:
+            vis = visuals[0]
+            pos, orn = as_transform(vis.pose)
+            return c.createVisualShape(rgbaColor=_rgba(vis), visualFramePosition=pos, visualFrameOrientation=orn,
+                                       **self._visual_geometry(vis.shape))
+        kwargs = dict(shapeTypes=[], radii=[], halfExtents=[], lengths=[], fileNames=[], meshScales=[],
+                      planeNormals=[], visualFramePositions=[], visualFrameOrientations=[])
+        for vis in visuals:
+            pos, orn = as_transform(vis.pose)
+            geometry = self._visual_geometry(vis.shape)
+            kwargs['shapeTypes'].append(geometry['shapeType'])
+            kwargs['radii'].append(geometry.get('radius', 0.0))
+            kwargs['halfExtents'].append(geometry.get('halfExtents', [0.0, 0.0, 0.0]))
+            kwargs['lengths'].append(geometry.get('length', 0.0))
+            kwargs['fileNames'].append(geometry.get('fileName', ''))
+            kwargs['meshScales'].append(geometry.get('meshScale', [1.0, 1.0, 1.0]))
+            kwargs['planeNormals'].append([0.0, 0.0, 1.0])
+            kwargs['visualFramePositions'].append(list(pos))
+            kwargs['visualFrameOrientations'].append(list(orn))
+        return c.createVisualShapeArray(**kwargs)
+
+    @staticmethod
+    def _visual_geometry(shape):
+        """createVisualShape's geometry arguments for an sdf_world.Shape (a plane: a thin box)."""
+        if shape.kind == 'box':
+            return dict(shapeType=pb.GEOM_BOX, halfExtents=[x / 2.0 for x in shape.size])
+        if shape.kind == 'cylinder':
+            return dict(shapeType=pb.GEOM_CYLINDER, radius=shape.radius, length=shape.length)
+        if shape.kind == 'sphere':
+            return dict(shapeType=pb.GEOM_SPHERE, radius=shape.radius)
+        if shape.kind == 'mesh':
+            return dict(shapeType=pb.GEOM_MESH, fileName=shape.filename, meshScale=list(shape.scale))
+        size = shape.size or (100.0, 100.0)
+        return dict(shapeType=pb.GEOM_BOX, halfExtents=[size[0] / 2.0, size[1] / 2.0, 0.0005])
+
+    # -- robots ---------------------------------------------------------------------------------
+    def spawn_urdf(self, name, urdf_model, urdf_xml, position=(0, 0, 0), orientation=(0, 0, 0, 1), warn=None):
+        """Spawns a parsed URDF (urdf_model.RobotModel) under `name`; returns its Body. Its meshes
+        are resolved and converted first (urdf_assets); warn(message) hears of those that cannot
+        be (the element is left out, the robot is spawned)."""
+        if name in self.bodies:
+            raise PhysicsError("a model named '%s' already exists" % name)
+        urdf_xml = urdf_assets.resolve_assets(urdf_xml, urdf_model, warn)
+        flags = pb.URDF_USE_INERTIA_FROM_FILE | pb.URDF_MAINTAIN_LINK_ORDER | pb.URDF_USE_IMPLICIT_CYLINDER
+        # A root link named world is the world (sdformat's URDF reader): its joints hold the robot to the world.
+        fixed = urdf_model.root_link == 'world'
+        # PyBullet reads a URDF from a file, once: the file lives only as long as the load, so a process
+        # that is killed leaves nothing behind in /tmp.
+        with tempfile.TemporaryDirectory(prefix='racebot_urdf_') as tmp:
+            path = os.path.join(tmp, 'robot.urdf')
+            with open(path, 'w') as f:
+                f.write(prepare_urdf_for_bullet(urdf_xml, urdf_model, self.visuals))
+            try:
+                body_id = self.client.loadURDF(path, basePosition=position, baseOrientation=orientation,
+                                               flags=flags, useFixedBase=fixed)
+            except pb.error as err:
+                raise PhysicsError("PyBullet could not load the URDF of '%s': %s" % (name, err))
+        # urdf_xml has its meshes resolved: a copy needs no package path
+        body = Body(self.client, name, body_id, False, BodySource('urdf', urdf_model, urdf_xml))
+        for link, index in body.link_index.items():
+            # PyBullet's default link damping (0.04) has no counterpart in Gazebo: a free wheel would slow down.
+            friction = min(link_friction(urdf_model, link), self.ground_mu)
+            self.client.changeDynamics(body_id, index, lateralFriction=friction)
+            # separate call: PyBullet ignores the friction when damping comes in the same call
+            self.client.changeDynamics(body_id, index, linearDamping=0.0, angularDamping=0.0)
+            retro = link_laser_retro(urdf_model, link)
+            if retro:
+                self.laser_retro[(body_id, index)] = retro
+        for joint_name, joint in body.joints.items():
+            # PyBullet's default velocity motors off; in their place the URDF <dynamics friction>, which Gazebo
+            # applies as Coulomb friction: a motor holding velocity 0 with at most that force. (<dynamics damping>
+            # PyBullet's URDF importer applies itself.) A joint a controller drives by velocity or position
+            # gets the hardware's motor instead (Robot.write).
+            self.client.setJointMotorControl2(body_id, joint.index, pb.VELOCITY_CONTROL, targetVelocity=0.0,
+                                              force=joint_friction(urdf_model, joint_name))
+        self.bodies[name] = body
+        return body
+
+    def add_copy(self, name, source):
+        """Builds here a copy of another client's body from its Body.source (a window's or a render
+        worker's copy of the simulated world); returns the new Body."""
+        if source.kind == 'sdf':
+            return self.add_sdf_model(source.model)
+        return self.spawn_urdf(name, source.model, source.urdf_xml)
+
+    def remove(self, name):
+        body = self.bodies.pop(name)
+        self.client.removeBody(body.id)
+        for _, extra in body.extra_bodies:
+            self.client.removeBody(extra)
+        gone = {body.id} | {extra for _, extra in body.extra_bodies}
+        self.laser_retro = {k: v for k, v in self.laser_retro.items() if k[0] not in gone}
+
+    # -- state ----------------------------------------------------------------------------------
+    def joint_states(self, body, indices):
+        states = self.client.getJointStates(body.id, indices)
+        return [JointState(s[0], s[1]) for s in states]
+
+    def joint_states_raw(self, body, indices):
+        """PyBullet's own tuples (position, velocity, reaction forces, applied torque) of the joints:
+        the update loop's read, without building a JointState per joint."""
+        return self.client.getJointStates(body.id, indices)
+
+    def apply_efforts(self, body, indices, efforts):
+        """Torques (or forces) for one step: PyBullet clears them after every stepSimulation."""
+        self.client.setJointMotorControlArray(body.id, indices, pb.TORQUE_CONTROL, forces=efforts)
+
+    def drive_velocities(self, body, indices, velocities, max_forces):
+        self.client.setJointMotorControlArray(body.id, indices, pb.VELOCITY_CONTROL, targetVelocities=velocities,
+                                              forces=max_forces)
+
+    def drive_positions(self, body, indices, positions, max_forces):
+        self.client.setJointMotorControlArray(body.id, indices, pb.POSITION_CONTROL, targetPositions=positions,
+                                              forces=max_forces)
+
+    def set_joint_position(self, body, joint_name, position, velocity=0.0):
+        joint = body.joints[joint_name]
+        self.client.resetJointState(body.id, joint.index, position, velocity)
+
+    def set_pose(self, body, position, orientation, linear=(0, 0, 0), angular=(0, 0, 0)):
+        self.client.resetBasePositionAndOrientation(body.id, position, orientation)
+        self.client.resetBaseVelocity(body.id, linear, angular)
+
+    def link_state(self, body, link):
+        """World pose and twist of a link (the base's for index -1)."""
+        index = body.link_index[link]
+        if index < 0:
+            return body.frame_pose(), body.twist()
+        s = self.client.getLinkState(body.id, index, computeLinkVelocity=1, computeForwardKinematics=1)
+        return Pose(tuple(s[4]), tuple(s[5])), Twist(tuple(s[6]), tuple(s[7]))
+
+    def base_state(self, body_id):
+        """World pose and twist of one PyBullet body's base, by id (an SDF model's extra link body)."""
+        pos, orn = self.client.getBasePositionAndOrientation(body_id)
+        lin, ang = self.client.getBaseVelocity(body_id)
+        return Pose(tuple(pos), tuple(orn)), Twist(tuple(lin), tuple(ang))
+
+    def set_base_state(self, body_id, position, orientation, linear=(0, 0, 0), angular=(0, 0, 0)):
+        """Puts one PyBullet body's base (by id) at a pose with a twist."""
+        self.client.resetBasePositionAndOrientation(body_id, position, orientation)
+        self.client.resetBaseVelocity(body_id, linear, angular)
+
+    def set_base_velocity(self, body_id, linear, angular):
+        """A base's world linear (at its centre of mass) and angular velocity, its pose left as it is."""
+        self.client.resetBaseVelocity(body_id, list(linear), list(angular))
+
+    def apply_joint_effort(self, body, joint_name, effort):
+        joint = body.joints[joint_name]
+        self.client.setJointMotorControl2(body.id, joint.index, pb.TORQUE_CONTROL, force=effort)
+
+    # -- dynamics and external forces (gazebo_ros's properties and force services) ----------------
+    # A link is addressed (PyBullet body id, link index): an SDF model's extra link is a body of its own.
+    def link_dynamics(self, body_id, index):
+        """LinkDynamics of a link: mass, inertia diagonal, inertial frame in the link frame."""
+        d = self.client.getDynamicsInfo(body_id, index)
+        return LinkDynamics(d[0], tuple(d[2]), tuple(d[3]), tuple(d[4]))
+
+    def set_link_mass(self, body_id, index, mass, inertia_diagonal):
+        # Two calls: PyBullet recomputes the inertia from the collision shapes when the mass changes.
+        self.client.changeDynamics(body_id, index, mass=mass)
+        self.client.changeDynamics(body_id, index, localInertiaDiagonal=list(inertia_diagonal))
+
+    def com_position(self, body_id, index):
+        """World position of a link's centre of mass."""
+        if index < 0:
+            return tuple(self.client.getBasePositionAndOrientation(body_id)[0])
+        return tuple(self.client.getLinkState(body_id, index, computeForwardKinematics=1)[0])
+
+    def apply_wrench(self, body_id, index, force, torque):
+        """A world-frame force at the link's centre of mass and a world-frame torque, for one step."""
+        if any(force):
+            at = self.com_position(body_id, index)
+            self.client.applyExternalForce(body_id, index, list(force), at, pb.WORLD_FRAME)
+        if any(torque):
+            self.client.applyExternalTorque(body_id, index, list(torque), pb.WORLD_FRAME)
+
+    def set_joint_dynamics(self, body, joint_name, damping=None, lower=None, upper=None):
+        """A joint's viscous damping and position limits (None: unchanged)."""
+        joint = body.joints[joint_name]
+        if damping is not None:
+            self.client.changeDynamics(body.id, joint.index, jointDamping=damping)
+        if lower is not None or upper is not None:
+            self.client.changeDynamics(body.id, joint.index, jointLowerLimit=joint.lower if lower is None else lower,
+                                       jointUpperLimit=joint.upper if upper is None else upper)
+            body.joints[joint_name] = joint._replace(lower=joint.lower if lower is None else lower,
+                                                     upper=joint.upper if upper is None else upper)
+
+    def set_gravity(self, gravity):
+        self.gravity = tuple(gravity)
+        self.client.setGravity(*self.gravity)
+
+    def set_step_size(self, step_size):
+        self.step_size = step_size
+        self.client.setTimeStep(step_size)
+
+    def set_solver(self, **params):
+        """Constraint solver parameters by PyBullet's names (numSolverIterations, erp, globalCFM)."""
+        self.client.setPhysicsEngineParameter(**params)
+
+    def step(self):
+        self.client.stepSimulation()
+
+    def reset_to_spawn(self, body):
+        pos, orn = body.spawn_pose
+        self.set_pose(body, pos, orn)
+        for link, extra in body.extra_bodies:  # an SDF model's other links, as spawned
+            pos, orn = body.source.model.world_pose_of(link)
+            self.set_base_state(extra, pos, orn)
+        for joint in body.joints.values():
+            self.client.resetJointState(body.id, joint.index, body.initial_joint_positions.get(joint.name, 0.0), 0.0)
+
+    def follow_with_camera(self, body, distance=1.5, yaw_offset=0.0, pitch=-30.0):
+        if not self.gui:
+            return
+        pos, orn = body.pose()
+        yaw = math.degrees(pb.getEulerFromQuaternion(orn)[2]) - 90.0 + yaw_offset
+        self.client.resetDebugVisualizerCamera(distance, yaw, pitch, pos)
+
+    def close(self):
+        self.client.close()
+
+
+def _mesh_flags(static):
+    # Bullet collides static bodies with triangle meshes, dynamic ones only with convex shapes.
+    return pb.GEOM_FORCE_CONCAVE_TRIMESH if static else 0
+
+
+def _rgba(visual):
+    return list(visual.rgba) if visual.rgba else [0.7, 0.7, 0.7, 1.0]  # Gazebo's default grey
+
+
+def joint_friction(urdf_model, joint_name):
+    """The URDF <dynamics friction> of a joint (N*m or N), 0 without one."""
+    joint = urdf_model.joints.get(joint_name)
+    dynamics = getattr(joint, 'dynamics', None)
+    return max(0.0, dynamics.friction) if dynamics is not None else 0.0
+
+
+def link_laser_retro(urdf_model, link):
+    """<laserRetro> of a (merged) PyBullet link: the first the URDF links merged into it give (Gazebo keeps it per
+    collision; a ray here knows only the link it hit), 0 if none."""
+    for name, spec in urdf_model.links.items():
+        if urdf_model.lumped_link(name) != link or not spec.collisions:
+            continue
+        value = urdf_model.gazebo_refs.get(name, {}).get('laserRetro')
+        if isinstance(value, float) and value:
+            return value
+    return 0.0
+
+
+def link_friction(urdf_model, link):
+    """mu of a (merged) PyBullet link: the smaller of mu1/mu2 of the URDF links merged into it that
+    carry collision geometry (Gazebo keeps friction per collision; Bullet has one per link), 1 if none says."""
+    mus = []
+    for name, spec in urdf_model.links.items():
+        if urdf_model.lumped_link(name) != link or not spec.collisions:
+            continue
+        props = urdf_model.gazebo_refs.get(name, {})
+        values = [props[k] for k in ('mu1', 'mu2') if isinstance(props.get(k), float)]  # the reader warned of others
+        if values:
+            mus.append(min(values))
+    return min(mus) if mus else 1.0
+
+
+def prepare_urdf_for_bullet(urdf_xml, urdf_model, visuals=True):
+    """The URDF as PyBullet should read it: links lumped as Gazebo lumps them; negligible inertia for
+    links that declare none; <gazebo>, <transmission> and sensor blocks dropped; the visuals dropped unless `visuals`.
+    Mesh filenames must already be files PyBullet reads (urdf_assets.resolve_assets)."""
+    root = ET.fromstring(urdf_xml)
+    for tag in ('gazebo', 'transmission'):
+        for el in root.findall(tag):
+            root.remove(el)
+    urdf_lumping.lump_fixed_links(root, urdf_model)
+    for link in root.findall('link'):
+        if link.find('inertial') is None:
+            inertial = ET.SubElement(link, 'inertial')
+            ET.SubElement(inertial, 'mass', value=repr(NEGLIGIBLE_MASS))
+            ET.SubElement(inertial, 'inertia', ixx=repr(NEGLIGIBLE_INERTIA), iyy=repr(NEGLIGIBLE_INERTIA),
+                          izz=repr(NEGLIGIBLE_INERTIA), ixy='0', ixz='0', iyz='0')
+        if not visuals:
+            for el in link.findall('visual'):
+                link.remove(el)
+    ET.indent(root)  # PyBullet's URDF reader fails on some very long lines (a one-line document)
+    return ET.tostring(root, encoding='unicode')

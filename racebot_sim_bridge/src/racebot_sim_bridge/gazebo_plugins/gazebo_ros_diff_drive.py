@@ -1,0 +1,202 @@
+"""libgazebo_ros_diff_drive.so (gazebo_plugins noetic-devel): two wheels driven from cmd_vel, odometry out.
+
+Parameters (upstream's names and defaults): commandTopic cmd_vel, odometryTopic odom, odometryFrame odom,
+robotBaseFrame base_footprint, leftJoint left_joint, rightJoint right_joint, wheelSeparation 0.34,
+wheelDiameter 0.15, wheelAcceleration 0 (m/s^2 at the rim, 0: no limit), wheelTorque 5 (each wheel's
+velocity motor's maximum torque), updateRate 100 (<= 0: every world update), odometrySource world
+(world | encoder), publishTf true (false: no odometry at all, as upstream), publishOdomTF true,
+publishWheelTF false, publishWheelJointState false, rosDebugLevel, robotNamespace (GazeboRos's rule:
+none or empty -> the model's name). legacyMode is not read by noetic's plugin (it swapped the wheels
+in kinetic): a warning says so when it is true.
+
+Every world update (before the physics step), with encoder odometry the wheel joint velocities are
+integrated (kinematics.diff_drive.encoder_step). When more than one update period has passed (the
+last update time then moves on by exactly one period): odometry and the odom -> base TF, wheel TFs
+(each wheel link's pose relative to the model, from its joint's parent link), wheel joint states
+(right then left, positions only), then the wheels' target speeds from the latest cmd_vel, through
+the acceleration ramp. Stamps are the sim time; frames go under the tf_prefix parameter found
+upwards from the plugin's namespace (tf::resolve).
+"""
+import math
+
+from racebot_sim_bridge.kinematics import differential as kin
+from racebot_sim_bridge.gazebo_plugins.plugin_namespace import model_plugin_namespace, name_in
+from racebot_sim_bridge.kinematics.rotations import conjugate, quaternion_multiply, rotate_back, yaw_of
+from racebot_sim_bridge.engine.sim_time import NS, to_ns
+from racebot_sim_bridge.gazebo_plugins.model_plugin import ModelPlugin, PluginError
+from racebot_sim_bridge.gazebo_plugins.link_motion import link_motion
+from racebot_sim_bridge.gazebo_plugins.odometry_output import odometry, tf_prefix, tf_resolve, transform
+from racebot_sim_bridge.gazebo_plugins.update_timing import FixedPeriod
+
+ODOMETRY_SOURCES = ('encoder', 'world')
+LOG_LEVELS = ('debug', 'info', 'warn', 'error', 'fatal')  # rosDebugLevel's values, any case
+# GazeboRos logs every parameter left out, with the default it takes (ROS_WARN upstream; one info line here)
+DEFAULTS = (('commandTopic', 'cmd_vel'), ('odometryTopic', 'odom'), ('odometryFrame', 'odom'),
+            ('robotBaseFrame', 'base_footprint'), ('publishWheelTF', 'false'), ('publishOdomTF', 'true'),
+            ('publishWheelJointState', 'false'), ('wheelSeparation', '0.34'), ('wheelDiameter', '0.15'),
+            ('wheelAcceleration', '0'), ('wheelTorque', '5'), ('updateRate', '100'), ('odometrySource', 'world'),
+            ('publishTf', 'true'))
+ZERO_COVARIANCE = [0.0] * 36
+
+
+class DiffDrive(ModelPlugin):
+    filename = 'libgazebo_ros_diff_drive.so'
+
+    def __init__(self, ctx, robot, spec):
+        super(DiffDrive, self).__init__(ctx, robot, spec)
+        p = self.params
+        level = p.string('rosDebugLevel', 'na').strip().lower()  # read first, as GazeboRos does
+        self.log_level = LOG_LEVELS.index(level) if level in LOG_LEVELS else LOG_LEVELS.index('info')
+        missing = ['<%s> %s' % (tag, value) for tag, value in DEFAULTS if not p.has(tag)]
+        if missing:
+            self.info('defaults used for the parameters not given: %s' % ', '.join(missing))
+        self.right = self._wheel('rightJoint', 'right_joint', 'right')
+        self.left = self._wheel('leftJoint', 'left_joint', 'left')
+        self.indices = [self.left.index, self.right.index]
+        self.separation = p.number('wheelSeparation', 0.34, minimum=0, exclusive=True)
+        self.diameter = p.number('wheelDiameter', 0.15, minimum=0, exclusive=True)
+        self.acceleration = p.number('wheelAcceleration', 0.0, minimum=0)
+        self.torque = p.number('wheelTorque', 5.0, minimum=0)
+        self.rate = p.number('updateRate', 100.0)
+        self.clock = FixedPeriod(self.rate, ctx.sim.time)
+        self.encoder = self._odometry_source() == 'encoder'
+        self.publish_odometry = p.boolean('publishTf', True)
+        self.publish_odom_tf = p.boolean('publishOdomTF', True)
+        self.publish_wheel_tf = p.boolean('publishWheelTF', False)
+        self.publish_joint_state = p.boolean('publishWheelJointState', False)
+        if p.has('legacyMode') and p.string('legacyMode', '').strip().lower() in ('true', '1'):
+            self.warn('<legacyMode>true</legacyMode> is not read: gazebo_plugins noetic removed it (2.8.3), so the '
+                      'wheels turn as legacyMode false (REP 103: y to the left); if this robot was written for the '
+                      'old swap, exchange <leftJoint> and <rightJoint>')
+        ns = model_plugin_namespace('gazebo_ros', p.string('robotNamespace', None), robot.spawn_namespace,
+                                    robot.name, ctx.sim.node_namespace)
+        prefix = tf_prefix(ctx.rospy, ns)
+        self.odom_frame = tf_resolve(prefix, p.string('odometryFrame', 'odom'))
+        self.base_frame = tf_resolve(prefix, p.string('robotBaseFrame', 'base_footprint'))
+        model = robot.model
+        # Gazebo's joint parent is the link its URDF parent was lumped into; a moving joint's child is kept
+        self.wheel_frames = [(tf_resolve(prefix, model.lumped_link(model.joints[j.name].parent)),
+                              tf_resolve(prefix, j.child_link), j.child_link) for j in (self.right, self.left)]
+        self.command = (0.0, 0.0)  # cmd_vel's (linear.x, angular.z), replaced whole by the callback
+        self.commanded = (0.0, 0.0)  # the ramp's commanded rim speeds (upstream's wheel_speed_instr_)
+        self.encoder_pose = (0.0, 0.0, 0.0)
+        self.encoder_twist = (0.0, 0.0)
+        self.last_encoder_ns = 0  # upstream's last_odom_update_ starts at time 0 and is never reset
+        self.world.drive_velocities(robot.body, self.indices, [0.0, 0.0], [self.torque] * 2)  # SetParam fmax
+        from geometry_msgs.msg import Twist
+        from nav_msgs.msg import Odometry
+        from sensor_msgs.msg import JointState
+        self.joint_state_class = JointState
+        self.joint_state_pub = (self.publisher(name_in(ns, 'joint_states'), JointState, queue_size=1000)
+                                if self.publish_joint_state else None)
+        self.tf_pub = ctx.tf_publisher()  # upstream's TransformBroadcaster exists whatever is asked
+        self.subscriber(name_in(ns, p.string('commandTopic', 'cmd_vel')), Twist, self._on_cmd_vel)
+        self.odom_pub = (self.publisher(name_in(ns, p.string('odometryTopic', 'odom')), Odometry)
+                         if self.publish_odometry else None)
+
+    # -- parameters ----------------------------------------------------------------------------
+    def _wheel(self, tag, default, side):
+        if self.params.has(tag):
+            return self.joint(tag)
+        joint = self.robot.body.joints.get(default)
+        if joint is None:
+            raise PluginError("<%s> is missing and the default %s wheel joint '%s' is not a movable joint of the "
+                              "robot: name the %s wheel's joint (its joints: %s)"
+                              % (tag, side, default, side, ', '.join(sorted(self.robot.body.joints)) or 'none'))
+        return joint
+
+    def _odometry_source(self):
+        text = self.params.string('odometrySource', 'world')
+        if text in ODOMETRY_SOURCES:
+            return text
+        hint = (' (gazebo_plugins noetic matches the names only, not the enum numbers 0 and 1)'
+                if text.strip() in ('0', '1') else '')
+        self.warn('<odometrySource>%s</odometrySource> must be encoder or world%s; using world' % (text, hint))
+        return 'world'
+
+    # -- logging at rosDebugLevel ----------------------------------------------------------------
+    def warn(self, message):
+        if self.log_level <= LOG_LEVELS.index('warn'):
+            super(DiffDrive, self).warn(message)
+
+    def info(self, message):
+        if self.log_level <= LOG_LEVELS.index('info'):
+            super(DiffDrive, self).info(message)
+
+    # -- ROS and life cycle ----------------------------------------------------------------------
+    def _on_cmd_vel(self, msg):
+        self.command = (msg.linear.x, msg.angular.z)
+
+    def reset(self):
+        """Upstream's Reset: the update clock restarts now, encoder odometry and the command go to zero,
+        the wheels' maximum torque is set again. Their target speed goes to zero too (PyBullet's motor would
+        keep the old one until the next update, spinning the wheels of a robot just put back at rest)."""
+        self.clock = FixedPeriod(self.rate, self.ctx.sim.time)
+        self.encoder_pose = (0.0, 0.0, 0.0)
+        self.command = (0.0, 0.0)
+        self.world.drive_velocities(self.robot.body, self.indices, [0.0, 0.0], [self.torque] * 2)
+
+    def before_physics(self, time):
+        now = to_ns(time)
+        states = None
+        if self.encoder:  # integrated every world update, whatever the update rate
+            states = self.world.joint_states_raw(self.robot.body, self.indices)
+            dt = (now - self.last_encoder_ns) / float(NS)
+            self.last_encoder_ns = now
+            self.encoder_pose, self.encoder_twist = kin.encoder_step(self.encoder_pose, states[0][1], states[1][1],
+                                                                     self.diameter, self.separation, dt)
+        since = (now - self.clock.last) / float(NS)  # before due() moves the clock on
+        if not self.clock.due(time):
+            return
+        if states is None:
+            states = self.world.joint_states_raw(self.robot.body, self.indices)
+        velocities = (states[0][1], states[1][1])  # left, right (rad/s)
+        stamp = self.stamp(time)
+        if self.odom_pub is not None:
+            self._publish_odometry(stamp)
+        if self.publish_wheel_tf:
+            self._publish_wheel_tf(stamp)
+        if self.joint_state_pub is not None:
+            self._publish_joint_state(stamp, states)
+        targets = kin.wheel_speeds(self.command[0], self.command[1], self.separation)
+        measured = tuple(kin.rim_speed(v, self.diameter) for v in velocities)
+        speeds, self.commanded = kin.ramped_speeds(targets, measured, self.commanded, self.acceleration, since)
+        self.world.drive_velocities(self.robot.body, self.indices,
+                                    [kin.joint_velocity(s, self.diameter) for s in speeds], [self.torque] * 2)
+
+    # -- outputs --------------------------------------------------------------------------------
+    def _publish_odometry(self, stamp):
+        if self.encoder:
+            x, y, theta = self.encoder_pose
+            position, orientation = (x, y, 0.0), kin.yaw_quaternion(theta)
+            v, w = self.encoder_twist
+            linear, angular = (v, 0.0, 0.0), (0.0, 0.0, w)
+        else:
+            position, orientation, world_linear, world_angular = link_motion(self.world, self.robot.body,
+                                                                             self.robot.model.root_link)
+            yaw = yaw_of(orientation)
+            vx, vy = world_linear[0], world_linear[1]
+            c, s = math.cos(yaw), math.sin(yaw)
+            linear, angular = (c * vx + s * vy, c * vy - s * vx, 0.0), (0.0, 0.0, world_angular[2])
+        if self.publish_odom_tf:
+            self.tf_pub.publish(transform(stamp, self.odom_frame, self.base_frame, position, orientation))
+        self.odom_pub.publish(odometry(stamp, self.odom_frame, self.base_frame, position, orientation, linear,
+                                       angular, kin.pose_covariance(), ZERO_COVARIANCE))
+
+    def _publish_wheel_tf(self, stamp):
+        body, root = self.robot.body, self.robot.model.root_link
+        model_position, model_orientation, _, _ = link_motion(self.world, body, root)
+        for parent_frame, child_frame, link in self.wheel_frames:
+            position, orientation, _, _ = link_motion(self.world, body, link)
+            relative = rotate_back(model_orientation, tuple(position[i] - model_position[i] for i in range(3)))
+            turn = quaternion_multiply(conjugate(model_orientation), orientation)
+            self.tf_pub.publish(transform(stamp, parent_frame, child_frame, relative, turn))
+
+    def _publish_joint_state(self, stamp, states):
+        msg = self.joint_state_class(name=[self.right.name, self.left.name],
+                                     position=[states[1][0], states[0][0]])
+        msg.header.stamp = stamp
+        self.joint_state_pub.publish(msg)
+
+
+PLUGINS = (DiffDrive,)

@@ -1,0 +1,118 @@
+"""PluginManager: the Gazebo model plugins of every spawned robot, hooked into a Simulator.
+
+When a URDF robot spawns, each of its model-level <gazebo><plugin> blocks (not gazebo_ros_control,
+not a sensor's) is looked up in plugins.MODEL_PLUGINS by its filename and built. A plugin racebot
+does not simulate gets one warning naming it, and the robot works without it; a plugin refused for
+its parameters (PluginError) gets an error with the reason. Nothing a plugin raises reaches the
+world server: a plugin whose update fails is stopped with an error, the world goes on.
+"""
+from racebot_sim_bridge.gazebo_plugins import MODEL_PLUGINS, plugin_key
+from racebot_sim_bridge.gazebo_plugins.model_plugin import PluginError
+from racebot_sim_bridge.supported_table import WHERE as README_TABLE
+NOT_MODEL_PLUGINS = ('gazebo_ros_control',)  # simulator.py runs it
+
+
+def dynamic_reconfigure_server(namespace, config_type, callback):
+    """dynamic_reconfigure's Python server under `namespace` (its set_parameters service and its
+    parameter_descriptions and parameter_updates topics)."""
+    from dynamic_reconfigure.server import Server
+    return Server(config_type, callback, namespace=namespace)
+
+
+class PluginManager(object):
+    def __init__(self, rospy, sim, registry=None, reconfigure=dynamic_reconfigure_server):
+        """reconfigure(namespace, config_type, callback): makes a plugin's dynamic_reconfigure server
+        (tests without a master give a stand-in)."""
+        self.rospy = rospy
+        self.sim = sim
+        self.registry = MODEL_PLUGINS if registry is None else registry
+        self.reconfigure = reconfigure
+        self.plugins = {}  # robot name -> [ModelPlugin]
+        self._active = []
+        self._tf_pub = None
+        sim.on_spawn.append(self.on_spawn)
+        sim.on_delete.append(self.on_delete)
+        sim.on_reset.append(self.on_reset)
+        # before_physics and after_step are hooked in only while a plugin is active (_refresh)
+
+    def tf_publisher(self):
+        """The one /tf publisher all plugins share (tf::TransformBroadcaster's topic)."""
+        if self._tf_pub is None:
+            from tf2_msgs.msg import TFMessage
+            self._tf_pub = self.rospy.Publisher('/tf', TFMessage, queue_size=100)
+        return self._tf_pub
+
+    # -- hooks (called under sim.lock) ----------------------------------------------------------
+    def on_spawn(self, robot):
+        created = []
+        for spec in robot.model.plugins:
+            key = plugin_key(spec.filename)
+            if key in NOT_MODEL_PLUGINS:
+                continue
+            cls = self.registry.get(key)
+            if cls is None:
+                self.rospy.logwarn("%s: plugin '%s' (%s) is not simulated by racebot, so what it would do does "
+                                   "not happen; the rest of the robot works. See %s"
+                                   % (robot.name, spec.name, spec.filename, README_TABLE))
+                continue
+            try:
+                plugin = cls(self, robot, spec)
+            except PluginError as err:
+                self.rospy.logerr("%s: plugin '%s' (%s) refused: %s. The robot works without it; fix the "
+                                  "plugin's parameters, delete the model and spawn it again"
+                                  % (robot.name, spec.name, spec.filename, err))
+                continue
+            created.append(plugin)
+        if created:
+            self.plugins[robot.name] = created
+            self._refresh()
+
+    def on_delete(self, robot):
+        for plugin in self.plugins.pop(robot.name, []):
+            plugin.close()
+        self._refresh()
+
+    def on_reset(self):
+        for plugin in self._active:
+            plugin.reset()
+
+    def before_physics(self, time):
+        for plugin in self._active:
+            try:
+                plugin.before_physics(time)
+            except Exception as err:  # a plugin's bug must not stop the world
+                self._stop(plugin, err)
+
+    def after_step(self, time):
+        for plugin in self._active:
+            try:
+                plugin.after_step(time)
+            except Exception as err:
+                self._stop(plugin, err)
+
+    def close(self):
+        for group in self.plugins.values():
+            for plugin in group:
+                plugin.close()
+        self.plugins = {}
+        self._refresh()
+
+    def _stop(self, plugin, err):
+        self.rospy.logerr('%s: stopped after an error in its update: %s: %s. The world goes on without it'
+                          % (plugin.label, type(err).__name__, err))
+        group = self.plugins.get(plugin.robot.name, [])
+        if plugin in group:
+            group.remove(plugin)
+        try:
+            plugin.close()
+        except Exception:
+            pass
+        self._refresh()
+
+    def _refresh(self):
+        self._active = [p for group in self.plugins.values() for p in group]
+        self.sim.set_step_hook('before_physics', self.before_physics, bool(self._active))
+        self.sim.set_step_hook('after_step', self.after_step, bool(self._active))
+
+
+__all__ = ['PluginManager', 'PluginError']

@@ -1,0 +1,57 @@
+"""When a gazebo_plugins model plugin updates: the clocks of their UpdateChild, on Gazebo's time.
+
+Gazebo's common::Time counts whole nanoseconds, so times here are integer nanoseconds: with float
+seconds, 0.011 - 0.001 > 0.01 may hold or not. Three habits are found upstream:
+- FixedPeriod (skid_steer_drive, joint_state_publisher): update when more than one period has passed,
+  then move the last update time on by exactly one period (100 Hz at a 1 ms step: every 10 ms).
+- SincePublished (planar_move's odometry): update when more than one period has passed since the last
+  update, which becomes now (20 Hz at 1 ms: every 51 ms, 19.6 Hz).
+- AtLeastPeriod (p3d): update when at least one period has passed; the last time becomes now.
+A rate <= 0 means every world update. Time going backwards (reset_simulation) restarts the clock at
+the new time, as p3d and joint_state_publisher do (skid_steer_drive and planar_move would wait until
+the old time came round again).
+"""
+from racebot_sim_bridge.engine.sim_time import NS, to_ns
+
+
+class _Clock(object):
+    def __init__(self, rate, start):
+        self.period = 1.0 / rate if rate > 0 else 0.0
+        self.last = to_ns(start)
+
+    def _since(self, now):
+        if now < self.last:
+            self.last = now
+        return (now - self.last) / float(NS)
+
+
+class FixedPeriod(_Clock):
+    def due(self, time):
+        now = to_ns(time)
+        if self._since(now) > self.period:
+            self.last += to_ns(self.period)
+            return True
+        return False
+
+
+class SincePublished(_Clock):
+    def due(self, time):
+        """(due, seconds since the last update)"""
+        now = to_ns(time)
+        since = self._since(now)
+        if since > self.period:
+            self.last = now
+            return True, since
+        return False, since
+
+
+class AtLeastPeriod(_Clock):
+    def since(self, time):
+        """Seconds since the last update when one is due, else None; call mark(time) when it is made."""
+        since = self._since(to_ns(time))
+        if self.period > 0 and since < self.period:
+            return None
+        return since
+
+    def mark(self, time):
+        self.last = to_ns(time)

@@ -1,0 +1,19 @@
+"""position_controllers: JointPositionController (forward)."""
+from racebot_sim_bridge.ros_control.hardware_interface import POSITION
+from racebot_sim_bridge.ros_controllers.forward_command_controller import (ForwardCommandController,
+                                                                           ForwardJointGroupCommandController)
+
+
+class PositionForwardController(ForwardCommandController):
+    type_name = 'position_controllers/JointPositionController'
+    interface = POSITION
+    setpoint = 'position'
+
+
+
+class JointGroupPositionController(ForwardJointGroupCommandController):
+    type_name = 'position_controllers/JointGroupPositionController'
+    interface = POSITION
+
+
+TYPES = (JointGroupPositionController, PositionForwardController,)

@@ -1,0 +1,65 @@
+"""Wheel odometry of the Ackermann car (kinematic bicycle model) and the body-frame twist of the
+ground truth; pure maths, no master."""
+import math
+
+import pytest
+
+from racebot_sim_bridge.odometry import REAR_AXLE_X, WHEEL_RADIUS, WHEELBASE, AckermannOdometry
+from racebot_sim_bridge.kinematics.rotations import rotate_back, rpy_to_quaternion, yaw_of
+
+
+def drive(odo, seconds, wheel_speed, steering, dt=0.02, start=0.0):
+    t = start
+    for _ in range(int(round(seconds / dt)) + 1):
+        odo.update(t, [wheel_speed, wheel_speed], [steering, steering])
+        t += dt
+    return t
+
+
+def test_model_defaults_are_the_racebots():
+    assert (WHEEL_RADIUS, WHEELBASE, REAR_AXLE_X) == (0.032, 0.26, -0.13)
+
+
+def test_straight_drive():
+    odo = AckermannOdometry()
+    drive(odo, 5.0, 10.0, 0.0)  # 10 rad/s x 0.032 m = 0.32 m/s for 5 s
+    x, y, yaw = odo.pose
+    assert x == pytest.approx(1.6, rel=1e-9) and y == pytest.approx(0.0) and yaw == pytest.approx(0.0)
+    assert odo.twist == pytest.approx((0.32, 0.0, 0.0))
+    assert odo.distance == pytest.approx(1.6)
+
+
+def test_full_circle_closes_with_the_bicycle_radius():
+    odo = AckermannOdometry()
+    delta = 0.3
+    radius = WHEELBASE / math.tan(delta)  # of the rear axle centre
+    v = 10.0 * WHEEL_RADIUS
+    t = drive(odo, 2 * math.pi * radius / v, 10.0, delta, dt=0.001)
+    x, y, yaw = odo.pose
+    assert math.hypot(x, y) < 0.005 and abs(math.sin(yaw)) < 0.01
+    drive(odo, math.pi * radius / v, 10.0, delta, dt=0.001, start=t)  # half way on: the rear axle at 2R in y
+    x, y, yaw = odo.pose
+    rear_y = y - (-REAR_AXLE_X) * math.sin(yaw)
+    assert rear_y == pytest.approx(2 * radius, rel=0.01)
+    vx, vy, wz = odo.twist
+    assert wz == pytest.approx(v * math.tan(delta) / WHEELBASE) and vy == pytest.approx(wz * 0.13)
+
+
+def test_time_going_back_does_not_move_and_reset_starts_over():
+    odo = AckermannOdometry()
+    drive(odo, 1.0, 10.0, 0.0)
+    x = odo.pose[0]
+    odo.update(0.5, [10.0, 10.0], [0.0, 0.0])
+    assert odo.pose[0] == x
+    odo.reset(1.0, 2.0, math.pi / 2)
+    assert odo.pose == pytest.approx((1.0, 2.0, math.pi / 2))
+    with pytest.raises(ValueError):
+        AckermannOdometry(wheel_radius=0)
+
+
+def test_quaternion_helpers_the_nodes_use():
+    q = rpy_to_quaternion(0.0, 0.0, 1.2)  # wheel odometry's orientation
+    assert q == pytest.approx((0.0, 0.0, math.sin(0.6), math.cos(0.6)))
+    assert yaw_of(q) == pytest.approx(1.2)
+    # ground truth's twist: a world velocity along +y seen from a body facing +y is straight ahead
+    assert rotate_back(rpy_to_quaternion(0.0, 0.0, math.pi / 2), (0.0, 2.0, 0.0)) == pytest.approx((2.0, 0.0, 0.0))
