@@ -2,7 +2,6 @@
 the rospy stand-in of test_sensors_sim: no master. The test robot (tests/fixtures/sensor_plugins)
 stands on a ground plane, its front 1 m from a static box."""
 import math
-import os
 from pathlib import Path
 
 import numpy as np
@@ -71,7 +70,7 @@ def test_topics_and_one_warning_for_the_plugin_not_simulated(world):
     assert len(warned) == 1
     assert "'block_laser'" in warned[0]
     # the README by its path in this checkout: a user can open it from the log line
-    readme = os.path.join(os.path.dirname(os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))), 'README.md')
+    readme = str(Path(__file__).resolve().parents[3] / 'README.md')
     assert "see the table 'Supported plugins, sensors and controllers' in %s" % readme in warned[0]
     with open(readme) as f:
         assert '## Supported plugins, sensors and controllers' in f.read()
