@@ -13,6 +13,7 @@ import rospy  # only for rospy.Time in message stamps (no master, no node)
 from racebot_control.wheel_commands import CarGeometry, wheel_commands
 from racebot_sim_bridge.description import sdf_world
 from racebot_sim_bridge.engine.simulator import Simulator
+from racebot_sim_bridge.gazebo_ros_control.gazebo_ros_control_plugin import GazeboRosControlPlugin
 
 from . import common
 
@@ -65,13 +66,14 @@ class Car(object):
         def get_params(path):
             return params.get(path[len(ns) + 1:]) if path.startswith(ns + '/') else None
         self.sim = Simulator(sdf_world.load_world(world_file), NullIO(), _Log, get_params)
+        GazeboRosControlPlugin.attach(self.sim)  # the controller manager, without its services
         xml = urdf_xml or common.render_racebot()
         self.robot = self.sim.spawn_urdf('racebot', xml, '', (0.0, 0.0, 0.0), (0.0, 0.0, 0.0, 1.0))
         body = self.robot.body
         frame = body.com_pose_for_frame((0.0, 0.0, 0.0), (0.0, 0.0, 0.0, 1.0))  # as spawn_model places it
         self.sim.world.set_pose(body, frame.position, frame.orientation)
         body.spawn_pose = body.pose()
-        cm = self.robot.cm
+        cm = self.robot.control.cm
         for name in common.CONTROLLERS:
             if not cm.load(name):
                 raise common.BenchError('could not load %s: %s' % (name, '; '.join(_Log.errors[-1:])))
@@ -109,7 +111,7 @@ def hinge_step(world_file, urdf_xml=None):
     car = Car(world_file, urdf_xml)
     try:
         car.step_until(0.5)  # the car lands and stands
-        hinge = car.robot.hw.handles['left_steering_hinge_joint']
+        hinge = car.robot.control.hw.handles['left_steering_hinge_joint']
         t0, start = car.sim.time, hinge.position
         for name in ('left_steering_hinge_position_controller', 'right_steering_hinge_position_controller'):
             car.controllers[name].command = HINGE_STEP

@@ -5,8 +5,9 @@ its update loop. Around it, as gazebo_ros's node does: /clock; the services and 
 gazebo_services (/gazebo/spawn_urdf_model, get/set_model_state, ..., model_states and link_states);
 /gazebo/performance_metrics (performance_metrics); the physics dynamic_reconfigure server
 (/gazebo/set_parameters, gazebo_ros.physics_reconfigure); every spawned model's sensors (sensors,
-SensorManager) and model plugins (plugins.manager, PluginManager). Windows are separate processes
-that attach to it (gzclient.py; viewer.AttachedWindows).
+SensorManager), model plugins (plugins.manager, PluginManager) and gazebo_ros_control (its controller
+manager and services, GazeboRosControlPlugin). Windows are separate processes that attach to it
+(gzclient.py; viewer.AttachedWindows).
 
 Command line (as gzserver's, via empty_world.launch): `[-u|--pause] [--verbose] [-e ENGINE] [other
 gzserver options, ignored with a log line] WORLD_FILE`. `-u` starts paused; `-e` other than ode and
@@ -18,8 +19,8 @@ gzserver options, ignored with a log line] WORLD_FILE`. `-u` starts paused; `-e`
   ~pub_clock_frequency (Hz, 0)   if > 0, /clock at most this often in sim time (gazebo_ros's
                                  /gazebo/pub_clock_frequency); 0 = every world update, as Gazebo
   ~enable_ros_network (bool, true)  false: none of gazebo_ros's services, state topics, performance
-                                 metrics or reconfigure server (as gazebo_ros); /clock, sensors and
-                                 model plugins still publish
+                                 metrics or reconfigure server (as gazebo_ros); /clock, sensors,
+                                 model plugins and controller managers still publish and serve
   ~fast_clock_wall_period (s, 0.001)  as fast as possible only (real_time_update_rate 0): /clock at
                                  most once per this many wall seconds, carrying the latest update's
                                  time, so subscribers see sim time advance in steps of about
@@ -52,6 +53,7 @@ from racebot_sim_bridge.gazebo_ros_api.services import GazeboServices
 from racebot_sim_bridge.gazebo_ros_api.performance_metrics import PerformanceMetricsPublisher
 from racebot_sim_bridge.engine.physics import PhysicsError
 from racebot_sim_bridge.gazebo_plugins.plugin_manager import PluginManager
+from racebot_sim_bridge.gazebo_ros_control.gazebo_ros_control_plugin import GazeboRosControlPlugin
 from racebot_sim_bridge.sensors import SensorManager
 from racebot_sim_bridge.engine.sim_time import ros_time
 from racebot_sim_bridge.engine.simulator import Simulator
@@ -162,7 +164,6 @@ class WorldServer(object):
         spec = sdf_world.load_world(world_path)
         for w in spec.warnings:
             rospy.logwarn('%s: %s' % (os.path.basename(world_path), w))
-        ph = spec.physics
         if gui:
             rospy.logwarn('~gui:=true: the world server has no window of its own; the window is gzclient '
                           '(gazebo_ros empty_world.launch gui:=true starts it as gazebo_gui, or '
@@ -179,7 +180,7 @@ class WorldServer(object):
         rospy.set_param('~gzclient_address', self.windows.address)
         self.sim.rendering = False
         self.sim.set_paused(paused)
-        self.update_rate = ph.real_time_update_rate
+        self.update_rate = self.sim.real_time_update_rate
         self.clock_period = self._rate_param('~pub_clock_frequency', 0.0)
         self.clock_wall_period = 0.0
         if self.update_rate <= 0:
@@ -189,6 +190,9 @@ class WorldServer(object):
         self.clock_pub = clock_publisher()
         self.sensors = SensorManager(rospy, self.sim)  # before the services: every spawn gets its sensors
         self.plugins = PluginManager(rospy, self.sim)  # and its model plugins (diff drive, p3d, ...)
+        # and gazebo_ros_control with its controller manager's services, whatever ~enable_ros_network says
+        # (the flag is gazebo_ros_api_plugin's; upstream's gazebo_ros_control reads none)
+        GazeboRosControlPlugin.attach(self.sim, rospy)
         # gazebo_ros advertises in its node's namespace (a node `gazebo` in ns /sim serves /sim/gazebo/...)
         # and, with ~enable_ros_network false, nothing but /clock.
         self.services = self.metrics = self.reconfigure = None
@@ -198,9 +202,7 @@ class WorldServer(object):
             self.reconfigure = physics_reconfigure(self.services.properties, self.services.ns)
         else:
             rospy.loginfo('ROS gazebo topics/services are disabled (~enable_ros_network is false)')
-        for robot in self.sim.spawn_world_robots():  # the world file's models with joints, plugins or sensors
-            if self.services is not None:
-                self.services.adopt(robot)
+        self.sim.spawn_world_robots()  # the world file's models with joints, plugins or sensors
         self.clock_msg = Clock()
         self.last_clock = -math.inf
         self.last_states = -math.inf
@@ -290,8 +292,8 @@ class WorldServer(object):
                 self.last_states = self.sim.time
                 if self.services is not None:
                     self.services.publish_states()
-            if self.update_rate != self.sim.spec.physics.real_time_update_rate:  # set_physics_properties
-                self.update_rate = self.sim.spec.physics.real_time_update_rate
+            if self.update_rate != self.sim.real_time_update_rate:  # set_physics_properties changed it
+                self.update_rate = self.sim.real_time_update_rate
                 wall_start, steps_since = time.perf_counter(), 0
             if self.update_rate > 0:
                 ahead = wall_start + steps_since / self.update_rate - time.perf_counter()

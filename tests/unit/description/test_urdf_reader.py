@@ -5,7 +5,7 @@ import math
 import pytest
 from hypothesis import given, settings, strategies as st
 
-from racebot_sim_bridge.description.urdf_model import UrdfError, hardware_joints, normalise_interface, parse_urdf
+from racebot_sim_bridge.description.urdf_model import UrdfError, normalise_interface, parse_urdf
 
 EFFORT = 'hardware_interface/EffortJointInterface'
 
@@ -200,22 +200,20 @@ def test_gazebo_flags_are_true_as_sdformat_reads_them(text, flag):
     assert model.gazebo_refs['a'] == {'selfCollide': flag, 'turnGravityOff': not flag}
 
 
-def test_control_plugin(model):
-    plugin = model.control_plugin()
+def test_gazebo_ros_control_plugin_parameters(model):
+    (plugin,) = [p for p in model.plugins if p.is_ros_control]
     assert plugin.name == 'gazebo_ros_control' and plugin.reference is None
     assert plugin.robot_namespace == '/minicar'
     assert plugin.robot_param == 'robot_description'
     assert plugin.control_period == 0.002
-    assert plugin.robot_sim_type == 'gazebo_ros_control/DefaultRobotHWSim'
 
 
-def test_no_control_plugin_and_defaults():
-    model = parse_urdf(with_body(
+def test_gazebo_ros_control_plugin_defaults():
+    (plugin,) = parse_urdf(with_body(
         '<link name="a"/><gazebo><plugin name="x" filename="libgazebo_ros_control.so"/>'
-        '</gazebo>'))
-    plugin = model.control_plugin()
+        '</gazebo>')).plugins
+    assert plugin.is_ros_control
     assert plugin.robot_namespace is None and plugin.control_period is None
-    assert parse_urdf(with_body('<link name="a"/>')).control_plugin() is None
 
 
 def test_ray_sensor(model):
@@ -277,50 +275,6 @@ def test_camera_depth_and_imu_sensors():
     # per axis (mean, stddev, bias_mean, bias_stddev): only x was given
     assert imu.imu.angular_velocity_noise == ((0.1, 0.2, 0.0, 0.0), (0.0, 0.0, 0.0, 0.0), (0.0, 0.0, 0.0, 0.0))
     assert imu.imu.linear_acceleration_noise == ((0.0, 0.0, 0.0, 0.0),) * 3
-
-
-def test_hardware_joints_follow_gazebo_ros_control(model):
-    assert hardware_joints(model) == [('left_hinge_joint', EFFORT), ('left_wheel_joint', EFFORT)]
-
-
-def test_hardware_interface_from_actuator_with_warning():
-    model = parse_urdf(with_body("""
-      <link name="a"/><link name="b"/>
-      <joint name="j" type="continuous"><parent link="a"/><child link="b"/></joint>
-      <transmission name="t"><type>x</type><joint name="j"/>
-        <actuator name="m"><hardwareInterface>VelocityJointInterface</hardwareInterface>
-        </actuator></transmission>"""))
-    assert hardware_joints(model) == [('j', 'hardware_interface/VelocityJointInterface')]
-    assert any('belongs inside <joint' in w for w in model.warnings)
-
-
-def test_hardware_joints_skip_unsupported_and_interfaceless_with_warnings():
-    model = parse_urdf(with_body("""
-      <link name="a"/><link name="b"/><link name="c"/>
-      <joint name="j1" type="continuous"><parent link="a"/><child link="b"/></joint>
-      <joint name="j2" type="continuous"><parent link="a"/><child link="c"/></joint>
-      <transmission name="t1"><joint name="j1">
-        <hardwareInterface>hardware_interface/JointCommandInterface</hardwareInterface>
-      </joint></transmission>
-      <transmission name="t2"><joint name="j2"/></transmission>
-      <transmission name="t3"><joint name="j1"><hardwareInterface>x/Y</hardwareInterface>
-        </joint><joint name="j2"/></transmission>"""))
-    assert hardware_joints(model) == []
-    text = '\n'.join(model.warnings)
-    assert "'hardware_interface/JointCommandInterface' is not supported" in text
-    assert "joint 'j2' has no <hardwareInterface>" in text
-    assert "transmission 't3' has 2 joints" in text
-    assert hardware_joints(model, supported=('hardware_interface/JointCommandInterface',)) == [
-        ('j1', 'hardware_interface/JointCommandInterface')]
-
-
-def test_hardware_joints_missing_joint_names_transmission_and_joint(model):
-    model.transmissions[0].joints[0] = ('gone_joint', [EFFORT])
-    try:
-        with pytest.raises(UrdfError, match="transmission 'left_hinge_trans'.*'gone_joint'"):
-            hardware_joints(model)
-    finally:
-        model.transmissions[0].joints[0] = ('left_hinge_joint', [EFFORT])
 
 
 def test_fixed_joint_lumping(model):

@@ -5,6 +5,7 @@ import pytest
 
 from racebot_sim_bridge.description import sdf_world
 from racebot_sim_bridge.engine.simulator import Simulator
+from racebot_sim_bridge.gazebo_ros_control.gazebo_ros_control_plugin import GazeboRosControlPlugin
 
 SPINNER = """<robot name="spinner">
   <link name="world"/>
@@ -28,8 +29,9 @@ class Log(object):
 
 def spin(dynamics, effort, seconds):
     sim = Simulator(sdf_world.parse_world(sdf_world.EMPTY_WORLD_SDF), io=None, log=Log(), get_params={}.get)
+    GazeboRosControlPlugin.attach(sim)
     robot = sim.spawn_urdf('spinner', SPINNER % dynamics)
-    handle = robot.hw.handles['spin']
+    handle = robot.control.hw.handles['spin']
     for _ in range(int(round(seconds / sim.step_size))):
         handle.command = effort
         sim.step()

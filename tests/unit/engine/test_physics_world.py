@@ -114,6 +114,18 @@ def test_single_line_urdf_loads(world, racebot_model):
     assert total_mass(world, body) == pytest.approx(CAR_MASS, abs=0.001)
 
 
+def test_an_axis_without_xyz_is_urdfdoms_default(world):
+    # PyBullet reads uninitialised memory for <axis/> (found by test_robustness_fuzz: NaN poses now and then)
+    xml = ('<robot name="r"><link name="a"><inertial><mass value="1"/><inertia ixx="1" iyy="1" izz="1" ixy="0" '
+           'ixz="0" iyz="0"/></inertial></link><link name="b"><inertial><mass value="1"/><inertia ixx="1" iyy="1" '
+           'izz="1" ixy="0" ixz="0" iyz="0"/></inertial></link><joint name="j" type="revolute"><parent link="a"/>'
+           '<child link="b"/><axis/><limit effort="1" lower="-1" upper="1" velocity="1"/></joint></robot>')
+    model = urdf_model.parse_urdf(xml)
+    body = world.spawn_urdf('r', model, xml)
+    assert model.joints['j'].axis == (1.0, 0.0, 0.0)
+    assert world.client.getJointInfo(body.id, body.joints['j'].index)[13] == (1.0, 0.0, 0.0)
+
+
 def test_duplicate_name_refused(world, car, racebot_model, racebot_xml):
     with pytest.raises(PhysicsError) as err:
         world.spawn_urdf('racebot', racebot_model, racebot_xml)

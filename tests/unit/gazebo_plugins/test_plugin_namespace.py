@@ -9,6 +9,7 @@ from racebot_sim_bridge.gazebo_plugins.plugin_namespace import (after_spawn, con
                                                                 sensor_namespace)
 from racebot_sim_bridge.sensors.config import sensor_config
 from racebot_sim_bridge.engine.simulator import Simulator, SpawnError
+from racebot_sim_bridge.gazebo_ros_control.gazebo_ros_control_plugin import GazeboRosControlPlugin
 
 EMPTY_WORLD = '<sdf version="1.6"><world name="w"><physics type="ode"><max_step_size>0.001</max_step_size>' \
               '</physics></world></sdf>'
@@ -122,9 +123,10 @@ class _Log(object):
 ])
 def test_spawned_robot_controller_manager_namespace(element, requested, expected_ns):
     sim = Simulator(sdf_world.parse_world(EMPTY_WORLD), None, _Log(), lambda path: None)
+    GazeboRosControlPlugin.attach(sim)
     try:
         robot = sim.spawn_urdf('bot', _robot(element), requested)
-        assert robot.ns == expected_ns and robot.cm.ns == expected_ns
+        assert robot.control.ns == expected_ns and robot.control.cm.ns == expected_ns
         assert robot.spawn_namespace == requested
     finally:
         sim.close()
@@ -132,12 +134,13 @@ def test_spawned_robot_controller_manager_namespace(element, requested, expected
 
 def test_two_robots_cannot_share_a_controller_manager_namespace():
     sim = Simulator(sdf_world.parse_world(EMPTY_WORLD), None, _Log(), lambda path: None)
+    GazeboRosControlPlugin.attach(sim)
     try:
         sim.spawn_urdf('one', _robot(''), '/')
         with pytest.raises(SpawnError) as err:
             sim.spawn_urdf('two', _robot(''), '/')  # spawn_model at the root, no robotNamespace of its own
         assert "robot namespace '/' is already used by model 'one'" in str(err.value)
         assert 'another <robotNamespace>' in str(err.value) and 'another -robot_namespace' in str(err.value)
-        assert sim.spawn_urdf('two', _robot(''), '/two').ns == '/two'
+        assert sim.spawn_urdf('two', _robot(''), '/two').control.ns == '/two'
     finally:
         sim.close()

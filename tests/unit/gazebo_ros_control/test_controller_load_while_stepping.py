@@ -13,6 +13,7 @@ import pytest
 
 from racebot_sim_bridge.description import sdf_world
 from racebot_sim_bridge.engine.simulator import Simulator
+from racebot_sim_bridge.gazebo_ros_control.gazebo_ros_control_plugin import GazeboRosControlPlugin
 
 from test_plugin_namespace import EMPTY_WORLD, _robot
 
@@ -93,7 +94,8 @@ class Rig(object):
             return PARAMS.get(path)
         world = sdf_world.parse_world(EMPTY_WORLD)
         self.sim = Simulator(world, GatedIO(self.gate), self.log, get_params)
-        self.cm = self.sim.spawn_urdf('bot', _robot(''), '/').cm
+        GazeboRosControlPlugin.attach(self.sim)
+        self.cm = self.sim.spawn_urdf('bot', _robot(''), '/').control.cm
         self.sim.step()
 
     def in_thread(self, call, *args):

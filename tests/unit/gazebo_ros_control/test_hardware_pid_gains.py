@@ -6,6 +6,7 @@ import pytest
 
 from racebot_sim_bridge.description import sdf_world
 from racebot_sim_bridge.engine.simulator import Simulator
+from racebot_sim_bridge.gazebo_ros_control.gazebo_ros_control_plugin import GazeboRosControlPlugin
 
 ARM = """<robot name="turret">
   <link name="base"><inertial><mass value="50"/><inertia ixx="1" iyy="1" izz="1" ixy="0" ixz="0" iyz="0"/></inertial>
@@ -40,12 +41,13 @@ class Log(object):
 def turret(params, effort=10):
     log = Log()
     sim = Simulator(sdf_world.parse_world(sdf_world.EMPTY_WORLD_SDF), io=None, log=log, get_params=params.get)
+    GazeboRosControlPlugin.attach(sim)
     robot = sim.spawn_urdf('turret', ARM % {'effort': effort}, position=(0, 0, 0.1))
     return sim, robot, log
 
 
 def run(sim, robot, yaw, spin, seconds):
-    hw = robot.hw.handles
+    hw = robot.control.hw.handles
     for _ in range(int(round(seconds / sim.step_size))):
         hw['yaw'].command, hw['spin'].command = yaw, spin
         sim.step()
@@ -58,7 +60,7 @@ GAINS = {'/turret/gazebo_ros_control/pid_gains/yaw': {'p': 40.0, 'd': 2.0},
 
 def test_with_gains_the_joints_are_driven_by_a_pid_effort():
     sim, robot, log = turret(GAINS)
-    assert sorted(h.name for h, _, _ in robot.pid_joints) == ['spin', 'yaw']
+    assert sorted(h.name for h, _, _ in robot.control.hw.pid_joints) == ['spin', 'yaw']
     yaw, spin = run(sim, robot, 1.0, 3.0, 2.0)
     assert yaw.position == pytest.approx(1.0, abs=0.02)
     assert spin.velocity == pytest.approx(3.0, rel=0.05)
@@ -75,7 +77,7 @@ def test_the_pid_effort_is_clamped_to_the_effort_limit():
 
 def test_without_gains_the_joints_follow_their_command_directly():
     sim, robot, log = turret({})
-    assert robot.pid_joints == []
+    assert robot.control.hw.pid_joints == []
     yaw, spin = run(sim, robot, 1.0, 3.0, 1.0)
     assert yaw.position == pytest.approx(1.0, abs=0.02)
     assert spin.velocity == pytest.approx(3.0, rel=0.02)
@@ -86,7 +88,7 @@ def test_without_gains_the_joints_follow_their_command_directly():
 def test_wrong_gains_are_warned_about_and_the_joint_follows_directly():
     sim, robot, log = turret({'/turret/gazebo_ros_control/pid_gains/yaw': {'i': 1.0},
                               '/turret/gazebo_ros_control/pid_gains/spin': {'p': 'fast'}})
-    assert robot.pid_joints == []
+    assert robot.control.hw.pid_joints == []
     assert len(log.warnings) == 2
     assert "no 'p' gain" in log.warnings[0] and 'pid_gains/yaw' in log.warnings[0]
     assert 'follows its command directly' in log.warnings[1]

@@ -10,6 +10,7 @@ import pytest
 from racebot_sim_bridge.description import sdf_world
 from racebot_sim_bridge.ros_control.controller_manager import STRICT
 from racebot_sim_bridge.engine.simulator import Simulator
+from racebot_sim_bridge.gazebo_ros_control.gazebo_ros_control_plugin import GazeboRosControlPlugin
 
 from test_plugin_namespace import EMPTY_WORLD, _Log, _robot
 
@@ -57,8 +58,9 @@ def driving():
     io = _IO()
     world = sdf_world.parse_world(EMPTY_WORLD.replace('<physics', '<gravity>0 0 0</gravity><physics'))
     sim = Simulator(world, io, _Log(), lambda path: PARAMS.get(path))
+    GazeboRosControlPlugin.attach(sim)
     robot = sim.spawn_urdf('bot', _robot(''), '/')
-    cm = robot.cm
+    cm = robot.control.cm
     assert cm.load('wheel') and cm.load('joints')
     assert cm.request_switch(['wheel', 'joints'], [], STRICT)
     sim.step()
@@ -74,17 +76,17 @@ def driving():
 
 
 def _wheel(robot):
-    return robot.cm.loaded['wheel'].controller
+    return robot.control.cm.loaded['wheel'].controller
 
 
 def test_reset_world_leaves_controllers_commands_and_pid_state(driving):
     sim, robot, periods = driving
-    wheel, handle = _wheel(robot), robot.hw.handles['wheel_joint']
+    wheel, handle = _wheel(robot), robot.control.hw.handles['wheel_joint']
     assert handle.velocity > 0.5
     i_error, effort, position = wheel.pid.i_error, handle.command, handle.position
     t = sim.time
     sim.reset_world()
-    assert {n: s for n, _, s, _ in robot.cm.list()} == {'wheel': 'running', 'joints': 'running'}
+    assert {n: s for n, _, s, _ in robot.control.cm.list()} == {'wheel': 'running', 'joints': 'running'}
     assert wheel.command == 3.0  # the command stays in force
     assert wheel.pid.i_error == i_error and handle.command == effort  # nothing restarted, nothing zeroed
     del periods[:]
@@ -102,7 +104,7 @@ def test_reset_simulation_leaves_controllers_and_updates_one_period_later(drivin
     wheel = _wheel(robot)
     sim.reset_simulation()
     assert sim.time == 0.0
-    assert {n: s for n, _, s, _ in robot.cm.list()} == {'wheel': 'running', 'joints': 'running'}
+    assert {n: s for n, _, s, _ in robot.control.cm.list()} == {'wheel': 'running', 'joints': 'running'}
     assert wheel.command == 3.0
     del periods[:]
     sim.step()

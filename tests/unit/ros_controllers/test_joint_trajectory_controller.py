@@ -13,6 +13,7 @@ from racebot_sim_bridge.ros_controllers.joint_trajectory_controller import (Effo
                                                                             PositionJointTrajectoryController,
                                                                             VelocityJointTrajectoryController)
 from racebot_sim_bridge.engine.simulator import Simulator
+from racebot_sim_bridge.gazebo_ros_control.gazebo_ros_control_plugin import GazeboRosControlPlugin
 
 TURRET = """<robot name="turret">
   <link name="world"/>
@@ -113,11 +114,12 @@ class Log(object):
 
 def arm(cls, iface, params):
     sim = Simulator(sdf_world.parse_world(sdf_world.EMPTY_WORLD_SDF), io=None, log=Log(), get_params={}.get)
+    GazeboRosControlPlugin.attach(sim)
     robot = sim.spawn_urdf('turret', TURRET % {'iface': iface})
     io = IO()
     params = dict(params, joints=['j1', 'j2'], constraints={'goal_time': 0.5, 'j1': {'goal': 0.02},
                                                             'j2': {'goal': 0.02}})
-    controller = cls('arm', '/turret', params, robot.hw, io)
+    controller = cls('arm', '/turret', params, robot.control.hw, io)
     controller.starting(sim.time)
     return sim, robot, io, controller
 
@@ -125,11 +127,11 @@ def arm(cls, iface, params):
 def run(sim, controller, seconds):
     for _ in range(int(round(seconds / sim.step_size))):
         controller.update(sim.time, sim.step_size)
-        sim.robots['turret'].write(sim.world, sim.step_size)
+        sim.robots['turret'].control.write(sim.world, sim.step_size)
         sim.world.step()
         sim.steps += 1
         sim.time += sim.step_size
-        sim.robots['turret'].read(sim.world)
+        sim.robots['turret'].control.read(sim.world)
 
 
 def trajectory(points, joints=('j1', 'j2')):
@@ -144,7 +146,7 @@ def test_each_variant_follows_a_command_to_its_points_in_time(cls, iface, params
     sim, robot, io, controller = arm(cls, iface, params)
     io.topics['/turret/arm/command'].callback(trajectory([((0.5, -0.4), 1.0), ((1.0, 0.6), 2.0)]))
     run(sim, controller, 1.0)
-    h = robot.hw.handles
+    h = robot.control.hw.handles
     assert (h['j1'].position, h['j2'].position) == (pytest.approx(0.5, abs=0.02), pytest.approx(-0.4, abs=0.02))
     run(sim, controller, 1.5)
     assert (h['j1'].position, h['j2'].position) == (pytest.approx(1.0, abs=0.02), pytest.approx(0.6, abs=0.02))
@@ -171,9 +173,9 @@ def test_goals_succeed_are_preempted_canceled_and_rejected_as_upstream():
     run(sim, controller, 0.5)
     cancel_cb(third)
     assert third.status == 'canceled'
-    held = robot.hw.handles['j1'].position
+    held = robot.control.hw.handles['j1'].position
     run(sim, controller, 0.5)
-    assert robot.hw.handles['j1'].position == pytest.approx(held, abs=0.02)  # holds where it was
+    assert robot.control.hw.handles['j1'].position == pytest.approx(held, abs=0.02)  # holds where it was
     unknown = GoalHandle(FollowJointTrajectoryGoal(trajectory=trajectory([((0.1, 0.1), 1.0)], ('j1', 'nope'))))
     goal_cb(unknown)
     assert unknown.status == 'rejected' and unknown.result.error_code == FollowJointTrajectoryResult.INVALID_JOINTS

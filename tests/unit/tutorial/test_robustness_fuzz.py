@@ -24,6 +24,7 @@ from racebot_control.twist_to_ackermann import FLOAT32_MAX, TwistToAckermann
 from racebot_control.wheel_commands import (
     ACKERMANN, PARALLEL, CarGeometry, WheelCommands, curvature, wheel_commands)
 from racebot_sim_bridge.description import sdf_world, urdf_model
+from racebot_sim_bridge.gazebo_ros_control.robot_hw_sim import hardware_joints
 from racebot_sim_bridge.ros_control.pid import Pid
 
 SETTINGS = settings(max_examples=200, deadline=None, suppress_health_check=[HealthCheck.too_slow])
@@ -248,8 +249,10 @@ def racebot_doc():
 @pytest.fixture(scope='module')
 def simulator():
     from racebot_sim_bridge.engine.simulator import Simulator
+    from racebot_sim_bridge.gazebo_ros_control.gazebo_ros_control_plugin import GazeboRosControlPlugin
     spec = sdf_world.load_world('worlds/empty.world')
     sim = Simulator(spec, NoIO(), Log(), lambda path: None)
+    GazeboRosControlPlugin.attach(sim)
     yield sim
     sim.close()
 
@@ -266,7 +269,7 @@ def test_malformed_urdf_documents_raise_only_urdf_error_and_spawn_or_are_refused
         model = None
     if model is not None:
         try:
-            urdf_model.hardware_joints(model)
+            hardware_joints(model)
         except urdf_model.UrdfError as err:
             assert str(err)
     # The simulator faces the same text as robot_description: a robot, or a SpawnError; never a crash.
@@ -293,11 +296,11 @@ def test_a_transmission_naming_a_missing_joint_is_gazebo_ros_controls_business(r
     assert text != racebot_doc
     model = urdf_model.parse_urdf(text)
     with pytest.raises(urdf_model.UrdfError, match="names joint 'no_such_joint', which does not exist"):
-        urdf_model.hardware_joints(model)
+        hardware_joints(model)
     simulator.log.lines[:] = []
     robot = simulator.spawn_urdf('missing_joint', text, '/missing_joint')
     try:
-        assert robot.cm is None
+        assert robot.control is None
         errors = [m for level, m in simulator.log.lines if level == 'error']
         assert len(errors) == 1 and 'spawned without a controller manager' in errors[0]
     finally:

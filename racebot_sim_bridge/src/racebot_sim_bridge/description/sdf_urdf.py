@@ -40,9 +40,14 @@ class ConversionError(ValueError):
 
 
 class Conversion(NamedTuple):
-    urdf: str  # the URDF document
+    root: ET.Element  # the URDF document's <robot> element: the spawn reads it as parsed, no text in between
     root_pose: tuple  # the URDF root's frame in the SDF model frame, (xyz, quaternion): where to spawn it
     warnings: list
+
+    @property
+    def urdf(self):
+        """The URDF document as text."""
+        return ET.tostring(self.root, encoding='unicode')
 
 
 def _fmt(values):
@@ -222,4 +227,4 @@ def model_urdf(model):
         for plugin in model.plugins:
             extension.append(ET.fromstring(plugin))
     root_pose = IDENTITY if fixed_to_world else frame[root]
-    return Conversion(ET.tostring(robot, encoding='unicode'), root_pose, warnings)
+    return Conversion(robot, root_pose, warnings)

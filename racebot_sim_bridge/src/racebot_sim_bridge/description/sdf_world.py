@@ -900,9 +900,11 @@ class _WorldReader:
 
 
 def parse_world(xml_text, source='<string>', search=None):
-    """Parse SDF world text (str or bytes) into a World.  ``source`` names it in messages (and,
-    when it is a file, relative mesh URIs are relative to its folder); ``search``: the model
-    path for model:// URIs (default: model_path.model_path())."""
+    """Parse SDF world text (str or bytes, or its root element already parsed) into a World.  ``source``
+    names it in messages (and, when it is a file, relative mesh URIs are relative to its folder);
+    ``search``: the model path for model:// URIs (default: model_path.model_path())."""
+    if isinstance(xml_text, ET.Element):
+        return _WorldReader(source, search).world(xml_text)
     try:
         root = ET.fromstring(xml_text)
     except ET.ParseError as err:

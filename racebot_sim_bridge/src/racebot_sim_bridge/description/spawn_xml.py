@@ -10,12 +10,18 @@ import xml.etree.ElementTree as ET
 PACKAGE_PREFIX = 'package://'
 
 
-def root_tag(xml):
-    """The root element's tag, or None when the text is not XML."""
+def parse(xml):
+    """The document's root element (its one parse per spawn), or None when the text is not XML."""
     try:
-        return ET.fromstring(xml).tag
+        return ET.fromstring(xml)
     except (ET.ParseError, ValueError, TypeError):
         return None
+
+
+def root_tag(xml):
+    """The root element's tag (of the text, or of its parsed root element), or None when the text is not XML."""
+    root = xml if isinstance(xml, ET.Element) else parse(xml)
+    return None if root is None else root.tag
 
 
 def is_urdf(xml):
@@ -28,14 +34,15 @@ def is_sdf(xml):
 
 def add_robot_namespace(xml, namespace):
     """The document with <robotNamespace>namespace</robotNamespace> added to every <plugin> that
-    has none; unchanged when namespace is empty."""
+    has none; unchanged when namespace is empty. `xml`: text (a new text is returned) or a parsed
+    root element (changed in place and returned)."""
     if not namespace:
         return xml
-    root = ET.fromstring(xml)
+    root = xml if isinstance(xml, ET.Element) else ET.fromstring(xml)
     for plugin in root.iter('plugin'):
         if plugin.find('robotNamespace') is None:
             ET.SubElement(plugin, 'robotNamespace').text = namespace
-    return ET.tostring(root, encoding='unicode')
+    return root if root is xml else ET.tostring(root, encoding='unicode')
 
 
 def referenced_packages(xml):

@@ -1,6 +1,6 @@
 """A URDF's meshes and colours made concrete before PyBullet loads it.
 
-No rospy, no pybullet. resolve_assets() returns the URDF with
+No rospy, no pybullet. resolve_assets() gives the URDF (text, or its parsed tree) with
 - every <mesh filename> (package://, file://, plain path; STL, OBJ, DAE) replaced by the absolute
   path of its checked OBJ in the mesh cache (meshes.convert); a mesh that cannot be found or read
   is left out with one warning naming the URI and where it was looked for (Gazebo too loads the
@@ -19,10 +19,11 @@ from racebot_sim_bridge.description.materials import gazebo_material_rgba
 __all__ = ['resolve_assets']
 
 
-def resolve_assets(urdf_xml, urdf_model, warn=None):
-    """The URDF text with meshes resolved and colours inline; warn(message) for what was left out."""
+def resolve_assets(urdf, urdf_model, warn=None):
+    """Meshes resolved and colours inline; warn(message) for what was left out. `urdf`: the URDF text, whose
+    resolved text is returned, or its root element (as parsed once per spawn), changed in place and returned."""
     warn = warn or (lambda message: None)
-    root = ET.fromstring(urdf_xml)
+    root = urdf if isinstance(urdf, ET.Element) else ET.fromstring(urdf)
     for link_elem in root.findall('link'):
         name = link_elem.get('name')
         spec = urdf_model.links.get(name)
@@ -58,7 +59,7 @@ def resolve_assets(urdf_xml, urdf_model, warn=None):
                         geometry.rgba = tuple(rgba)
                 kept.append(geometry)
             geometries[:] = kept
-    return ET.tostring(root, encoding='unicode')
+    return root if root is urdf else ET.tostring(root, encoding='unicode')
 
 
 def _gazebo_colour(urdf_model, link, warn):

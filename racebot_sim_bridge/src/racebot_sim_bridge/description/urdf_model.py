@@ -4,8 +4,8 @@ Pure Python: no rospy, no pybullet.  It checks what urdfdom checks (unique names
 name existing links, one root, limits on revolute and prismatic joints, numeric attributes)
 and reads the Gazebo extensions gazebo_ros uses: ``<gazebo reference=...>`` properties and
 sensors, ``<gazebo><plugin>`` blocks, and ``<transmission>`` elements as ros_control's
-transmission parser does.  ``hardware_joints()`` then applies gazebo_ros_control's
-DefaultRobotHWSim rules to pick one joint and one hardware interface per transmission.
+transmission parser does (gazebo_ros_control.robot_hw_sim.hardware_joints() then applies
+DefaultRobotHWSim's rules to them).
 
 Anything wrong raises ``UrdfError`` saying what is wrong and what to do.  Things the
 simulator can live with are listed in ``RobotModel.warnings`` instead.
@@ -21,16 +21,10 @@ from racebot_sim_bridge.kinematics.rotations import compose
 __all__ = [
     'UrdfError', 'RobotModel', 'Link', 'Inertial', 'Geometry', 'Joint', 'Limit', 'Dynamics',
     'Transmission', 'GazeboPlugin', 'SensorSpec', 'RaySpec', 'CameraSpec', 'ImuSpec',
-    'parse_urdf', 'hardware_joints', 'normalise_interface',
-    'JOINT_TYPES', 'HARDWARE_INTERFACES', 'ROS_CONTROL_PLUGIN',
+    'parse_urdf', 'urdf_root', 'normalise_interface', 'JOINT_TYPES',
 ]
 
 JOINT_TYPES = ('revolute', 'continuous', 'prismatic', 'fixed', 'floating', 'planar')
-HARDWARE_INTERFACES = ('hardware_interface/EffortJointInterface',
-                       'hardware_interface/VelocityJointInterface',
-                       'hardware_interface/PositionJointInterface')
-ROS_CONTROL_PLUGIN = 'libgazebo_ros_control.so'
-DEFAULT_ROBOT_SIM_TYPE = 'gazebo_ros_control/DefaultRobotHWSim'
 
 
 class UrdfError(ValueError):
@@ -136,10 +130,6 @@ class GazeboPlugin:
         return self.params.get('robotParam') or 'robot_description'
 
     @property
-    def robot_sim_type(self):
-        return self.params.get('robotSimType') or DEFAULT_ROBOT_SIM_TYPE
-
-    @property
     def control_period(self):
         """``controlPeriod`` in seconds, or None (then: the physics step)."""
         text = self.params.get('controlPeriod')
@@ -234,10 +224,6 @@ class RobotModel:
     root_link: str = None
     materials: dict = field(default_factory=dict)
     warnings: list = field(default_factory=list)
-
-    def control_plugin(self):
-        """The gazebo_ros_control plugin, or None."""
-        return next((p for p in self.plugins if p.is_ros_control), None)
 
     def child_joints(self, link):
         """Joints whose parent is ``link``, in document order."""
@@ -629,7 +615,7 @@ class _UrdfReader:
             if not joint_name:
                 raise UrdfError('%s has a <joint> without a name; add name="..."' % what)
             # A joint that does not exist is gazebo_ros_control's business, not the URDF's (urdfdom
-            # ignores transmissions): hardware_joints() raises for it, and the robot is spawned
+            # ignores transmissions): robot_hw_sim.hardware_joints() raises for it, and the robot is spawned
             # without a controller manager, as in Gazebo.
             transmission.joints.append(
                 (joint_name, self.interfaces(joint, "%s joint '%s'" % (what, joint_name))))
@@ -839,7 +825,15 @@ class _UrdfReader:
 
 
 def parse_urdf(xml_text):
-    """Parse a URDF document (str or bytes) into a RobotModel; UrdfError when unusable."""
+    """Parse a URDF document (str or bytes, or its root element as urdf_root gives it) into a RobotModel;
+    UrdfError when unusable."""
+    root = xml_text if isinstance(xml_text, ET.Element) else urdf_root(xml_text)
+    return _UrdfReader(root).read()
+
+
+def urdf_root(xml_text):
+    """The root element of a URDF document (str or bytes): the one parse of it, for those who also
+    need the XML tree (parse_urdf reads the model from it). UrdfError when it is not XML."""
     if not isinstance(xml_text, (str, bytes, bytearray)):
         raise UrdfError('the robot description must be URDF text, got %s'
                         % type(xml_text).__name__)
@@ -847,59 +841,11 @@ def parse_urdf(xml_text):
         raise UrdfError('the robot description is empty; set it, e.g. <param '
                         'name="robot_description" command="xacro ..."/> in the launch file')
     try:
-        root = ET.fromstring(xml_text)
+        return ET.fromstring(xml_text)
     except ET.ParseError as err:
         # The parser's message ends with "line L, column C" (column counted from 0).
         raise UrdfError('the robot description is not valid XML: %s; if it is a .xacro file, '
                         'run it through xacro first' % err) from None
     except (ValueError, LookupError) as err:
         raise UrdfError('the robot description could not be read as XML: %s' % err) from None
-    return _UrdfReader(root).read()
 
-
-def hardware_joints(model, supported=HARDWARE_INTERFACES):
-    """The (joint name, hardware interface) pairs gazebo_ros_control would register.
-
-    One per transmission, in document order, following DefaultRobotHWSim::initSim: the
-    transmission must have exactly one joint; the interface is the joint's first one, else
-    the first actuator's (with a warning); transmissions with no interface, or one not in
-    ``supported``, are skipped with a warning.  Warnings go to ``model.warnings`` (once).
-    """
-    def warn(message):
-        if message not in model.warnings:
-            model.warnings.append(message)
-
-    result, seen = [], set()
-    for transmission in model.transmissions:
-        what = "transmission '%s'" % transmission.name
-        if len(transmission.joints) != 1:
-            warn('%s has %s; only transmissions with exactly one joint are supported; skipped'
-                 % (what, 'no joint' if not transmission.joints else
-                    '%d joints' % len(transmission.joints)))
-            continue
-        joint_name, interfaces = transmission.joints[0]
-        if joint_name not in model.joints:
-            raise UrdfError("%s names joint '%s', which does not exist; fix the name or add "
-                            'the joint' % (what, joint_name))
-        if not interfaces and transmission.actuators and transmission.actuators[0][1]:
-            interfaces = transmission.actuators[0][1]
-            warn("%s: the <hardwareInterface> belongs inside <joint name='%s'>, not "
-                 '<actuator>; used anyway' % (what, joint_name))
-        if not interfaces:
-            warn("%s: joint '%s' has no <hardwareInterface>; not simulated by ros_control"
-                 % (what, joint_name))
-            continue
-        if len(interfaces) > 1:
-            warn("%s: joint '%s' has several hardware interfaces; only the first (%s) is used"
-                 % (what, joint_name, interfaces[0]))
-        interface = normalise_interface(interfaces[0])
-        if interface not in supported:
-            warn("%s: joint '%s' interface '%s' is not supported (supported: %s); skipped"
-                 % (what, joint_name, interface, ', '.join(supported)))
-            continue
-        if joint_name in seen:
-            warn("%s: joint '%s' already has a transmission; skipped" % (what, joint_name))
-            continue
-        seen.add(joint_name)
-        result.append((joint_name, interface))
-    return result

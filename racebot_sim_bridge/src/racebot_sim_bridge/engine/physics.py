@@ -316,13 +316,16 @@ class PhysicsWorld(object):
         return dict(shapeType=pb.GEOM_BOX, halfExtents=[size[0] / 2.0, size[1] / 2.0, 0.0005])
 
     # -- robots ---------------------------------------------------------------------------------
-    def spawn_urdf(self, name, urdf_model, urdf_xml, position=(0, 0, 0), orientation=(0, 0, 0, 1), warn=None):
-        """Spawns a parsed URDF (urdf_model.RobotModel) under `name`; returns its Body. Its meshes
-        are resolved and converted first (urdf_assets); warn(message) hears of those that cannot
-        be (the element is left out, the robot is spawned)."""
+    def spawn_urdf(self, name, urdf_model, urdf, position=(0, 0, 0), orientation=(0, 0, 0, 1), warn=None):
+        """Spawns a parsed URDF (urdf_model.RobotModel) under `name`; returns its Body. `urdf`: the URDF
+        text, or its root element as already parsed (rewritten here in place: meshes resolved, then
+        what PyBullet reads). Its meshes are resolved and converted first (urdf_assets); warn(message)
+        hears of those that cannot be (the element is left out, the robot is spawned)."""
         if name in self.bodies:
             raise PhysicsError("a model named '%s' already exists" % name)
-        urdf_xml = urdf_assets.resolve_assets(urdf_xml, urdf_model, warn)
+        root = urdf if isinstance(urdf, ET.Element) else ET.fromstring(urdf)
+        urdf_assets.resolve_assets(root, urdf_model, warn)
+        urdf_xml = ET.tostring(root, encoding='unicode')  # what a copy is built from: before PyBullet's rewrite
         flags = pb.URDF_USE_INERTIA_FROM_FILE | pb.URDF_MAINTAIN_LINK_ORDER | pb.URDF_USE_IMPLICIT_CYLINDER
         # A root link named world is the world (sdformat's URDF reader): its joints hold the robot to the world.
         fixed = urdf_model.root_link == 'world'
@@ -331,7 +334,7 @@ class PhysicsWorld(object):
         with tempfile.TemporaryDirectory(prefix='racebot_urdf_') as tmp:
             path = os.path.join(tmp, 'robot.urdf')
             with open(path, 'w') as f:
-                f.write(prepare_urdf_for_bullet(urdf_xml, urdf_model, self.visuals))
+                f.write(prepare_urdf_for_bullet(root, urdf_model, self.visuals))
             try:
                 body_id = self.client.loadURDF(path, basePosition=position, baseOrientation=orientation,
                                                flags=flags, useFixedBase=fixed)
@@ -352,7 +355,7 @@ class PhysicsWorld(object):
             # PyBullet's default velocity motors off; in their place the URDF <dynamics friction>, which Gazebo
             # applies as Coulomb friction: a motor holding velocity 0 with at most that force. (<dynamics damping>
             # PyBullet's URDF importer applies itself.) A joint a controller drives by velocity or position
-            # gets the hardware's motor instead (Robot.write).
+            # gets the hardware's motor instead (DefaultRobotHWSim.write_sim).
             self.client.setJointMotorControl2(body_id, joint.index, pb.VELOCITY_CONTROL, targetVelocity=0.0,
                                               force=joint_friction(urdf_model, joint_name))
         self.bodies[name] = body
@@ -544,14 +547,18 @@ def link_friction(urdf_model, link):
     return min(mus) if mus else 1.0
 
 
-def prepare_urdf_for_bullet(urdf_xml, urdf_model, visuals=True):
-    """The URDF as PyBullet should read it: links lumped as Gazebo lumps them; negligible inertia for
-    links that declare none; <gazebo>, <transmission> and sensor blocks dropped; the visuals dropped unless `visuals`.
-    Mesh filenames must already be files PyBullet reads (urdf_assets.resolve_assets)."""
-    root = ET.fromstring(urdf_xml)
+def prepare_urdf_for_bullet(root, urdf_model, visuals=True):
+    """The URDF text PyBullet should read, rewritten from its root element (changed in place): links
+    lumped as Gazebo lumps them; negligible inertia for links that declare none; <gazebo>, <transmission>
+    and sensor blocks dropped; the visuals dropped unless `visuals`; an <axis> without xyz given urdfdom's
+    default, 1 0 0 (PyBullet would read uninitialised memory for it). Mesh filenames must already be files
+    PyBullet reads (urdf_assets.resolve_assets)."""
     for tag in ('gazebo', 'transmission'):
         for el in root.findall(tag):
             root.remove(el)
+    for axis in root.findall('joint/axis'):
+        if axis.get('xyz') is None:
+            axis.set('xyz', '1 0 0')
     urdf_lumping.lump_fixed_links(root, urdf_model)
     for link in root.findall('link'):
         if link.find('inertial') is None:

@@ -15,8 +15,10 @@ pretending:
 - set_physics_properties: gravity, time_step and max_update_rate change for real, and
   ode_config.sor_pgs_iters sets the solver's iterations; the other ODE numbers are kept and returned
   by get_physics_properties, without effect;
-- lights are the world's (<light> and model://sun of the world file): world state that these services
-  read, change and delete. Nothing is lit by them here (the cameras do not shade by them).
+- lights are the world's (<light> and model://sun of the world file): live state (Simulator.lights, as the
+  physics settings are the Simulator's and its PhysicsWorld's; the world file's description is never
+  written) that these services read, change and delete. Nothing is lit by them here (the cameras do not
+  shade by them).
 As upstream: get_joint_properties reports every joint as REVOLUTE with no damping (its FIXME), and
 the light services say nothing on success.
 """
@@ -290,7 +292,7 @@ class GazeboProperties(object):
         with self.sim.lock:
             res.time_step = self.sim.step_size
             res.pause = self.sim.paused
-            res.max_update_rate = self.sim.spec.physics.real_time_update_rate
+            res.max_update_rate = self.sim.real_time_update_rate
             res.gravity.x, res.gravity.y, res.gravity.z = self.sim.world.gravity
             res.ode_config = self.ode_config
         res.success, res.status_message = True, 'GetPhysicsProperties: got properties'
@@ -314,9 +316,7 @@ class GazeboProperties(object):
         with self.sim.lock:
             if req.time_step != self.sim.step_size:
                 self.sim.set_step_size(req.time_step)
-            self.sim.spec.physics.max_step_size = req.time_step
-            self.sim.spec.physics.real_time_update_rate = req.max_update_rate  # the world server paces by it
-            self.sim.spec.physics.gravity = g
+            self.sim.real_time_update_rate = req.max_update_rate  # the world server paces by it
             self.sim.world.set_gravity(g)
             if o.sor_pgs_iters > 0:
                 self.sim.world.set_solver(numSolverIterations=int(o.sor_pgs_iters))
@@ -328,7 +328,7 @@ class GazeboProperties(object):
 
     # -- lights -----------------------------------------------------------------------------------
     def _light(self, name):
-        return next((light for light in self.sim.spec.lights if light.name == name), None)
+        return next((light for light in self.sim.lights if light.name == name), None)
 
     def get_light_properties(self, req):
         res = self.srv.GetLightPropertiesResponse()
@@ -359,8 +359,8 @@ class GazeboProperties(object):
                 return self._fail(res, 'setLightProperties: colours, attenuation, direction and pose of light %s '
                                        'must be finite' % req.light_name)
             orientation = frames.normalised((q.x, q.y, q.z, q.w))
-            index = self.sim.spec.lights.index(light)
-            self.sim.spec.lights[index] = dataclasses.replace(
+            index = self.sim.lights.index(light)
+            self.sim.lights[index] = dataclasses.replace(
                 light, cast_shadows=bool(req.cast_shadows), diffuse=(d.r, d.g, d.b, d.a),
                 specular=(s.r, s.g, s.b, s.a),
                 attenuation=(light.attenuation[0], req.attenuation_constant, req.attenuation_linear,
@@ -378,7 +378,7 @@ class GazeboProperties(object):
                 res.success = False
                 res.status_message = 'DeleteLight: Requested light %s not found!' % req.light_name
                 return res
-            self.sim.spec.lights.remove(light)
+            self.sim.lights.remove(light)
         res.success, res.status_message = True, 'DeleteLight: %s successfully deleted' % req.light_name
         return res
 

@@ -6,7 +6,8 @@ written against Gazebo read the same answers. Poses are those of each model's fr
 parent as Gazebo merges them. Names of models, links and reference frames are found as Gazebo's
 World::EntityByName finds them (frames.resolve); '', 'world', 'map' and '/map' are the world.
 Where upstream has no check (non-finite numbers, an empty model name) the answer is ours and says
-what to change.
+what to change. A spawn request's XML is parsed once; the tree and the model read from it go on to the
+Simulator (a robot's controller manager services are gazebo_ros_control's, offered by its plugin).
 """
 
 from gazebo_msgs import srv
@@ -14,9 +15,11 @@ from gazebo_msgs.msg import LinkState, LinkStates, ModelState, ModelStates
 from geometry_msgs.msg import Point, Pose, Quaternion, Twist, Vector3
 from std_srvs.srv import Empty, EmptyResponse
 
+import xml.etree.ElementTree as ET
+
 from racebot_sim_bridge.gazebo_ros_api import frames
-from racebot_sim_bridge.description import model_path, spawn_xml, urdf_model
-from racebot_sim_bridge.ros_control.controller_manager import ControllerManagerServices
+from racebot_sim_bridge.description import model_path, sdf_world, spawn_xml, urdf_model
+from racebot_sim_bridge.engine.physics import PhysicsError
 from racebot_sim_bridge.gazebo_ros_api.forces import GazeboForces
 from racebot_sim_bridge.gazebo_ros_api.properties import GazeboProperties
 from racebot_sim_bridge.kinematics.rotations import as_transform, as_xyz_rpy
@@ -62,12 +65,11 @@ def _twist_in(msg):
     return (lin, ang) if frames.finite(*lin + ang) else None
 
 
-class GazeboServices(object):
+class GazeboServices:
     def __init__(self, rospy, sim, ns='/gazebo'):
         self.rospy = rospy
         self.sim = sim
         self.ns = ns.rstrip('/')
-        self.cm_services = {}
         self.entities = WorldEntities(sim.world)
         self.model_states_pub = rospy.Publisher(self.ns + '/model_states', ModelStates, queue_size=1)
         self.link_states_pub = rospy.Publisher(self.ns + '/link_states', LinkStates, queue_size=1)
@@ -104,7 +106,8 @@ class GazeboServices(object):
 
     # -- spawn / delete ---------------------------------------------------------------------------
     def spawn_urdf_model(self, req):
-        if not spawn_xml.is_urdf(req.model_xml):
+        root = spawn_xml.parse(req.model_xml)
+        if not spawn_xml.is_urdf(root):
             # upstream also fails the call itself (returns false); rospy cannot send a response with that
             self.rospy.logerr('%s The model_xml must be a URDF document (root element <robot>); for SDF call '
                               'spawn_sdf_model' % SPAWN_INVALID_URDF)
@@ -115,13 +118,14 @@ class GazeboServices(object):
                                   "source its workspace's setup.bash (or spawn_model -package_to_model for "
                                   "model:// URIs)" % (req.model_name, package, package))
                 return srv.SpawnModelResponse(False, SPAWN_NO_PACKAGE + package)  # upstream also fails the call
-        return self._spawn(req)
+        return self._spawn(req, root)
 
     def spawn_sdf_model(self, req):
-        return self._spawn(req)
+        return self._spawn(req, spawn_xml.parse(req.model_xml))
 
-    def _spawn(self, req):
-        """spawnSDFModel's order: reference frame, format, name in use, then the spawn itself."""
+    def _spawn(self, req, root):
+        """spawnSDFModel's order: reference frame, format, name in use, then the spawn itself. `root`: the
+        request's XML as parsed (None when it is not XML)."""
         name = req.model_name
         pose = _pose_in(req.initial_pose)
         if pose is None:
@@ -133,9 +137,9 @@ class GazeboServices(object):
                 return srv.SpawnModelResponse(False, SPAWN_NO_FRAME)
             if frame is not None:
                 pose = frames.in_world(frame, pose)
-            if spawn_xml.is_sdf(req.model_xml):
+            if spawn_xml.is_sdf(root):
                 spawn = self._spawn_sdf
-            elif spawn_xml.is_urdf(req.model_xml):
+            elif spawn_xml.is_urdf(root):
                 spawn = self._spawn_urdf
             else:
                 self.rospy.logerr('GazeboRosApiPlugin SpawnModel Failure: input xml format not recognized')
@@ -144,41 +148,33 @@ class GazeboServices(object):
                 self.rospy.logerr('SpawnModel: Failure - model name %s already exist. Delete it first (rosservice '
                                   'call %s/delete_model %s) or spawn with another -model name' % (name, self.ns, name))
                 return srv.SpawnModelResponse(False, SPAWN_EXISTS)
-            return spawn(req, pose)
+            return spawn(req, root, pose)
 
-    def _spawn_urdf(self, req, pose):
+    def _spawn_urdf(self, req, root, pose):
         name = req.model_name
         try:
-            urdf_model.parse_urdf(req.model_xml)
+            model = urdf_model.parse_urdf(root)
         except urdf_model.UrdfError as err:
             # Gazebo cannot load it and the service waits out its 10 s; the reason is in the server's log
             self.rospy.logerr('SpawnModel: the URDF of %s is not valid: %s' % (name, err))
             return srv.SpawnModelResponse(False, SPAWN_NOT_LOADED % name)
-        return self._spawned(lambda: self.sim.spawn_urdf(name, req.model_xml, req.robot_namespace, pose[0], pose[1]))
+        return self._spawned(lambda: self.sim.spawn_urdf(name, root, req.robot_namespace, pose[0], pose[1],
+                                                         model=model))
 
     def _spawned(self, spawn):
-        """The response to a spawn through the URDF path; a robot with gazebo_ros_control gets its services."""
+        """The response to a spawn through the URDF path."""
         try:
-            robot = spawn()
+            spawn()
         except SpawnError as err:
             return srv.SpawnModelResponse(False, self._err(str(err)))
-        self.adopt(robot)
         return srv.SpawnModelResponse(True, SPAWN_OK)
 
-    def adopt(self, robot):
-        """Offers the services of a spawned robot's controller manager, when it has one."""
-        if robot.cm is not None:
-            self.cm_services[robot.name] = ControllerManagerServices(self.rospy, robot.cm)
-            self.rospy.loginfo('%s: controller manager ready under %s/controller_manager (control period %g s, '
-                               'joints: %s)' % (robot.name, robot.ns, robot.control_period, ', '.join(robot.hw.names)))
-
-    def _spawn_sdf(self, req, pose):
-        from racebot_sim_bridge.description import sdf_world
-        from racebot_sim_bridge.engine.physics import PhysicsError
-        xml = spawn_xml.add_robot_namespace(req.model_xml, req.robot_namespace)
+    def _spawn_sdf(self, req, root, pose):
+        spawn_xml.add_robot_namespace(root, req.robot_namespace)
+        document = ET.Element('sdf', version='1.6')
+        ET.SubElement(document, 'world', name='spawn').extend(_sdf_models(root))
         try:
-            world = sdf_world.parse_world('<sdf version="1.6"><world name="spawn">%s</world></sdf>'
-                                          % _strip_sdf_root(xml), source='spawn_sdf_model request')
+            world = sdf_world.parse_world(document, source='spawn_sdf_model request')
         except (sdf_world.WorldError, ValueError) as err:
             self.rospy.logerr('SpawnModel: the SDF of %s is not valid: %s' % (req.model_name, err))
             return srv.SpawnModelResponse(False, SPAWN_NOT_LOADED % req.model_name)
@@ -210,9 +206,6 @@ class GazeboServices(object):
         except KeyError:
             self.rospy.logerr('DeleteModel: model [%s] does not exist' % req.model_name)
             return srv.DeleteModelResponse(False, 'DeleteModel: model does not exist')
-        cms = self.cm_services.pop(req.model_name, None)
-        if cms is not None:
-            cms.shutdown()
         return srv.DeleteModelResponse(True, 'DeleteModel: successfully deleted model')
 
     # -- state ----------------------------------------------------------------------------------
@@ -365,8 +358,8 @@ class GazeboServices(object):
                                    'does (its movable joints: %s)' % (unknown, req.model_name,
                                                                      ', '.join(body.joints) or 'none'))
             robot = self.sim.robots.get(req.model_name)
-            if robot is not None:
-                robot.reset_joint_readings(self.sim.world)
+            if robot is not None and robot.control is not None:
+                robot.control.reset_joint_readings(self.sim.world)
         return srv.SetModelConfigurationResponse(True, 'SetModelConfiguration: success')
 
     # -- physics control ------------------------------------------------------------------------
@@ -419,18 +412,14 @@ class GazeboServices(object):
         self.forces.shutdown()
         for sub in self.subscribers:
             sub.unregister()
-        for c in self.cm_services.values():
-            c.shutdown()
 
 
-def _strip_sdf_root(xml):
-    """The <model> element(s) of an SDF document given to spawn_sdf_model; without one, the first
-    <include> of its <world> (spawn_model -database sends <world><include><uri>model://NAME</uri>...),
-    as gazebo_ros's updateSDFAttributes reads it."""
-    import xml.etree.ElementTree as ET
-    root = ET.fromstring(xml)
+def _sdf_models(root):
+    """The <model> element(s) of an SDF document given to spawn_sdf_model (its parsed root); without one,
+    the first <include> of its <world> (spawn_model -database sends <world><include><uri>model://NAME</uri>
+    ...), as gazebo_ros's updateSDFAttributes reads it."""
     models = [root] if root.tag == 'model' else root.findall('model')
     if not models and root.find('world') is not None:
         models = root.find('world').findall('include')[:1]
-    return ''.join(ET.tostring(m, encoding='unicode') for m in models)
+    return models
 

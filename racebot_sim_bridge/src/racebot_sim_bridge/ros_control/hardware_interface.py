@@ -169,7 +169,7 @@ class RobotHW(object):
     """The joints of one robot, from its URDF and transmissions (urdf_model.RobotModel)."""
 
     def __init__(self, model, hardware_joints):
-        """hardware_joints: [(joint_name, interface)] as urdf_model.hardware_joints gives them."""
+        """hardware_joints: [(joint_name, interface)] as gazebo_ros_control.robot_hw_sim.hardware_joints gives them."""
         self.model = model  # urdf_model.RobotModel: controllers read geometry from it (diff_drive_controller)
         self.handles = {}
         self.warnings = []
