@@ -1,7 +1,7 @@
 """The simulator driven in-process, without ROS: what the world server does in each update, with
 commands applied at exact sim times.
 
-This is also how to get reproducible runs (README, "Benchmark"): build a Simulator from the world
+This is also how to get reproducible runs (docs/BENCHMARK.md, "Reproducible runs"): build a Simulator from the world
 file, spawn the URDF, load and start the controllers with the YAML's parameters, and set each
 controller's `command` from a script keyed to `sim.time` between `sim.step()` calls. Through ROS,
 commands arrive at sim times that depend on the machine's load; here they cannot.

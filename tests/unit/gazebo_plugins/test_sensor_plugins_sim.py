@@ -69,11 +69,10 @@ def test_topics_and_one_warning_for_the_plugin_not_simulated(world):
     warned = [msg for level, msg in fake.logs if level == 'warn' and 'libgazebo_ros_block_laser.so' in msg]
     assert len(warned) == 1
     assert "'block_laser'" in warned[0]
-    # the README by its path in this checkout: a user can open it from the log line
-    readme = str(Path(__file__).resolve().parents[3] / 'README.md')
-    assert "see the table 'Supported plugins, sensors and controllers' in %s" % readme in warned[0]
-    with open(readme) as f:
-        assert '## Supported plugins, sensors and controllers' in f.read()
+    # the docs page by its path in this checkout: a user can open it from the log line
+    page = Path(__file__).resolve().parents[3] / 'docs' / 'SUPPORTED.md'
+    assert "see the table 'Supported plugins, sensors and controllers' in %s" % page in warned[0]
+    assert '# Supported plugins, sensors and controllers' in page.read_text().splitlines()
 
 
 def test_a_plugin_not_simulated_beside_one_that_is(tmp_path):
