@@ -65,13 +65,17 @@ STRIPPING = re.compile(r"""endswith\(\s*['"]\.so|startswith\(\s*['"]lib|remove(p
 
 
 def python_sources():
-    """The product's Python files under version control: modules and scripts, tests and tools' benches aside."""
+    """The Python files under version control, tests aside: modules, scripts and tools."""
     files = subprocess.run(['git', 'ls-files'], cwd=str(REPO), capture_output=True, text=True, check=True).stdout
     for name in files.split():
         path = REPO / name
         if name.startswith('tests/') or not path.is_file():
             continue
-        if name.endswith('.py') or path.read_bytes()[:64].startswith(b'#!') and b'python' in path.read_bytes()[:64]:
+        if name.endswith('.py'):
+            yield path
+            continue
+        head = path.read_bytes()[:64]
+        if head.startswith(b'#!') and b'python' in head:
             yield path
 
 
