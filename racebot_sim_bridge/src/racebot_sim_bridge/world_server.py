@@ -5,7 +5,7 @@ its update loop. Around it, as gazebo_ros's node does: /clock; the services and 
 gazebo_services (/gazebo/spawn_urdf_model, get/set_model_state, ..., model_states and link_states);
 /gazebo/performance_metrics (performance_metrics); the physics dynamic_reconfigure server
 (/gazebo/set_parameters, gazebo_ros.physics_reconfigure); every spawned model's sensors (sensors,
-SensorManager) and model plugins (plugins.manager, PluginManager). Windows are separate processes
+SensorManager) and model plugins (gazebo_plugins, PluginManager). Windows are separate processes
 that attach to it (gzclient.py; viewer.AttachedWindows).
 
 Command line (as gzserver's, via empty_world.launch): `[-u|--pause] [--verbose] [-e ENGINE] [other
@@ -52,7 +52,7 @@ from racebot_sim_bridge.gazebo_ros_api.services import GazeboServices
 from racebot_sim_bridge.gazebo_ros_api.performance_metrics import PerformanceMetricsPublisher
 from racebot_sim_bridge.engine.physics import PhysicsError
 from racebot_sim_bridge.gazebo_plugins.plugin_manager import PluginManager
-from racebot_sim_bridge.sensors import SensorManager
+from racebot_sim_bridge.sensors.sensor_manager import SensorManager
 from racebot_sim_bridge.engine.sim_time import ros_time
 from racebot_sim_bridge.engine.simulator import Simulator
 from racebot_sim_bridge.window.viewer import SYNC_PERIOD as VIEWER_SYNC_PERIOD, AttachedWindows

@@ -10,8 +10,8 @@ from racebot_sim_bridge.description import urdf_model
 from racebot_sim_bridge.kinematics.rotations import rpy_to_quaternion
 from racebot_sim_bridge.sensors import messages as msgs
 from racebot_sim_bridge.sensors.camera import PinholeCamera, mask_depth
-from racebot_sim_bridge.sensors.config import (SensorConfigError, resolve_frame, sensor_config, tf_resolve,
-                                               unsupported_plugins)
+from racebot_sim_bridge.gazebo_plugins.registry import REGISTRY
+from racebot_sim_bridge.sensors.config import SensorConfigError, resolve_frame, sensor_config, tf_resolve
 from racebot_sim_bridge.sensors.contact_points import read_contacts
 from racebot_sim_bridge.sensors.contact import (CollisionKind, ContactPoint, NamedShape,
                                                 contact_collision_after_lumping, friction_reversed, group_contacts,
@@ -345,5 +345,6 @@ def test_urdf_reads_every_camera_and_the_contact_collisions(model):
 def test_a_plugin_racebot_does_not_simulate_is_named(model):
     specs = {s.name: s for s in model.sensors}
     assert sensor_config(specs['block_laser'], '/', 'sensor_robot') is None
-    assert unsupported_plugins(specs['block_laser']) == ['libgazebo_ros_block_laser.so']
-    assert unsupported_plugins(specs['sonar']) == []
+    warning, = (REGISTRY.not_simulated('sensor_robot', p, specs['block_laser']) for p in specs['block_laser'].plugins)
+    assert "sensor 'block_laser' (type ray): plugin 'block_laser_controller' (libgazebo_ros_block_laser.so)" in warning
+    assert [REGISTRY.not_simulated('sensor_robot', p, specs['sonar']) for p in specs['sonar'].plugins] == [None]

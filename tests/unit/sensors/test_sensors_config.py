@@ -3,7 +3,7 @@ and rates come from the URDF (no master, no physics)."""
 import pytest
 
 from racebot_sim_bridge.description import urdf_model
-from racebot_sim_bridge.sensors.config import resolve_frame, SensorConfigError, join_topic, plugin_kind, sensor_config
+from racebot_sim_bridge.sensors.config import resolve_frame, SensorConfigError, join_topic, sensor_config
 
 
 @pytest.fixture(scope='module')
@@ -43,10 +43,7 @@ def test_imu(configs):
     assert c.params['gaussian_noise'] == 0.0 and c.params['rpy_offset'] == (0.0, 0.0, 0.0)
 
 
-def test_names():
-    assert plugin_kind('libgazebo_ros_laser.so') == 'laser'
-    assert plugin_kind('/opt/lib/libgazebo_ros_openni_kinect.so') == 'depth'
-    assert plugin_kind('libgazebo_ros_control.so') is None
+def test_join_topic():
     assert join_topic('', 'rrbot/camera1', 'image_raw') == '/rrbot/camera1/image_raw'
     assert join_topic('/robot', 'cam', '/abs/topic') == '/abs/topic'
     assert join_topic('robot/', '', 'scan') == '/robot/scan'

@@ -11,8 +11,10 @@ import rospy
 
 from racebot_sim_bridge.kinematics import rotations
 from racebot_sim_bridge.description import sdf_world, urdf_model
-from racebot_sim_bridge.sensors import devices, render
-from racebot_sim_bridge.sensors import SensorManager
+from racebot_sim_bridge.gazebo_plugins import gazebo_ros_laser, gazebo_ros_range
+from racebot_sim_bridge.gazebo_plugins.gazebo_ros_imu_sensor import ImuSensor
+from racebot_sim_bridge.sensors import render
+from racebot_sim_bridge.sensors.sensor_manager import SensorManager
 from racebot_sim_bridge.engine.simulator import Simulator
 
 REPO = Path(__file__).resolve().parents[3]
@@ -136,7 +138,8 @@ def test_every_sensor_block_becomes_its_topics(world):
 def test_nobody_listening_costs_nothing(world, monkeypatch):
     sim, fake, manager, robot = world
     calls = []
-    monkeypatch.setattr(devices, 'cast_rays', lambda *a: calls.append('ray'))
+    for plugin in (gazebo_ros_laser, gazebo_ros_range):
+        monkeypatch.setattr(plugin, 'cast_rays', lambda *a: calls.append('ray'))
     monkeypatch.setattr(render, 'render', lambda *a: calls.append('render'))
     run(sim, 0.5)
     assert calls == []
@@ -254,7 +257,7 @@ def test_imu_acceleration_is_over_the_last_step_before_each_update(world):
     body = robot.body
     links = [-1] + list(range(sim.world.client.getNumJoints(body.id)))
     mass = sum(sim.world.link_dynamics(body.id, i).mass for i in links)
-    imu = next(s for s in manager._active if isinstance(s, devices.ImuSensor))
+    imu = next(s for s in manager._active if isinstance(s, ImuSensor))
     due = imu.schedule.next
     force = 5.0 * 9.8 * mass  # 5 g upwards on the whole car, for one step
 

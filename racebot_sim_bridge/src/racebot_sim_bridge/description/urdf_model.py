@@ -12,10 +12,10 @@ simulator can live with are listed in ``RobotModel.warnings`` instead.
 """
 
 import math
-import os
 import xml.etree.ElementTree as ET
 from dataclasses import dataclass, field
 
+from racebot_sim_bridge.gazebo_plugins import library_key
 from racebot_sim_bridge.kinematics.rotations import compose
 
 __all__ = [
@@ -155,12 +155,7 @@ class GazeboPlugin:
     @property
     def is_ros_control(self):
         """True for gazebo_ros_control's plugin, however the filename is spelt."""
-        base = os.path.basename(self.filename or '')
-        if base.endswith('.so'):
-            base = base[:-3]
-        if base.startswith('lib'):
-            base = base[3:]
-        return base == 'gazebo_ros_control'
+        return library_key(self.filename) == 'gazebo_ros_control'
 
 
 @dataclass
