@@ -86,7 +86,7 @@ class MeshesTest(unittest.TestCase):
         cls.sim = SimProbe()
         cls.server = cls.start(env, 'racebot_sim_bridge', 'world_server', world, '__name:=gazebo')
         cls.sim.wait_ready()
-        spawn = Process(['rosrun', 'racebot_sim_bridge', 'spawn_model', '-urdf', '-model', 'racebot', '-param',
+        spawn = Process(['rosrun', 'gazebo_ros', 'spawn_model', '-urdf', '-model', 'racebot', '-param',
                          '/robot_description', '-timeout', '60'], env)
         assert spawn.wait_exit() == 0, spawn.text
         cls.start(env, 'controller_manager', 'spawner', *(CONTROLLERS + ['__ns:=/racebot']))
