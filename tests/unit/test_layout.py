@@ -8,9 +8,10 @@
 
 Which imports count: every `import` statement of a module, at module level and inside functions alike. A
 function-level import runs later, so it cannot fail at start-up, but the two modules still lean on each
-other and a reader must untangle them just the same; the codebase has no lazy import that breaks a cycle
-on purpose (the function-level ones defer optional or heavy dependencies: rospy, dynamic_reconfigure,
-pybullet in a worker), so none is exempt. Importing `a.b.c` also runs the packages `a` and `a.b`: that
+other and a reader must untangle them just the same. None is exempt: counting them all finds no cycle in
+racebot_sim_bridge, so none of its function-level imports (they defer optional or heavy dependencies:
+dynamic_reconfigure, the sensor devices, the viewer process) is there to break one; a future lazy import
+meant to break a cycle should rather move the shared piece. Importing `a.b.c` also runs the packages `a` and `a.b`: that
 counts as an edge to each package's __init__ (but not to the importer's own packages, which are already
 running). `from a.b import c` is an edge to the module a.b.c when there is one, else to the package a.b
 (a name its __init__ defines). Imports built from strings (importlib) are not seen.
