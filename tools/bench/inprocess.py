@@ -11,7 +11,7 @@ import math
 import rospy  # only for rospy.Time in message stamps (no master, no node)
 
 from racebot_control.wheel_commands import CarGeometry, wheel_commands
-from racebot_sim_bridge.description import sdf_world
+from racebot_sim_bridge.description import sdf_reader
 from racebot_sim_bridge.engine.simulator import Simulator
 
 from . import common
@@ -64,7 +64,7 @@ class Car(object):
 
         def get_params(path):
             return params.get(path[len(ns) + 1:]) if path.startswith(ns + '/') else None
-        self.sim = Simulator(sdf_world.load_world(world_file), NullIO(), _Log, get_params)
+        self.sim = Simulator(sdf_reader.load_world(world_file), NullIO(), _Log, get_params)
         xml = urdf_xml or common.render_racebot()
         self.robot = self.sim.spawn_urdf('racebot', xml, '', (0.0, 0.0, 0.0), (0.0, 0.0, 0.0, 1.0))
         body = self.robot.body

@@ -46,7 +46,7 @@ import time
 import rospy
 from rosgraph_msgs.msg import Clock
 
-from racebot_sim_bridge.description import sdf_world
+from racebot_sim_bridge.description import sdf_reader
 from racebot_sim_bridge.ros_controllers import CommandTrace, RosIO
 from racebot_sim_bridge.gazebo_ros_api.services import GazeboServices
 from racebot_sim_bridge.gazebo_ros_api.performance_metrics import PerformanceMetricsPublisher
@@ -159,7 +159,7 @@ def resolve_world(name):
 
 class WorldServer(object):
     def __init__(self, world_path, paused, gui):
-        spec = sdf_world.load_world(world_path)
+        spec = sdf_reader.load_world(world_path)
         for w in spec.warnings:
             rospy.logwarn('%s: %s' % (os.path.basename(world_path), w))
         ph = spec.physics
@@ -370,7 +370,7 @@ def main(argv=None, debugger=False):
     path = resolve_world(world)
     try:
         server = WorldServer(path, paused, bool(rospy.get_param('~gui', False)))
-    except (sdf_world.WorldError, PhysicsError) as err:
+    except (sdf_reader.WorldError, PhysicsError) as err:
         rospy.logfatal('could not load world: %s' % err)
         sys.exit(1)
     try:

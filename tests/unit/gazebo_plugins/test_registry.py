@@ -8,7 +8,7 @@ from pathlib import Path
 import pytest
 
 import racebot_sim_bridge.gazebo_plugins as gazebo_plugins
-from racebot_sim_bridge.description import sdf_world
+from racebot_sim_bridge.description import sdf_reader
 from racebot_sim_bridge.engine.simulator import Simulator
 from racebot_sim_bridge.gazebo_plugins import PluginKind, library_key, registry
 from racebot_sim_bridge.gazebo_plugins.gazebo_ros_laser import LaserSensor
@@ -94,7 +94,7 @@ def test_one_function_turns_a_filename_into_a_library_name():
 def spawn(tmp_path, urdf):
     path = tmp_path / 'empty.world'
     path.write_text(WORLD)
-    sim = Simulator(sdf_world.load_world(str(path)), NullIO(), Log(), lambda path: None)
+    sim = Simulator(sdf_reader.load_world(str(path)), NullIO(), Log(), lambda path: None)
     fake = FakeRospy({'~sensors/report_period': 0, '~sensors/render_worker': False})
     PluginManager(fake, sim)
     SensorManager(fake, sim)

@@ -8,7 +8,7 @@ import numpy as np
 import pybullet as pb
 import pytest
 
-from racebot_sim_bridge.description import sdf_world
+from racebot_sim_bridge.description import sdf_reader
 from racebot_sim_bridge.sensors.sensor_manager import SensorManager
 from racebot_sim_bridge.engine.simulator import Simulator
 
@@ -36,7 +36,7 @@ BUMPER = 'sensor_robot::base_link::base_link_fixed_joint_lump__bumper_link_colli
 def make_world(tmp_path, urdf):
     path = tmp_path / 'box.world'
     path.write_text(WORLD)
-    sim = Simulator(sdf_world.load_world(str(path)), NullIO(), Log(), lambda path: None)
+    sim = Simulator(sdf_reader.load_world(str(path)), NullIO(), Log(), lambda path: None)
     fake = FakeRospy({'~sensors/report_period': 0, '~sensors/render_budget': 1.0, '~sensors/noise': False,
                       '~sensors/render_worker': False})
     manager = SensorManager(fake, sim)
@@ -102,7 +102,7 @@ def test_sonar_reads_the_distance_to_the_box(world):
 def test_range_and_bumper_frames_take_the_tf_prefix_of_their_namespace(tmp_path):
     path = tmp_path / 'box.world'
     path.write_text(WORLD)
-    sim = Simulator(sdf_world.load_world(str(path)), NullIO(), Log(), lambda path: None)
+    sim = Simulator(sdf_reader.load_world(str(path)), NullIO(), Log(), lambda path: None)
     try:
         fake = FakeRospy({'~sensors/report_period': 0, '~sensors/render_worker': False, '/fleet/tf_prefix': 'bot1'})
         SensorManager(fake, sim)

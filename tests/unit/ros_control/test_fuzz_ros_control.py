@@ -9,7 +9,7 @@ import math
 import rospy
 from hypothesis import HealthCheck, example, given, settings, strategies as st
 
-from racebot_sim_bridge.description import urdf_model
+from racebot_sim_bridge.description import urdf_model, urdf_reader
 from racebot_sim_bridge.ros_control.controller_manager import ControllerManager
 from racebot_sim_bridge.ros_control.hardware_interface import EFFORT, JointHandle, RobotHW
 from racebot_sim_bridge.ros_control.pid import Pid
@@ -152,7 +152,7 @@ class _Log(object):
 
 
 def _manager(configs):
-    model = urdf_model.parse_urdf(_urdf())
+    model = urdf_reader.parse_urdf(_urdf())
     hw = RobotHW(model, urdf_model.hardware_joints(model))
     for h in hw.handles.values():
         h.read(0.0, 0.0)

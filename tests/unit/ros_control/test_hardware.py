@@ -10,7 +10,7 @@ import math
 
 import pytest
 
-from racebot_sim_bridge.description import urdf_model
+from racebot_sim_bridge.description import urdf_model, urdf_reader
 from racebot_sim_bridge.ros_control.hardware_interface import (EFFORT, POSITION, STATE, VELOCITY, HardwareError,
                                                                JointHandle, RobotHW, cpp_name,
                                                                shortest_angular_distance)
@@ -49,7 +49,7 @@ def make_urdf():
 
 @pytest.fixture
 def hw():
-    model = urdf_model.parse_urdf(make_urdf())
+    model = urdf_reader.parse_urdf(make_urdf())
     return RobotHW(model, urdf_model.hardware_joints(model))
 
 

@@ -13,7 +13,7 @@ from control_msgs.msg import JointControllerState
 from sensor_msgs.msg import JointState
 from std_msgs.msg import Float64
 
-from racebot_sim_bridge.description import urdf_model
+from racebot_sim_bridge.description import urdf_model, urdf_reader
 from racebot_sim_bridge.ros_controllers import (CONTROLLER_TYPES, STATE_PUBLISH_EVERY, ControllerInitError,
                                                 EffortForwardController, JointPositionController,
                                                 JointStateController, JointVelocityController,
@@ -75,7 +75,7 @@ class FakeIO(object):
 
 
 def make_hw(xml):
-    model = urdf_model.parse_urdf(xml)
+    model = urdf_reader.parse_urdf(xml)
     hw = RobotHW(model, urdf_model.hardware_joints(model))
     for h in hw.handles.values():
         h.read(0.0, 0.0)

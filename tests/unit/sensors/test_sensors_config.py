@@ -2,13 +2,13 @@
 and rates come from the URDF (no master, no physics)."""
 import pytest
 
-from racebot_sim_bridge.description import urdf_model
+from racebot_sim_bridge.description import urdf_reader
 from racebot_sim_bridge.sensors.config import resolve_frame, SensorConfigError, join_topic, sensor_config
 
 
 @pytest.fixture(scope='module')
 def configs(racebot_xml):
-    model = urdf_model.parse_urdf(racebot_xml)
+    model = urdf_reader.parse_urdf(racebot_xml)
     return {c.kind: c for c in (sensor_config(s, '/', 'racebot') for s in model.sensors)}  # spawn_model at the root
 
 
@@ -52,7 +52,7 @@ def test_join_topic():
 def _sensor(body, plugin):
     xml = ('<robot name="r"><link name="a"/><gazebo reference="a">%s</gazebo></robot>'
            % body.replace('PLUGIN', plugin))
-    return urdf_model.parse_urdf(xml).sensors[0]
+    return urdf_reader.parse_urdf(xml).sensors[0]
 
 
 def test_plugin_rules_and_mismatches():

@@ -9,7 +9,7 @@ import threading
 
 from racebot_sim_bridge.engine import physics
 from racebot_sim_bridge.gazebo_plugins import plugin_namespace
-from racebot_sim_bridge.description import sdf_urdf, urdf_model
+from racebot_sim_bridge.description import sdf_urdf, urdf_model, urdf_reader
 from racebot_sim_bridge.ros_control.controller_manager import ControllerManager
 from racebot_sim_bridge.ros_control.hardware_interface import (EFFORT, POSITION, VELOCITY, RobotHW, limited_efforts,
                                                                position_error, read_joint_states)
@@ -103,7 +103,7 @@ class Robot(object):
 
 class Simulator(object):
     def __init__(self, world_spec, io, log, get_params):
-        """world_spec: sdf_world.World; io: controllers.RosIO-like; get_params(path) -> value or None."""
+        """world_spec: sdf_model.World; io: controllers.RosIO-like; get_params(path) -> value or None."""
         self.spec = world_spec
         self.io = io
         self.log = log
@@ -152,7 +152,7 @@ class Simulator(object):
                                  '(rosservice call /gazebo/delete_model %s) or spawn with another -model name'
                                  % (name, name))
             try:
-                model = urdf_model.parse_urdf(xml)
+                model = urdf_reader.parse_urdf(xml)
             except urdf_model.UrdfError as err:
                 raise SpawnError('SpawnModel: Failure - the URDF of %s is not valid: %s' % (name, err))
             plugin = model.control_plugin()
@@ -220,7 +220,7 @@ class Simulator(object):
             return robot
 
     def spawn_sdf_robot(self, model, robot_namespace=''):
-        """Spawns an SDF model with joints, plugins or sensors (sdf_world.Model.is_robot) through the URDF
+        """Spawns an SDF model with joints, plugins or sensors (sdf_model.Model.is_robot) through the URDF
         path (sdf_urdf.py), at its <pose>; returns the Robot. SpawnError when it cannot be."""
         try:
             conversion = sdf_urdf.model_urdf(model)

@@ -15,7 +15,7 @@ from geometry_msgs.msg import Point, Pose, Quaternion, Twist, Vector3
 from std_srvs.srv import Empty, EmptyResponse
 
 from racebot_sim_bridge.gazebo_ros_api import frames
-from racebot_sim_bridge.description import model_path, spawn_xml, urdf_model
+from racebot_sim_bridge.description import model_path, spawn_xml, urdf_model, urdf_reader
 from racebot_sim_bridge.ros_control.controller_manager import ControllerManagerServices
 from racebot_sim_bridge.gazebo_ros_api.forces import GazeboForces
 from racebot_sim_bridge.gazebo_ros_api.properties import GazeboProperties
@@ -149,7 +149,7 @@ class GazeboServices(object):
     def _spawn_urdf(self, req, pose):
         name = req.model_name
         try:
-            urdf_model.parse_urdf(req.model_xml)
+            urdf_reader.parse_urdf(req.model_xml)
         except urdf_model.UrdfError as err:
             # Gazebo cannot load it and the service waits out its 10 s; the reason is in the server's log
             self.rospy.logerr('SpawnModel: the URDF of %s is not valid: %s' % (name, err))
@@ -173,13 +173,13 @@ class GazeboServices(object):
                                'joints: %s)' % (robot.name, robot.ns, robot.control_period, ', '.join(robot.hw.names)))
 
     def _spawn_sdf(self, req, pose):
-        from racebot_sim_bridge.description import sdf_world
+        from racebot_sim_bridge.description import sdf_reader
         from racebot_sim_bridge.engine.physics import PhysicsError
         xml = spawn_xml.add_robot_namespace(req.model_xml, req.robot_namespace)
         try:
-            world = sdf_world.parse_world('<sdf version="1.6"><world name="spawn">%s</world></sdf>'
+            world = sdf_reader.parse_world('<sdf version="1.6"><world name="spawn">%s</world></sdf>'
                                           % _strip_sdf_root(xml), source='spawn_sdf_model request')
-        except (sdf_world.WorldError, ValueError) as err:
+        except (sdf_reader.WorldError, ValueError) as err:
             self.rospy.logerr('SpawnModel: the SDF of %s is not valid: %s' % (req.model_name, err))
             return srv.SpawnModelResponse(False, SPAWN_NOT_LOADED % req.model_name)
         for w in world.warnings:
