@@ -17,7 +17,7 @@ managers), so an SDF robot is written out as the URDF that path reads:
 URDF puts a joint's axis through its child's origin.  An SDF joint whose ``<pose>`` moves the axis off
 the child's origin (sideways of the axis: along it changes nothing) gets its child's URDF frame moved
 to the joint, and everything of that link moved back by as much, so the physics is Gazebo's; that
-link's frame as the services report it is then the joint's (the README lists this).
+link's frame as the services report it is then the joint's (docs/COMING_FROM_GAZEBO.md lists this).
 
 The links must form one tree under the joints, as URDF needs: ConversionError says which do not.
 """

@@ -23,7 +23,7 @@ from racebot_sim_bridge.gazebo_plugins.gazebo_ros_range import RangeSensor
 from racebot_sim_bridge.gazebo_plugins.gazebo_ros_skid_steer_drive import SkidSteerDrive
 from racebot_sim_bridge.gazebo_plugins.hector_gazebo_ros_gps import HectorGps
 from racebot_sim_bridge.gazebo_plugins.hector_gazebo_ros_imu import HectorImu
-from racebot_sim_bridge.supported_table import WHERE as README_TABLE
+from racebot_sim_bridge.supported_table import WHERE as SUPPORTED_TABLE
 
 # What a plugin that is not simulated would have done, by where it sits: its warning says so.
 LOST = {PluginKind.MODEL: 'what it would do does not happen', PluginKind.SENSOR: 'it publishes nothing'}
@@ -66,7 +66,7 @@ class Registry:
             return None
         where = '' if sensor is None else "sensor '%s' (type %s): " % (sensor.name, sensor.type)
         return ("%s: %splugin '%s' (%s) is not simulated by racebot, so %s; the rest of the robot works; see %s"
-                % (robot_name, where, plugin.name, plugin.filename, LOST[kind], README_TABLE))
+                % (robot_name, where, plugin.name, plugin.filename, LOST[kind], SUPPORTED_TABLE))
 
 
 REGISTRY = Registry((

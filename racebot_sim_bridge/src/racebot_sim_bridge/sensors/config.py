@@ -34,6 +34,7 @@ from racebot_sim_bridge.gazebo_plugins import PluginKind, library_key
 from racebot_sim_bridge.gazebo_plugins.plugin_namespace import sensor_namespace
 from racebot_sim_bridge.gazebo_plugins.registry import REGISTRY
 from racebot_sim_bridge.kinematics.rotations import as_xyz_rpy, compose
+from racebot_sim_bridge.supported_table import WHERE as SUPPORTED_TABLE
 
 class SensorConfigError(ValueError):
     """A sensor block that cannot be simulated as written; the message says why."""
@@ -183,8 +184,8 @@ def sensor_config(spec, spawn_namespace='', model_name='', node_namespace='/'):
             warnings.append('%s: <focalLength>, <Cx>, <Cy> go into camera_info as set; the image is rendered from '
                             'the image size and horizontal_fov (as in Gazebo)' % what)
         if any(config.params['distortion']) or any(spec.camera.distortion):
-            warnings.append('%s: lens distortion is not rendered (README: supported sensors); camera_info reports '
-                            'the coefficients' % what)
+            warnings.append('%s: lens distortion is not rendered (see %s); camera_info reports '
+                            'the coefficients' % (what, SUPPORTED_TABLE))
     return config
 
 
