@@ -34,8 +34,8 @@ CONTROLLERS = 7
 
 def wall_footprints(world_file):
     """2-D outlines (lists of corner points) of every box, cylinder and sphere in the world."""
-    from racebot_sim_bridge.description import sdf_world
-    world = sdf_world.load_world(world_file)
+    from racebot_sim_bridge.description import sdf_reader
+    world = sdf_reader.load_world(world_file)
     shapes = []
     for model in world.models:
         for link in model.links:

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Installs the Debian packages listed in $1 that are not installed yet; does nothing (quickly) when all are.
 # On Ubuntu 20.04 with ROS Noetic from the ROS archive, set RACEBOT_SKIP_APT=1 and install the
-# equivalent ros-noetic-* packages yourself (see README).
+# equivalent ros-noetic-* packages yourself (see docs/INSTALL.md).
 set -euo pipefail
 list=$1
 [ "${RACEBOT_SKIP_APT:-0}" = 1 ] && { echo "racebot: RACEBOT_SKIP_APT=1, not checking Debian packages"; exit 0; }

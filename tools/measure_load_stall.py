@@ -20,7 +20,7 @@ sys.path.insert(0, HERE)
 import rospy  # noqa: E402
 
 from bench import common  # noqa: E402
-from racebot_sim_bridge.description import sdf_world  # noqa: E402
+from racebot_sim_bridge.description import sdf_reader  # noqa: E402
 from racebot_sim_bridge.ros_controllers import RosIO  # noqa: E402
 from racebot_sim_bridge.engine.simulator import Simulator  # noqa: E402
 from racebot_sim_bridge.gazebo_ros_control.gazebo_ros_control_plugin import GazeboRosControlPlugin  # noqa: E402
@@ -90,7 +90,7 @@ def main():
     for name, value in params.items():
         rospy.set_param('%s/%s' % (common.NAMESPACE, name), value)
     world = os.path.join(HERE, '..', 'racebot_sim_bridge', 'worlds', 'empty.world')
-    sim = Simulator(sdf_world.load_world(world), RosIO(rospy), _Log, _get_param)
+    sim = Simulator(sdf_reader.load_world(world), RosIO(rospy), _Log, _get_param)
     GazeboRosControlPlugin.attach(sim)
     cm = sim.spawn_urdf('racebot', common.render_racebot(), '').control.cm
     cm.lock = lock = WaitTimedLock(cm.lock)

@@ -24,7 +24,7 @@ from controller_manager_msgs.srv import ListControllers
 from gazebo_msgs.srv import DeleteModel, SpawnModel
 from geometry_msgs.msg import Pose
 from racebot_sim_bridge.kinematics import rotations
-from racebot_sim_bridge.description import urdf_model
+from racebot_sim_bridge.description import urdf_reader
 from racebot_sim_bridge.sensors.imu_reading import quaternion_to_matrix as rotation
 from sensor_msgs.msg import Image, LaserScan
 from std_msgs.msg import Float64
@@ -79,14 +79,14 @@ class MeshesTest(unittest.TestCase):
         packages = os.path.join(cls.tmp, 'packages')
         urdf, cls.replaced = mesh_fixtures.meshify_urdf(rospy.get_param('/robot_description'), packages)
         rospy.set_param('/robot_description', urdf)
-        cls.model = urdf_model.parse_urdf(urdf)
+        cls.model = urdf_reader.parse_urdf(urdf)
         cls.specs = {s.type: s for s in cls.model.sensors}
         env = dict(os.environ, GAZEBO_MODEL_PATH=models, RACEBOT_MESH_CACHE=os.path.join(cls.tmp, 'cache'),
                    ROS_PACKAGE_PATH=os.pathsep.join([packages, os.environ.get('ROS_PACKAGE_PATH', '')]))
         cls.sim = SimProbe()
         cls.server = cls.start(env, 'racebot_sim_bridge', 'world_server', world, '__name:=gazebo')
         cls.sim.wait_ready()
-        spawn = Process(['rosrun', 'racebot_sim_bridge', 'spawn_model', '-urdf', '-model', 'racebot', '-param',
+        spawn = Process(['rosrun', 'gazebo_ros', 'spawn_model', '-urdf', '-model', 'racebot', '-param',
                          '/robot_description', '-timeout', '60'], env)
         assert spawn.wait_exit() == 0, spawn.text
         cls.start(env, 'controller_manager', 'spawner', *(CONTROLLERS + ['__ns:=/racebot']))

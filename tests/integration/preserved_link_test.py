@@ -17,7 +17,7 @@ from gazebo_msgs.msg import LinkStates
 from gazebo_msgs.srv import GetLinkState, GetModelState
 from integration_common import Latest
 from racebot_sim_bridge.kinematics import rotations
-from racebot_sim_bridge.description import urdf_model
+from racebot_sim_bridge.description import urdf_reader
 from rosgraph_msgs.msg import Clock
 from sensor_msgs.msg import LaserScan
 from std_srvs.srv import Empty
@@ -48,7 +48,7 @@ class PreservedLinkTest(unittest.TestCase):
         cls.model_state = rospy.ServiceProxy('/gazebo/get_model_state', GetModelState)
         cls.pause = rospy.ServiceProxy('/gazebo/pause_physics', Empty)
         cls.unpause = rospy.ServiceProxy('/gazebo/unpause_physics', Empty)
-        cls.model = urdf_model.parse_urdf(rospy.get_param('/robot_description'))
+        cls.model = urdf_reader.parse_urdf(rospy.get_param('/robot_description'))
         wait_for(lambda: cls.model_state('racebot', '').success, 'the racebot to be spawned')
         wait_for(lambda: cls.clock is not None and cls.clock >= 1.0, 'sim time 1 s')  # settled on its wheels
 

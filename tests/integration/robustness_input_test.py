@@ -248,7 +248,7 @@ class RobustnessInputTest(unittest.TestCase):
         return ET.tostring(root, encoding='unicode')
 
     def spawn_cli(self, *args):
-        p = rosrun('racebot_sim_bridge', 'spawn_model', *args)
+        p = rosrun('gazebo_ros', 'spawn_model', *args)
         code = p.wait_exit()
         return code, p.text
 

@@ -96,7 +96,7 @@ class RobustnessWorldTest(unittest.TestCase):
         server = self.start('racebot_sim_bridge', 'world_server', world_file, '__name:=gazebo')
         self.sim.clock = None
         self.sim.wait_ready()
-        spawn = rosrun('racebot_sim_bridge', 'spawn_model', '-urdf', '-model', 'racebot', '-param',
+        spawn = rosrun('gazebo_ros', 'spawn_model', '-urdf', '-model', 'racebot', '-param',
                        '/robot_description', '-timeout', '60')
         self.assertEqual(spawn.wait_exit(), 0, spawn.text)
         return server

@@ -1,6 +1,6 @@
 """What a level 2D lidar must read in a world, computed from the world file alone.
 
-Independent of the simulator's physics: the SDF world is parsed with sdf_world, and each beam is
+Independent of the simulator's physics: the SDF world is parsed with sdf_reader, and each beam is
 intersected analytically with the horizontal slice of every shape at the scan height (upright
 boxes become rectangles, upright cylinders and spheres circles; planes are the floor). Used by
 the sensors rostest and its unit-level twin. Needs numpy only.
@@ -8,7 +8,7 @@ the sensors rostest and its unit-level twin. Needs numpy only.
 import math
 
 import numpy as np
-from racebot_sim_bridge.description import sdf_world
+from racebot_sim_bridge.description import sdf_reader
 
 
 def _yaw_only(q, tol=1e-6):
@@ -81,7 +81,7 @@ def cast(shapes, origin, angles):
 
 def expected_scan(world_path, origin_xyz, yaw, angle_min, angle_increment, count):
     """Ranges a noise-free lidar at `origin_xyz` (world) facing `yaw` reads, by geometry alone."""
-    world = sdf_world.load_world(world_path)
+    world = sdf_reader.load_world(world_path)
     angles = yaw + angle_min + angle_increment * np.arange(count)
     return cast(slices(world, origin_xyz[2]), origin_xyz[:2], angles)
 

@@ -20,7 +20,7 @@ from gazebo_msgs.srv import DeleteModel, GetPhysicsProperties, SpawnModel
 from geometry_msgs.msg import Pose
 from integration_common import Latest
 from racebot_sim_bridge.kinematics import rotations
-from racebot_sim_bridge.description import urdf_model
+from racebot_sim_bridge.description import urdf_reader
 from racebot_sim_bridge.sensors.imu_reading import quaternion_to_matrix as rotation
 from rosgraph_msgs.msg import Clock
 from sensor_msgs.msg import CameraInfo, Image, Imu, LaserScan, PointCloud2
@@ -55,7 +55,7 @@ class SensorsTest(unittest.TestCase):
         cls.spawn = rospy.ServiceProxy('/gazebo/spawn_sdf_model', SpawnModel)
         cls.delete = rospy.ServiceProxy('/gazebo/delete_model', DeleteModel)
         cls.gravity = rospy.ServiceProxy('/gazebo/get_physics_properties', GetPhysicsProperties)().gravity
-        cls.model = urdf_model.parse_urdf(rospy.get_param('/robot_description'))
+        cls.model = urdf_reader.parse_urdf(rospy.get_param('/robot_description'))
         cls.specs = {s.type: s for s in cls.model.sensors}
         wait_for(lambda: cls.models is not None and 'racebot' in cls.models.name, 'the racebot to be spawned')
         wait_for(lambda: rospy.get_param('/racebot/joint_state_controller/type', None), 'the controller config')

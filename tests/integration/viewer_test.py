@@ -16,7 +16,10 @@ relies on:
 - a second gzclient attaches again and shows the car;
 - when the world server goes, gzclient says so and ends (exit 0);
 - `gazebo` starts the world server and the window together; closing the window stops both;
-- without a display gzclient says why and ends with 0.
+- without a display gzclient says why and ends with 0;
+- with no window manager (as here) the keyboard window (racebot.launch's keyboard_teleop) does not sit
+  under or over the 3D window: it opens beside one that is there, and moves beside one that opens over
+  it (racebot.launch starts the keyboard first; the 3D window comes once the world is loaded).
 """
 import os
 import shutil
@@ -40,11 +43,13 @@ sys.path.insert(0, os.path.join(ROOT, 'tools'))
 from bench.common import child_pids  # noqa: E402
 
 WINDOW_MODULE = 'racebot_sim_bridge.window.viewer_process'
+KEYBOARD_WINDOW = '^racebot keyboard teleop$'
 
 START_TIMEOUT = 120.0
 # Where the car is put (x, y, quaternion z, w): with the camera 1.5 m behind it, nothing in between.
 SPAWN_SPOT = (0.0, 0.0, 0.0, 1.0)              # where racebot.launch spawns it
 TURNED_SPOT = (0.3, 0.0, 0.2588190, 0.9659258)  # a little ahead, turned 30 degrees left
+SCREEN = (1280, 1024)  # PyBullet's window: 1024 x 768; the keyboard's, about 270 x 170, fits below it
 SCREENS = os.path.join(ROOT, 'out', 'test-results', 'viewer-screens')  # what the window showed, for a reader
 
 
@@ -65,7 +70,7 @@ class ViewerTest(unittest.TestCase):
     @classmethod
     def setUpClass(cls):
         cls.fbdir = tempfile.mkdtemp(prefix='racebot_viewer_fb_')
-        cls.xvfb, cls.display = start_xvfb(fbdir=cls.fbdir, screen='1280x1024x24')  # PyBullet's window: 1024 x 768
+        cls.xvfb, cls.display = start_xvfb(fbdir=cls.fbdir, screen='%dx%dx24' % SCREEN)
         cls.env = dict(os.environ, DISPLAY=cls.display)
         rospy.init_node('viewer_test', anonymous=True)
         cls.rosout = Rosout()
@@ -76,6 +81,7 @@ class ViewerTest(unittest.TestCase):
         wait_for(lambda: 'racebot' in cls.sim.world_properties().model_names, 'the car spawned', START_TIMEOUT)
         cls.sim_pid = wait_for(lambda: node_pid('/gazebo'), "the world server's process id", START_TIMEOUT)
         cls.processes = []
+        cls.keyboard = None
 
     @classmethod
     def tearDownClass(cls):
@@ -95,6 +101,40 @@ class ViewerTest(unittest.TestCase):
 
     def window_ids(self):
         return self.xdotool('search', '--name', 'Bullet Physics').stdout.split()
+
+    def geometry(self, window):
+        """(x, y, width, height) of a window on the screen."""
+        out = self.xdotool('getwindowgeometry', '--shell', window).stdout
+        geometry = dict(line.split('=', 1) for line in out.split())
+        return tuple(int(geometry[key]) for key in ('X', 'Y', 'WIDTH', 'HEIGHT'))
+
+    def start_keyboard(self):
+        """racebot.launch's keyboard node on this display (the one before it stopped) -> its window."""
+        if ViewerTest.keyboard is not None:
+            ViewerTest.keyboard.stop()
+            wait_for(lambda: not self.xdotool('search', '--name', KEYBOARD_WINDOW).stdout.split(),
+                     'the keyboard window to go', 30.0)
+        ViewerTest.keyboard = Process(['rosrun', 'racebot_gazebo', 'keyboard_teleop.py'], env=self.env)
+        self.processes.append(ViewerTest.keyboard)
+        return wait_for(lambda: self.xdotool('search', '--onlyvisible', '--name', KEYBOARD_WINDOW).stdout.split(),
+                        'the keyboard window on %s' % self.display, START_TIMEOUT)[0]
+
+    def assert_keyboard_beside_the_3d_window(self, keyboard, timeout):
+        """The keyboard window apart from the 3D window (within `timeout` s) and wholly on the screen."""
+        def rectangles():
+            return self.geometry(keyboard), self.geometry(self.window_ids()[0])
+
+        def apart():
+            (kx, ky, kw, kh), (wx, wy, ww, wh) = rectangles()
+            return kx >= wx + ww or ky >= wy + wh or kx + kw <= wx or ky + kh <= wy
+        deadline = time.time() + timeout
+        while not apart() and time.time() < deadline:
+            time.sleep(0.1)
+        (kx, ky, kw, kh), three_d = rectangles()
+        self.assertTrue(apart(), 'the keyboard window %s overlaps the 3D window %s (x, y, width, height)'
+                        % ((kx, ky, kw, kh), three_d))
+        self.assertTrue(0 <= kx and kx + kw <= SCREEN[0] and 0 <= ky and ky + kh <= SCREEN[1],
+                        'the keyboard window %s is not wholly on the %d x %d screen' % (((kx, ky, kw, kh),) + SCREEN))
 
     def wait_window(self):
         ViewerTest.centre = None  # a new window: look its place up again
@@ -126,10 +166,8 @@ class ViewerTest(unittest.TestCase):
     def window_centre(self):
         """(x, y) on the screen of the window's centre; looked up once per window (nothing moves it)."""
         if getattr(ViewerTest, 'centre', None) is None:
-            out = self.xdotool('getwindowgeometry', '--shell', self.window_ids()[0]).stdout
-            geometry = dict(line.split('=', 1) for line in out.split())
-            ViewerTest.centre = (int(geometry['X']) + int(geometry['WIDTH']) // 2,
-                                 int(geometry['Y']) + int(geometry['HEIGHT']) // 2)
+            x, y, width, height = self.geometry(self.window_ids()[0])
+            ViewerTest.centre = (x + width // 2, y + height // 2)
         return ViewerTest.centre
 
     def car_at_centre(self, screen):
@@ -188,6 +226,9 @@ class ViewerTest(unittest.TestCase):
         self.assertGreater(self.car_at_centre(self.screen('3-car-moved')), 0.15,
                            'the camera followed the car but the car is not there')
 
+    def test_2b_the_keyboard_window_opens_beside_the_3d_window(self):
+        self.assert_keyboard_beside_the_3d_window(self.start_keyboard(), timeout=0)  # from its first sight
+
     def test_3_closing_the_window_ends_gzclient_and_leaves_the_simulation_running(self):
         mark = self.rosout.mark()
         self.close_window()
@@ -203,10 +244,12 @@ class ViewerTest(unittest.TestCase):
         self.assertTrue(self.sim.world_properties().rendering_enabled, 'true without a window too, as upstream')
 
     def test_4_a_second_gzclient_attaches_again(self):
+        keyboard = self.start_keyboard()  # first, as racebot.launch does: no 3D window yet
         mark = self.rosout.mark()
         ViewerTest.second = self.start('gzclient')
         self.wait_window()
         self.attached(mark)
+        self.assert_keyboard_beside_the_3d_window(keyboard, timeout=10.0)  # moved within a look or two
         self.place_car(*SPAWN_SPOT)
         self.wait_car_at_centre('second window')
 

@@ -2,7 +2,7 @@
 (no master): what the unit tests of the drive plugins (test_plugins_*.py) spawn their robots into."""
 from pathlib import Path
 
-from racebot_sim_bridge.description import sdf_world
+from racebot_sim_bridge.description import sdf_reader
 from racebot_sim_bridge.gazebo_plugins.plugin_manager import PluginManager
 from racebot_sim_bridge.engine.simulator import Simulator
 
@@ -58,7 +58,7 @@ class PluginWorld(object):
     def __init__(self, tmp_path, params=None):
         path = tmp_path / 'ground.world'
         path.write_text(GROUND)
-        self.sim = Simulator(sdf_world.load_world(str(path)), NullIO(), Log(), lambda path: None)
+        self.sim = Simulator(sdf_reader.load_world(str(path)), NullIO(), Log(), lambda path: None)
         self.fake = PluginRospy(params)
         self.servers = {}  # namespace -> Reconfigure
         self.manager = PluginManager(self.fake, self.sim, reconfigure=self._reconfigure)

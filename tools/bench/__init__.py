@@ -7,6 +7,8 @@ tools/bench.py is the command; these modules are its parts:
   inprocess     the simulator without ROS: hinge step response, scripted runs (determinism), its
                 real-time factor and where its Python time goes (cProfile)
   scenarios     the measurements that need ROS, each run in a child process with its own master
+  ros_node      the bench's ROS node: the world server's pid, /gazebo services, real-time factor windows
+  fleet         the fleet part: many robots beside bare PyBullet (a scenario, with its own ceiling)
   plot          PNG plots with matplotlib (Agg backend, no display)
   report        the table of figures and targets
   kept_figures  the figures kept in the repository (last_figures.json, written by --save) and

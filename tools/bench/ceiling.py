@@ -10,7 +10,7 @@ bridge/ceiling ratio measures.
 
 import pybullet as pb
 
-from racebot_sim_bridge.description import sdf_world, urdf_model
+from racebot_sim_bridge.description import sdf_reader, urdf_reader
 from racebot_sim_bridge.engine.physics import PhysicsWorld
 
 from . import common
@@ -25,12 +25,12 @@ SETTLE_S = 0.5  # sim seconds before timing: the car lands on its wheels
 
 class Ceiling(object):
     def __init__(self, world_file, urdf_xml=None):
-        spec = sdf_world.load_world(world_file)
+        spec = sdf_reader.load_world(world_file)
         self.step_size = spec.physics.max_step_size
         self.world = PhysicsWorld(self.step_size, spec.physics.gravity)
         self.world.load_world(spec)
         xml = urdf_xml or common.render_racebot()
-        body = self.world.spawn_urdf('racebot', urdf_model.parse_urdf(xml), xml)
+        body = self.world.spawn_urdf('racebot', urdf_reader.parse_urdf(xml), xml)
         frame = body.com_pose_for_frame((0.0, 0.0, 0.0), (0.0, 0.0, 0.0, 1.0))  # as spawn_model -x 0 -y 0 -z 0
         self.world.set_pose(body, frame.position, frame.orientation)
         missing = set(GAINS) - set(body.joints)

@@ -42,14 +42,14 @@ class FleetCeiling(object):
     IMUs' reads at their rates."""
 
     def __init__(self, world_file, urdf_xml, n):
-        from racebot_sim_bridge.description import sdf_world, urdf_model
+        from racebot_sim_bridge.description import sdf_reader, urdf_reader
         from racebot_sim_bridge.engine.physics import PhysicsWorld
         import pybullet as pb
-        spec = sdf_world.load_world(world_file)
+        spec = sdf_reader.load_world(world_file)
         self.step_size = spec.physics.max_step_size
         self.world = PhysicsWorld(self.step_size, spec.physics.gravity)
         self.world.load_world(spec)
-        model = urdf_model.parse_urdf(urdf_xml)
+        model = urdf_reader.parse_urdf(urdf_xml)
         self.client = self.world.client.id
         self.bodies = []
         v, w = COMMAND
@@ -128,7 +128,7 @@ def _spawn(n, urdf_xml):
 def fleet(p, out):
     """The fleet part, one master for all counts: for each count in p['counts'] a fresh world server with that
     many robots, p['rounds'] pairs of p['window_s'] wall seconds each after p['warmup_s']."""
-    from .scenarios import WORLD_SERVER, World, init_node, measure_window, node_pid
+    from .ros_node import WORLD_SERVER, World, init_node, measure_window, node_pid
     port = p['port']
     world_file = common.fast_world(common.EMPTY_WORLD, os.path.join(out, 'empty_fast.world'))
     urdf_xml = render_urdf()

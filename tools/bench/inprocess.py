@@ -1,7 +1,7 @@
 """The simulator driven in-process, without ROS: what the world server does in each update, with
 commands applied at exact sim times.
 
-This is also how to get reproducible runs (README, "Benchmark"): build a Simulator from the world
+This is also how to get reproducible runs (docs/BENCHMARK.md, "Reproducible runs"): build a Simulator from the world
 file, spawn the URDF, load and start the controllers with the YAML's parameters, and set each
 controller's `command` from a script keyed to `sim.time` between `sim.step()` calls. Through ROS,
 commands arrive at sim times that depend on the machine's load; here they cannot.
@@ -11,7 +11,7 @@ import math
 import rospy  # only for rospy.Time in message stamps (no master, no node)
 
 from racebot_control.wheel_commands import CarGeometry, wheel_commands
-from racebot_sim_bridge.description import sdf_world
+from racebot_sim_bridge.description import sdf_reader
 from racebot_sim_bridge.engine.simulator import Simulator
 from racebot_sim_bridge.gazebo_ros_control.gazebo_ros_control_plugin import GazeboRosControlPlugin
 
@@ -65,7 +65,7 @@ class Car(object):
 
         def get_params(path):
             return params.get(path[len(ns) + 1:]) if path.startswith(ns + '/') else None
-        self.sim = Simulator(sdf_world.load_world(world_file), NullIO(), _Log, get_params)
+        self.sim = Simulator(sdf_reader.load_world(world_file), NullIO(), _Log, get_params)
         GazeboRosControlPlugin.attach(self.sim)  # the controller manager, without its services
         xml = urdf_xml or common.render_racebot()
         self.robot = self.sim.spawn_urdf('racebot', xml, '', (0.0, 0.0, 0.0), (0.0, 0.0, 0.0, 1.0))

@@ -20,6 +20,9 @@ Timing runs on Tk's after(), i.e. on the wall clock, in the Tk thread, not on a 
 - key events and publishing happen in one thread, so a stop can never be overtaken by a stale drive
   command from a timer thread, and no lock is needed.
 
+Under a bare X server (no window manager) the window opens beside the 3D window, not under it, and
+moves beside a 3D window that opens over it later (window_place).
+
 The user's X key auto-repeat is left alone (the tutorial's node ran `xset r off`, a setting of the
 whole X session that a hard kill left off). A held key's auto-repeat reaches Tk as KeyRelease +
 KeyPress pairs sent together; teleop_keys.TeleopController takes a release followed at once by a
@@ -33,7 +36,7 @@ import sys
 import time
 import traceback
 
-from . import teleop_keys
+from . import teleop_keys, window_place
 
 TOPIC = '/ackermann_cmd_mux/output'
 WINDOW_TITLE = 'racebot keyboard teleop'
@@ -41,6 +44,7 @@ HELP_TEXT = 'Focus on this window\nand use the WASD keys\nto drive the car.\n\nP
 POLL_PERIOD = 0.1        # s; how often the Tk loop looks for signals and a rospy shutdown
 FOCUS_CHECK_DELAY = 0.05  # s after a FocusOut before deciding the window has lost the keyboard
 STOP_FLUSH_TIME = 0.3     # s given to the final stop command to leave before the node shuts down
+LOOK_PERIOD = 0.5         # s between looks for a 3D window over this one (no window manager only)
 
 
 def say(line):
@@ -63,6 +67,9 @@ class TkWindow(object):
         self.root.protocol('WM_DELETE_WINDOW', lambda: self.close('window closed'))
         self.close_reason = None
         self._should_stop = lambda: None
+        self._windows = None      # window_place.TopWindows while we look for the 3D window
+        self._seen = set()        # 3D windows already looked at: each moves this one at most once
+        self._asked = None        # (x, y) last asked for
 
     # -- the UI interface of TeleopController -----------------------------------------------------
     def schedule(self, delay, fn):
@@ -78,6 +85,44 @@ class TkWindow(object):
         if self.close_reason is None:
             self.close_reason = reason
         self.root.quit()  # mainloop() returns; the window is destroyed by destroy()
+
+    # -- place on the screen ----------------------------------------------------------------------
+    def keep_beside_the_3d_window(self):
+        """Before the window shows: beside the 3D window if it is there; then, every LOOK_PERIOD, beside
+        a 3D window that opens over it. Not under a window manager, which places windows itself."""
+        try:
+            self._windows = window_place.TopWindows()
+        except OSError:
+            return
+        self.root.withdraw()  # sized, not shown yet
+        self.root.update_idletasks()
+        self._look()
+        self.root.deiconify()
+
+    def _reparented(self):
+        """Whether a window manager holds the window in a frame of its own."""
+        return int(self.root.wm_frame(), 16) != self.root.winfo_id()
+
+    def _look(self):
+        if self._reparented():
+            self._windows.close()
+            self._windows = None
+            return
+        root = self.root
+        for window, rectangle in self._windows.find().items():
+            if window in self._seen:
+                continue
+            self._seen.add(window)
+            size = (root.winfo_reqwidth(), root.winfo_reqheight())
+            position = self._asked or (root.winfo_rootx(), root.winfo_rooty())
+            if window_place.overlap(position + size, rectangle):
+                self._asked = window_place.beside(rectangle, size, (root.winfo_screenwidth(),
+                                                                    root.winfo_screenheight()))
+                root.geometry('+%d+%d' % self._asked)
+                # Moved now, not at idle: the raise's ConfigureNotify (old place), read first, would undo it
+                root.update_idletasks()
+                root.lift()
+        self.schedule(LOOK_PERIOD, self._look)
 
     # -- wiring -----------------------------------------------------------------------------------
     def bind(self, controller):
@@ -109,6 +154,8 @@ class TkWindow(object):
         self.root.mainloop()
 
     def destroy(self):
+        if self._windows is not None:
+            self._windows.close()
         try:
             self.root.destroy()
         except self.tk.TclError:
@@ -172,6 +219,7 @@ def main(argv=None):
     keys = teleop_keys.KeyState(node.speed, node.max_steering_angle)
     controller = teleop_keys.TeleopController(keys, window, node.publish, period=node.period)
     window.bind(controller)
+    window.keep_beside_the_3d_window()
 
     signals = []
 

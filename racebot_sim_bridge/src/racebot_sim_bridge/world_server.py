@@ -5,7 +5,7 @@ its update loop. Around it, as gazebo_ros's node does: /clock; the services and 
 gazebo_services (/gazebo/spawn_urdf_model, get/set_model_state, ..., model_states and link_states);
 /gazebo/performance_metrics (performance_metrics); the physics dynamic_reconfigure server
 (/gazebo/set_parameters, gazebo_ros.physics_reconfigure); every spawned model's sensors (sensors,
-SensorManager), model plugins (plugins.manager, PluginManager) and gazebo_ros_control (its controller
+SensorManager), model plugins (gazebo_plugins, PluginManager) and gazebo_ros_control (its controller
 manager and services, GazeboRosControlPlugin). Windows are separate processes that attach to it
 (gzclient.py; viewer.AttachedWindows).
 
@@ -47,14 +47,14 @@ import time
 import rospy
 from rosgraph_msgs.msg import Clock
 
-from racebot_sim_bridge.description import sdf_world
+from racebot_sim_bridge.description import sdf_reader
 from racebot_sim_bridge.ros_controllers import CommandTrace, RosIO
 from racebot_sim_bridge.gazebo_ros_api.services import GazeboServices
 from racebot_sim_bridge.gazebo_ros_api.performance_metrics import PerformanceMetricsPublisher
 from racebot_sim_bridge.engine.physics import PhysicsError
 from racebot_sim_bridge.gazebo_plugins.plugin_manager import PluginManager
 from racebot_sim_bridge.gazebo_ros_control.gazebo_ros_control_plugin import GazeboRosControlPlugin
-from racebot_sim_bridge.sensors import SensorManager
+from racebot_sim_bridge.sensors.sensor_manager import SensorManager
 from racebot_sim_bridge.engine.sim_time import ros_time
 from racebot_sim_bridge.engine.simulator import Simulator
 from racebot_sim_bridge.window.viewer import SYNC_PERIOD as VIEWER_SYNC_PERIOD, AttachedWindows
@@ -161,7 +161,7 @@ def resolve_world(name):
 
 class WorldServer(object):
     def __init__(self, world_path, paused, gui):
-        spec = sdf_world.load_world(world_path)
+        spec = sdf_reader.load_world(world_path)
         for w in spec.warnings:
             rospy.logwarn('%s: %s' % (os.path.basename(world_path), w))
         if gui:
@@ -372,7 +372,7 @@ def main(argv=None, debugger=False):
     path = resolve_world(world)
     try:
         server = WorldServer(path, paused, bool(rospy.get_param('~gui', False)))
-    except (sdf_world.WorldError, PhysicsError) as err:
+    except (sdf_reader.WorldError, PhysicsError) as err:
         rospy.logfatal('could not load world: %s' % err)
         sys.exit(1)
     try:

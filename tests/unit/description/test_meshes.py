@@ -11,7 +11,7 @@ import numpy as np
 import pybullet as pb
 import pytest
 
-from racebot_sim_bridge.description import meshes, model_path, sdf_world, urdf_assets, urdf_model
+from racebot_sim_bridge.description import geometry, meshes, model_path, sdf_model, sdf_reader, urdf_assets, urdf_reader
 from racebot_sim_bridge.description.materials import GAZEBO_MATERIALS, gazebo_material_rgba
 from racebot_sim_bridge.engine.physics import PhysicsWorld
 
@@ -166,7 +166,6 @@ def test_gazebo_material_names_are_their_script_colours():
     assert gazebo_material_rgba('Gazebo/Blue') == (0.0, 0.0, 1.0, 1.0)
     assert gazebo_material_rgba('Gazebo/Orange') == (1.0, 0.5088, 0.0468, 1.0)
     assert gazebo_material_rgba('Gazebo/NoSuchThing') is None
-    assert sdf_world.GAZEBO_MATERIALS is GAZEBO_MATERIALS
     for name in ('Grey', 'White', 'Black', 'Red', 'Green', 'Blue', 'Yellow', 'Purple', 'Turquoise', 'Orange'):
         assert 'Gazebo/' + name in GAZEBO_MATERIALS
 
@@ -188,7 +187,7 @@ COLOUR_URDF = '''<robot name="r">
 def test_urdf_colours_gazebo_material_wins_then_urdf_then_mesh_and_a_missing_mesh_is_left_out(tmp_path):
     dae = mesh_fixtures.write_mesh(mesh_fixtures.box((1, 1, 1)), str(tmp_path / 'y.dae'), rgba=(1, 1, 0, 1))
     xml = COLOUR_URDF.format(dae=dae)
-    model = urdf_model.parse_urdf(xml)
+    model = urdf_reader.parse_urdf(xml)
     warnings = []
     resolved = urdf_assets.resolve_assets(xml, model, warnings.append)
     assert model.links['a'].visuals[0].rgba == (1.0, 0.0, 1.0, 1.0)  # URDF colour, named at robot level
@@ -199,7 +198,7 @@ def test_urdf_colours_gazebo_material_wins_then_urdf_then_mesh_and_a_missing_mes
     assert len(warnings) == 2 and 'package://nowhere_pkg/m.stl' in warnings[0] and 'left out' in warnings[0]
     assert 'scale 1 0 1 has a zero factor' in warnings[1]
     assert 'package://' not in resolved and '<color rgba="0 1 0 1"' in resolved
-    assert urdf_assets.resolve_assets(resolved, urdf_model.parse_urdf(resolved)) == resolved  # idempotent
+    assert urdf_assets.resolve_assets(resolved, urdf_reader.parse_urdf(resolved)) == resolved  # idempotent
 
 
 
@@ -212,7 +211,7 @@ def test_urdf_attribute_style_gazebo_material_and_a_model_uri_with_a_path(isolat
     xml = ('<robot name="r"><link name="a"><visual><geometry><box size="1 1 1"/></geometry></visual>'
            '<collision><geometry><mesh filename="model://track_pkg/models/track/meshes/wall.stl"/></geometry>'
            '</collision></link><gazebo reference="a"><material value="Gazebo/Red"/></gazebo></robot>')
-    model = urdf_model.parse_urdf(xml)
+    model = urdf_reader.parse_urdf(xml)
     warnings = []
     urdf_assets.resolve_assets(xml, model, warnings.append)
     assert warnings == []
@@ -242,7 +241,7 @@ def write_wall_model(models_dir):
 def test_include_of_a_model_from_the_model_path_with_overrides(isolated, monkeypatch):
     write_wall_model(isolated / 'models')
     monkeypatch.setenv('GAZEBO_MODEL_PATH', str(isolated / 'models'))
-    world = sdf_world.parse_world(world_with(
+    world = sdf_reader.parse_world(world_with(
         '<include><uri>model://wall</uri><name>wall_1</name><pose>2 0 0.3 0 0 1.5708</pose>'
         '<static>false</static></include><include><uri>model://wall</uri></include>'))
     assert world.warnings == []
@@ -257,7 +256,7 @@ def test_include_of_a_model_from_the_model_path_with_overrides(isolated, monkeyp
 
 def test_a_missing_model_warns_once_naming_the_places_searched_and_the_world_loads(isolated, monkeypatch):
     monkeypatch.setenv('GAZEBO_MODEL_PATH', str(isolated / 'models'))
-    world = sdf_world.parse_world(world_with(
+    world = sdf_reader.parse_world(world_with(
         '<include><uri>model://ground_plane</uri></include><include><uri>model://construction_cone</uri></include>'))
     assert [m.name for m in world.models] == ['ground_plane']
     assert len(world.warnings) == 1
@@ -270,7 +269,7 @@ def test_six_includes_of_a_missing_model_are_one_warning_listing_them(isolated, 
     monkeypatch.setenv('GAZEBO_MODEL_PATH', str(isolated / 'models'))
     includes = ''.join('<include><uri>model://construction_cone</uri><name>cone_%d</name></include>' % i
                        for i in range(6))
-    world = sdf_world.parse_world(world_with(includes + '<include><uri>model://ground_plane</uri></include>'))
+    world = sdf_reader.parse_world(world_with(includes + '<include><uri>model://ground_plane</uri></include>'))
     assert [m.name for m in world.models] == ['ground_plane']
     assert len(world.warnings) == 1, world.warnings
     assert 'searched' in world.warnings[0] and 'all 6 includes of it: cone_0, cone_1' in world.warnings[0]
@@ -280,7 +279,7 @@ def test_a_missing_mesh_used_by_many_models_is_one_warning_naming_it(isolated, m
     folder = mesh_fixtures.write_model(str(isolated / 'models'), 'cone', WALL_MODEL.replace('wall', 'cone'))
     assert not os.path.exists(os.path.join(folder, 'meshes'))
     monkeypatch.setenv('GAZEBO_MODEL_PATH', str(isolated / 'models'))
-    world = sdf_world.parse_world(world_with(''.join(
+    world = sdf_reader.parse_world(world_with(''.join(
         '<include><uri>model://cone</uri><name>cone_%d</name></include>' % i for i in range(3))))
     assert len(world.warnings) == 2, world.warnings  # the collision's mesh and the visual's, once each
     assert 'model://cone/meshes/cone.stl not found; searched' in world.warnings[0]
@@ -297,7 +296,7 @@ def test_an_included_model_file_that_cannot_be_used_is_one_warning(isolated, mon
     folder = mesh_fixtures.write_model(str(isolated / 'models'), 'odd', '')
     Path(folder, 'model.sdf').write_text(sdf)
     monkeypatch.setenv('GAZEBO_MODEL_PATH', str(isolated / 'models'))
-    world = sdf_world.parse_world(world_with('<include><uri>model://odd</uri></include>'))
+    world = sdf_reader.parse_world(world_with('<include><uri>model://odd</uri></include>'))
     assert world.models == [] and len(world.warnings) == 1, world.warnings
     assert needle in world.warnings[0] and world.warnings[0].endswith('; skipped')
     assert 'skipped; skipped' not in world.warnings[0]
@@ -307,7 +306,7 @@ def test_a_broken_mesh_in_a_model_warns_and_the_rest_loads(isolated, monkeypatch
     folder = write_wall_model(isolated / 'models')
     Path(folder, 'meshes', 'wall.stl').write_bytes(b'')
     monkeypatch.setenv('GAZEBO_MODEL_PATH', str(isolated / 'models'))
-    world = sdf_world.parse_world(world_with('<include><uri>model://wall</uri></include>'))
+    world = sdf_reader.parse_world(world_with('<include><uri>model://wall</uri></include>'))
     assert len(world.warnings) == 1 and 'is an empty file' in world.warnings[0]
     assert world.models[0].links[0].collisions == [] and len(world.models[0].links[0].visuals) == 1
 
@@ -325,7 +324,7 @@ def test_an_include_uri_with_a_path_resolves_the_whole_path_under_each_model_fol
     decoy = isolated / 'decoy'
     (decoy / 'track_pkg').mkdir(parents=True)  # a folder of the first name, without models/track below it
     monkeypatch.setenv('GAZEBO_MODEL_PATH', str(decoy))
-    world = sdf_world.parse_world(world_with('<include><uri>model://track_pkg/models/track/</uri></include>'))
+    world = sdf_reader.parse_world(world_with('<include><uri>model://track_pkg/models/track/</uri></include>'))
     assert world.warnings == []
     (model,) = world.models
     assert model.name == 'wall' and model.links[0].collisions[0].shape.kind == 'mesh'
@@ -335,7 +334,7 @@ def test_an_include_uri_with_a_path_resolves_the_whole_path_under_each_model_fol
 def test_an_include_uri_naming_a_file_is_one_warning_saying_it_is_no_model_folder(isolated, monkeypatch):
     folder = write_wall_model(isolated / 'models')
     monkeypatch.setenv('GAZEBO_MODEL_PATH', str(isolated / 'models'))
-    world = sdf_world.parse_world(world_with('<include><uri>model://wall/model.sdf</uri></include>'))
+    world = sdf_reader.parse_world(world_with('<include><uri>model://wall/model.sdf</uri></include>'))
     assert world.models == [] and len(world.warnings) == 1, world.warnings
     assert os.path.join(folder, 'model.sdf') in world.warnings[0] and 'not a model folder' in world.warnings[0]
 
@@ -359,8 +358,8 @@ def test_a_static_mesh_collides_with_its_exact_concave_shape(isolated, physics):
     parts.append(mesh_fixtures.box((2.2, 0.2, 1.0)).apply_translation((0, 1.0, 0)))
     import trimesh
     path = mesh_fixtures.write_mesh(trimesh.util.concatenate(parts), str(isolated / 'u.stl'))
-    model = sdf_world.Model('u', pose=(0, 0, 0.5, 0, 0, 0), static=True, links=[sdf_world.Link('link', collisions=[
-        sdf_world.Collision('c', sdf_world.ZERO_POSE, sdf_world.Shape('mesh', filename=path, scale=(1, 1, 1)))])])
+    model = sdf_model.Model('u', pose=(0, 0, 0.5, 0, 0, 0), static=True, links=[sdf_model.Link('link', collisions=[
+        sdf_model.Collision('c', sdf_model.ZERO_POSE, geometry.Shape('mesh', filename=path, scale=(1, 1, 1)))])])
     world = physics()
     world.add_sdf_model(model)
     through = world.client.rayTest((0, -3, 0.5), (0, 3, 0.5))[0]
@@ -375,8 +374,8 @@ def test_a_robot_with_mesh_wheels_and_body_rests_on_its_wheels(isolated, physics
     heights = {}
     for label, xml in (('primitives', racebot_xml), ('meshes', urdf)):
         world = physics()
-        world.load_world(sdf_world.parse_world(world_with('<include><uri>model://ground_plane</uri></include>')))
-        model = urdf_model.parse_urdf(xml)
+        world.load_world(sdf_reader.parse_world(world_with('<include><uri>model://ground_plane</uri></include>')))
+        model = urdf_reader.parse_urdf(xml)
         warnings = []
         body = world.spawn_urdf('car', model, xml, position=(0, 0, 0.05), warn=warnings.append)
         assert warnings == []
@@ -394,10 +393,10 @@ def test_a_robot_with_mesh_wheels_and_body_rests_on_its_wheels(isolated, physics
 def test_visuals_false_builds_no_visual_shapes(isolated, physics):
     # (PyBullet's renderer draws the collision shapes of a body without visual shapes, in its default colour)
     path = mesh_fixtures.write_mesh(mesh_fixtures.box((1, 1, 1)), str(isolated / 'b.obj'))
-    shape = sdf_world.Shape('mesh', filename=meshes.convert(path).obj_path, scale=(1, 1, 1))
-    model = sdf_world.Model('m', static=True, links=[sdf_world.Link('link', collisions=[
-        sdf_world.Collision('c', sdf_world.ZERO_POSE, shape)], visuals=[
-        sdf_world.Visual('v', sdf_world.ZERO_POSE, shape, (1, 0, 0, 1))])])
+    shape = geometry.Shape('mesh', filename=meshes.convert(path).obj_path, scale=(1, 1, 1))
+    model = sdf_model.Model('m', static=True, links=[sdf_model.Link('link', collisions=[
+        sdf_model.Collision('c', sdf_model.ZERO_POSE, shape)], visuals=[
+        sdf_model.Visual('v', sdf_model.ZERO_POSE, shape, (1, 0, 0, 1))])])
     for visuals, red in ((True, True), (False, False)):
         world = physics(visuals=visuals)
         body = world.add_sdf_model(model)
@@ -428,13 +427,13 @@ def test_a_copy_built_from_body_source_in_another_process_needs_no_search_path(i
     mesh_fixtures.write_mesh(mesh_fixtures.box((0.3, 0.3, 0.3)), os.path.join(pkg, 'm', 'b.stl'))
     monkeypatch.setenv('GAZEBO_MODEL_PATH', str(isolated / 'models'))
     world = physics()
-    wall = sdf_world.parse_world(world_with('<include><uri>model://wall</uri></include>')).models[0]
+    wall = sdf_reader.parse_world(world_with('<include><uri>model://wall</uri></include>')).models[0]
     urdf = ('<robot name="r"><link name="l"><inertial><mass value="1"/><inertia ixx="1" iyy="1" izz="1" ixy="0" '
             'ixz="0" iyz="0"/></inertial><visual><geometry><mesh filename="package://fixture_pkg/m/b.stl"/></geometry>'
             '</visual><collision><geometry><mesh filename="package://fixture_pkg/m/b.stl"/></geometry></collision>'
             '</link><gazebo reference="l"><material>Gazebo/Red</material></gazebo></robot>')
     sources = {'wall': world.add_sdf_model(wall).source,
-               'robot': world.spawn_urdf('robot', urdf_model.parse_urdf(urdf), urdf).source}
+               'robot': world.spawn_urdf('robot', urdf_reader.parse_urdf(urdf), urdf).source}
     path = isolated / 'sources.pickle'
     path.write_bytes(pickle.dumps(sources))
     import shutil
@@ -454,13 +453,13 @@ def test_each_visual_of_a_link_keeps_its_colour_in_a_camera_image(isolated, phys
     from racebot_sim_bridge.sensors.render import render
     from racebot_sim_bridge.sensors.scene import SceneColours
     path = mesh_fixtures.write_mesh(mesh_fixtures.box((0.5, 0.5, 0.5)), str(isolated / 'b.stl'))
-    mesh = sdf_world.Shape('mesh', filename=meshes.convert(path).obj_path, scale=(1, 1, 1))
-    link = sdf_world.Link('link', visuals=[
-        sdf_world.Visual('red', (0, 0.4, 0, 0, 0, 0), sdf_world.Shape('box', size=(0.5, 0.5, 0.5)), (1, 0, 0, 1)),
-        sdf_world.Visual('blue', (0, -0.4, 0, 0, 0, 0), mesh, (0, 0, 1, 1))],
-        collisions=[sdf_world.Collision('c', sdf_world.ZERO_POSE, sdf_world.Shape('box', size=(0.5, 1.3, 0.5)))])
+    mesh = geometry.Shape('mesh', filename=meshes.convert(path).obj_path, scale=(1, 1, 1))
+    link = sdf_model.Link('link', visuals=[
+        sdf_model.Visual('red', (0, 0.4, 0, 0, 0, 0), geometry.Shape('box', size=(0.5, 0.5, 0.5)), (1, 0, 0, 1)),
+        sdf_model.Visual('blue', (0, -0.4, 0, 0, 0, 0), mesh, (0, 0, 1, 1))],
+        collisions=[sdf_model.Collision('c', sdf_model.ZERO_POSE, geometry.Shape('box', size=(0.5, 1.3, 0.5)))])
     world = physics()
-    world.add_sdf_model(sdf_world.Model('two', pose=(2, 0, 0, 0, 0, 0), static=True, links=[link]))
+    world.add_sdf_model(sdf_model.Model('two', pose=(2, 0, 0, 0, 0, 0), static=True, links=[link]))
     SceneColours(world).refresh()
     view = world.client.computeViewMatrix([0, 0, 0], [1, 0, 0], [0, 0, 1])
     proj = world.client.computeProjectionMatrixFOV(60, 1, 0.05, 10)
@@ -485,7 +484,7 @@ def test_a_world_of_included_dynamic_mesh_cones_stands_on_the_ground(isolated, m
     monkeypatch.setenv('GAZEBO_MODEL_PATH', str(isolated / 'models'))
     includes = ''.join('<include><uri>model://construction_cone</uri><name>cone_%d</name><pose>%g 1 0 0 0 0</pose>'
                        '</include>' % (i, i) for i in range(6))
-    spec = sdf_world.parse_world(world_with('<include><uri>model://ground_plane</uri></include>' + includes))
+    spec = sdf_reader.parse_world(world_with('<include><uri>model://ground_plane</uri></include>' + includes))
     assert spec.warnings == []
     world = physics()
     assert world.load_world(spec) == ['ground_plane'] + ['cone_%d' % i for i in range(6)]

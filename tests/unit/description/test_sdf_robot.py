@@ -1,4 +1,4 @@
-"""SDF robots: an SDF model with joints, model plugins or sensors, read by sdf_world, written as a URDF by
+"""SDF robots: an SDF model with joints, model plugins or sensors, read by sdf_reader, written as a URDF by
 sdf_urdf and spawned through the URDF path (Simulator.spawn_sdf_robot, spawn_world_robots) on a real
 Simulator. The fixture is tests/fixtures/robots/sdf_diffbot's Gazebo model (a diff-drive base with a caster,
 the diff-drive plugin and a laser); the pendulum checks an SDF joint <pose> that moves the axis."""
@@ -8,7 +8,7 @@ import pathlib
 import pytest
 from geometry_msgs.msg import Twist
 
-from racebot_sim_bridge.description import sdf_urdf, sdf_world, urdf_model
+from racebot_sim_bridge.description import sdf_reader, sdf_urdf, urdf_reader
 from racebot_sim_bridge.kinematics.rotations import rotate, yaw_of
 from racebot_sim_bridge.engine.simulator import SpawnError
 
@@ -22,8 +22,8 @@ MODEL_SDF = ROBOTS / 'sdf_diffbot' / 'models' / 'sdf_diffbot' / 'model.sdf'
 
 
 def model_of(body):
-    """The one sdf_world.Model of a <model> element's text."""
-    world = sdf_world.parse_world('<sdf version="1.6"><world name="w">%s</world></sdf>' % body)
+    """The one sdf_model.Model of a <model> element's text."""
+    world = sdf_reader.parse_world('<sdf version="1.6"><world name="w">%s</world></sdf>' % body)
     assert len(world.models) == 1, world.warnings
     return world.models[0]
 
@@ -62,7 +62,7 @@ def test_the_urdf_has_each_joint_origin_and_axis_in_the_child_frame():
     conversion = sdf_urdf.model_urdf(model_of(diffbot_text()))
     assert conversion.warnings == []
     assert conversion.root_pose[0] == pytest.approx((0.0, 0.0, 0.1))
-    robot = urdf_model.parse_urdf(conversion.urdf)
+    robot = urdf_reader.parse_urdf(conversion.urdf)
     left, right, laser = (robot.joints[n] for n in ('left_wheel_hinge', 'right_wheel_hinge', 'laser_joint'))
     assert left.type == right.type == 'continuous' and laser.type == 'fixed'
     assert left.origin_xyz == pytest.approx((-0.1, 0.17, 0.0), abs=1e-12)
@@ -91,7 +91,7 @@ def test_the_urdf_has_each_joint_origin_and_axis_in_the_child_frame():
 def test_revolute_limits(limit, kind, bounds):
     body = '<model name="m">%s%s%s</model>' % (link('a'), link('b', '0 0 1 0 0 0'),
                                                 joint('j', 'a', 'b', extra='<axis><xyz>1 0 0</xyz>%s</axis>' % limit))
-    j = urdf_model.parse_urdf(sdf_urdf.model_urdf(model_of(body)).urdf).joints['j']
+    j = urdf_reader.parse_urdf(sdf_urdf.model_urdf(model_of(body)).urdf).joints['j']
     assert j.type == kind
     if bounds:
         assert (j.limit.lower, j.limit.upper, j.limit.effort, j.limit.velocity) == bounds
@@ -101,7 +101,7 @@ def test_prismatic_joint_and_dynamics():
     body = '<model name="m">%s%s%s</model>' % (link('a'), link('b', '0 0 1 0 0 0'), joint(
         'slide', 'a', 'b', 'prismatic', '<axis><xyz>0 0 2</xyz><limit><lower>0</lower><upper>0.3</upper></limit>'
         '<dynamics><damping>0.5</damping><friction>0.2</friction></dynamics></axis>'))
-    j = urdf_model.parse_urdf(sdf_urdf.model_urdf(model_of(body)).urdf).joints['slide']
+    j = urdf_reader.parse_urdf(sdf_urdf.model_urdf(model_of(body)).urdf).joints['slide']
     assert (j.type, j.axis, j.limit.lower, j.limit.upper) == ('prismatic', (0.0, 0.0, 1.0), 0.0, 0.3)
     assert (j.dynamics.damping, j.dynamics.friction) == (0.5, 0.2)
 
@@ -232,7 +232,7 @@ def test_the_robots_of_a_world_file_are_spawned_with_their_plugins(tmp_path):
     path = tmp_path / 'robot.world'
     broken = '<model name="broken">%s%s%s</model>' % (link('a'), link('b'), joint('j', 'a', 'c'))
     path.write_text(GROUND.replace('</world>', diffbot_text() + broken + '</world>'))
-    spec = sdf_world.load_world(str(path))
+    spec = sdf_reader.load_world(str(path))
     log = RecordingLog()
     sim = Simulator(spec, NullIO(), log, lambda p: None)
     assert sorted(sim.world.bodies) == ['ground_plane']  # the robots wait for the managers

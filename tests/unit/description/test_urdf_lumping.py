@@ -9,7 +9,7 @@ import pytest
 from racebot_sim_bridge.kinematics import rotations
 from racebot_sim_bridge.engine.physics import PhysicsWorld
 from racebot_sim_bridge.description.urdf_lumping import lump_fixed_links
-from racebot_sim_bridge.description.urdf_model import parse_urdf
+from racebot_sim_bridge.description.urdf_reader import parse_urdf
 
 # base --fixed (kept unless told)--> arm --fixed--> tip; arm --revolute--> wheel
 ROBOT = """<robot name="r">

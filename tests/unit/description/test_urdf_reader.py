@@ -1,11 +1,12 @@
-"""Unit tests of racebot_sim_bridge.description.urdf_model (URDF + Gazebo extensions)."""
+"""Unit tests of racebot_sim_bridge.description.urdf_reader and urdf_model (URDF + Gazebo extensions)."""
 
 import math
 
 import pytest
 from hypothesis import given, settings, strategies as st
 
-from racebot_sim_bridge.description.urdf_model import UrdfError, normalise_interface, parse_urdf
+from racebot_sim_bridge.description.urdf_model import UrdfError, normalise_interface
+from racebot_sim_bridge.description.urdf_reader import parse_urdf
 
 EFFORT = 'hardware_interface/EffortJointInterface'
 

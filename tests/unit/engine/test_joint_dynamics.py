@@ -3,7 +3,7 @@ a viscous torque -damping * velocity, and Coulomb friction holding the joint unt
 a real Simulator: an effort-driven disc (inertia 0.01 kg m^2) turning about a vertical axis."""
 import pytest
 
-from racebot_sim_bridge.description import sdf_world
+from racebot_sim_bridge.description import sdf_reader
 from racebot_sim_bridge.engine.simulator import Simulator
 from racebot_sim_bridge.gazebo_ros_control.gazebo_ros_control_plugin import GazeboRosControlPlugin
 
@@ -28,7 +28,7 @@ class Log(object):
 
 
 def spin(dynamics, effort, seconds):
-    sim = Simulator(sdf_world.parse_world(sdf_world.EMPTY_WORLD_SDF), io=None, log=Log(), get_params={}.get)
+    sim = Simulator(sdf_reader.parse_world(sdf_reader.EMPTY_WORLD_SDF), io=None, log=Log(), get_params={}.get)
     GazeboRosControlPlugin.attach(sim)
     robot = sim.spawn_urdf('spinner', SPINNER % dynamics)
     handle = robot.control.hw.handles['spin']

@@ -11,7 +11,7 @@ import sys
 import threading
 import time
 
-from racebot_sim_bridge.description import sdf_world
+from racebot_sim_bridge.description import sdf_reader
 from racebot_sim_bridge.engine.simulator import Simulator
 
 CYCLES = 3000
@@ -25,7 +25,7 @@ class Log(object):
 
 
 def test_no_update_starts_once_a_pause_has_returned():
-    sim = Simulator(sdf_world.parse_world(sdf_world.EMPTY_WORLD_SDF), io=None, log=Log(), get_params={}.get)
+    sim = Simulator(sdf_reader.parse_world(sdf_reader.EMPTY_WORLD_SDF), io=None, log=Log(), get_params={}.get)
     stop = threading.Event()
 
     def world_loop():  # the world server's loop, without ROS
@@ -60,7 +60,7 @@ def test_no_update_starts_once_a_pause_has_returned():
 
 
 def test_a_paused_world_does_not_step():
-    sim = Simulator(sdf_world.parse_world(sdf_world.EMPTY_WORLD_SDF), io=None, log=Log(), get_params={}.get)
+    sim = Simulator(sdf_reader.parse_world(sdf_reader.EMPTY_WORLD_SDF), io=None, log=Log(), get_params={}.get)
     try:
         sim.set_paused(True)
         assert (sim.step_unless_paused(), sim.steps, sim.time) == (False, 0, 0.0)

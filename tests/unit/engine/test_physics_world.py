@@ -12,7 +12,7 @@ from pathlib import Path
 import pybullet as pb
 import pytest
 
-from racebot_sim_bridge.description import sdf_world, urdf_model
+from racebot_sim_bridge.description import sdf_reader, urdf_reader
 from conftest import render_racebot
 from racebot_sim_bridge.engine.physics import NEGLIGIBLE_MASS, PhysicsError, PhysicsWorld
 
@@ -32,7 +32,7 @@ WHEEL_LINKS = ('left_front_wheel', 'right_front_wheel', 'left_rear_wheel', 'righ
 
 @pytest.fixture(scope='module')
 def racebot_model(racebot_xml):
-    return urdf_model.parse_urdf(racebot_xml)
+    return urdf_reader.parse_urdf(racebot_xml)
 
 
 @pytest.fixture
@@ -41,7 +41,7 @@ def make_world():
 
     def make(world_file=EMPTY_WORLD, world_text=None):
         w = PhysicsWorld(step_size=0.001, gravity=(0.0, 0.0, -9.8))
-        spec = sdf_world.parse_world(world_text) if world_text else sdf_world.load_world(str(world_file))
+        spec = sdf_reader.parse_world(world_text) if world_text else sdf_reader.load_world(str(world_file))
         w.load_world(spec)
         worlds.append(w)
         return w
@@ -87,7 +87,7 @@ def test_links_without_inertial_get_negligible_mass(world, car, racebot_xml):
     # A link of its own without <inertial> (here kept by preserveFixedJoint) gets a negligible mass.
     xml = racebot_xml.replace('</robot>', '<gazebo reference="realsense_depth_joint">'
                                           '<preserveFixedJoint>true</preserveFixedJoint></gazebo></robot>')
-    kept = world.spawn_urdf('kept', urdf_model.parse_urdf(xml), xml)
+    kept = world.spawn_urdf('kept', urdf_reader.parse_urdf(xml), xml)
     assert dynamics(world, kept, 'realsense_depth')[0] == pytest.approx(NEGLIGIBLE_MASS, abs=1e-12)
     assert dynamics(world, kept, 'base_footprint')[0] == pytest.approx(4.25, abs=1e-9)
 
@@ -110,7 +110,7 @@ def test_single_line_urdf_loads(world, racebot_model):
     # xacro's toxml(), `rosparam set robot_description "$(cat compact.urdf)"` or any generator that
     # writes no newlines: the model must load as the pretty form does.
     xml = render_racebot(pretty=False)
-    body = world.spawn_urdf('compact', urdf_model.parse_urdf(xml), xml)
+    body = world.spawn_urdf('compact', urdf_reader.parse_urdf(xml), xml)
     assert total_mass(world, body) == pytest.approx(CAR_MASS, abs=0.001)
 
 
@@ -120,7 +120,7 @@ def test_an_axis_without_xyz_is_urdfdoms_default(world):
            'ixz="0" iyz="0"/></inertial></link><link name="b"><inertial><mass value="1"/><inertia ixx="1" iyy="1" '
            'izz="1" ixy="0" ixz="0" iyz="0"/></inertial></link><joint name="j" type="revolute"><parent link="a"/>'
            '<child link="b"/><axis/><limit effort="1" lower="-1" upper="1" velocity="1"/></joint></robot>')
-    model = urdf_model.parse_urdf(xml)
+    model = urdf_reader.parse_urdf(xml)
     body = world.spawn_urdf('r', model, xml)
     assert model.joints['j'].axis == (1.0, 0.0, 0.0)
     assert world.client.getJointInfo(body.id, body.joints['j'].index)[13] == (1.0, 0.0, 0.0)

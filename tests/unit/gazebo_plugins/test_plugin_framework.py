@@ -1,10 +1,11 @@
-"""plugins/: the registry key, PluginParams' warnings and fallbacks, and PluginManager's handling of
-unknown, refused and failing plugins (the world server must never die of a plugin)."""
+"""gazebo_plugins/: PluginParams' warnings and fallbacks, and PluginManager's handling of unknown, refused and
+failing plugins (the world server must never die of a plugin)."""
 import pytest
 
-from racebot_sim_bridge.gazebo_plugins import plugin_key
+from racebot_sim_bridge.gazebo_plugins import PluginKind
 from racebot_sim_bridge.gazebo_plugins.model_plugin import ModelPlugin, PluginError, PluginParams
 from racebot_sim_bridge.gazebo_plugins.plugin_manager import PluginManager
+from racebot_sim_bridge.gazebo_plugins.registry import REGISTRY, Registry
 from racebot_sim_bridge.engine.simulator import Simulator
 from racebot_sim_bridge.description.urdf_model import GazeboPlugin, RobotModel
 
@@ -35,12 +36,6 @@ class Robot(object):
     def __init__(self, plugins):
         self.name = 'bot'
         self.model = RobotModel('bot', plugins=plugins)
-
-
-@pytest.mark.parametrize('filename', ['libgazebo_ros_diff_drive.so', '/opt/lib/libgazebo_ros_diff_drive.so',
-                                      'gazebo_ros_diff_drive', 'libgazebo_ros_diff_drive'])
-def test_plugin_key(filename):
-    assert plugin_key(filename) == 'gazebo_ros_diff_drive'
 
 
 def params(**values):
@@ -81,7 +76,7 @@ def test_bad_values_warn_with_the_tag_and_the_value_used(tag, text, call, expect
 
 
 class Recorder(ModelPlugin):
-    filename = 'libgazebo_ros_recorder.so'
+    libraries = ('libgazebo_ros_recorder.so',)
 
     def __init__(self, ctx, robot, spec):
         if spec.params.get('refuse'):
@@ -107,7 +102,9 @@ class Recorder(ModelPlugin):
 
 def manager(*plugins):
     log, sim = Log(), Sim()
-    m = PluginManager(log, sim, registry={'gazebo_ros_recorder': Recorder})
+    # the Recorder for the model plugins (so hector_gazebo_ros_gps is not simulated here), the rest as registered
+    others = {c for c in REGISTRY.classes.values() if c.plugin_kind is not PluginKind.MODEL}
+    m = PluginManager(log, sim, registry=Registry([Recorder, *others]))
     m.made = []
     robot = Robot(list(plugins))
     for hook in sim.on_spawn:

@@ -4,7 +4,7 @@ noetic-devel: gazebo_ros_api_plugin's walk, gazebo_ros_control, GetRobotNamespac
 Pure rules, the sensors' topics, and the controller manager's namespace of a spawned robot."""
 import pytest
 
-from racebot_sim_bridge.description import sdf_world, urdf_model
+from racebot_sim_bridge.description import sdf_reader, urdf_reader
 from racebot_sim_bridge.gazebo_plugins.plugin_namespace import (after_spawn, control_namespace, resolve,
                                                                 sensor_namespace)
 from racebot_sim_bridge.sensors.config import sensor_config
@@ -65,7 +65,7 @@ def test_relative_namespaces_resolve_in_the_world_servers_namespace():
 
 
 def test_racebot_sensors_spawned_at_the_root_and_with_an_empty_namespace(racebot_xml):
-    model = urdf_model.parse_urdf(racebot_xml)
+    model = urdf_reader.parse_urdf(racebot_xml)
 
     def topics(requested):
         return {c.kind: c.topics for c in (sensor_config(s, requested, 'racebot') for s in model.sensors)}
@@ -85,7 +85,7 @@ def _laser(plugin_body):
     xml = ('<robot name="r"><link name="a"/><gazebo reference="a"><sensor type="ray" name="s"><ray><scan>'
            '<horizontal><samples>5</samples></horizontal></scan><range><min>0.1</min><max>4</max></range></ray>'
            '<plugin name="p" filename="libgazebo_ros_laser.so">%s</plugin></sensor></gazebo></robot>' % plugin_body)
-    return urdf_model.parse_urdf(xml).sensors[0]
+    return urdf_reader.parse_urdf(xml).sensors[0]
 
 
 def test_laser_topic_defaults_as_gazebo_ros_laser():
@@ -122,7 +122,7 @@ class _Log(object):
     ('<robotNamespace>/mine</robotNamespace>', '', '/mine'),
 ])
 def test_spawned_robot_controller_manager_namespace(element, requested, expected_ns):
-    sim = Simulator(sdf_world.parse_world(EMPTY_WORLD), None, _Log(), lambda path: None)
+    sim = Simulator(sdf_reader.parse_world(EMPTY_WORLD), None, _Log(), lambda path: None)
     GazeboRosControlPlugin.attach(sim)
     try:
         robot = sim.spawn_urdf('bot', _robot(element), requested)
@@ -133,7 +133,7 @@ def test_spawned_robot_controller_manager_namespace(element, requested, expected
 
 
 def test_two_robots_cannot_share_a_controller_manager_namespace():
-    sim = Simulator(sdf_world.parse_world(EMPTY_WORLD), None, _Log(), lambda path: None)
+    sim = Simulator(sdf_reader.parse_world(EMPTY_WORLD), None, _Log(), lambda path: None)
     GazeboRosControlPlugin.attach(sim)
     try:
         sim.spawn_urdf('one', _robot(''), '/')

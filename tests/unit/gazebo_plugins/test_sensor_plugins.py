@@ -6,12 +6,12 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from racebot_sim_bridge.description import urdf_model
+from racebot_sim_bridge.description import urdf_reader
 from racebot_sim_bridge.kinematics.rotations import rpy_to_quaternion
 from racebot_sim_bridge.sensors import messages as msgs
 from racebot_sim_bridge.sensors.camera import PinholeCamera, mask_depth
-from racebot_sim_bridge.sensors.config import (SensorConfigError, resolve_frame, sensor_config, tf_resolve,
-                                               unsupported_plugins)
+from racebot_sim_bridge.gazebo_plugins.registry import REGISTRY
+from racebot_sim_bridge.sensors.config import SensorConfigError, resolve_frame, sensor_config, tf_resolve
 from racebot_sim_bridge.sensors.contact_points import read_contacts
 from racebot_sim_bridge.sensors.contact import (CollisionKind, ContactPoint, NamedShape,
                                                 contact_collision_after_lumping, friction_reversed, group_contacts,
@@ -24,7 +24,7 @@ ROBOT = Path(__file__).resolve().parents[2] / 'fixtures' / 'sensor_plugins' / 'r
 
 @pytest.fixture(scope='module')
 def model():
-    return urdf_model.parse_urdf(ROBOT.read_text())
+    return urdf_reader.parse_urdf(ROBOT.read_text())
 
 
 def configs(model, spawn_ns='/', name='sensor_robot'):
@@ -34,7 +34,7 @@ def configs(model, spawn_ns='/', name='sensor_robot'):
 def _sensor(body, plugin):
     xml = ('<robot name="r"><link name="a"><collision><geometry><box size="1 1 1"/></geometry></collision></link>'
            '<gazebo reference="a">%s</gazebo></robot>' % body.replace('PLUGIN', plugin))
-    return urdf_model.parse_urdf(xml).sensors[0]
+    return urdf_reader.parse_urdf(xml).sensors[0]
 
 
 RAY = ('<sensor type="ray" name="s"><update_rate>10</update_rate><ray><scan><horizontal><samples>3</samples>'
@@ -131,7 +131,7 @@ def test_collision_names_as_sdformat_gives_them(model):
            '<link name="bb"><collision name="tip"><geometry><sphere radius="1"/></geometry></collision></link>'
            '<joint name="z" type="fixed"><parent link="b"/><child link="c"/></joint>'
            '<joint name="a" type="fixed"><parent link="b"/><child link="bb"/></joint></robot>')
-    m = urdf_model.parse_urdf(xml)
+    m = urdf_reader.parse_urdf(xml)
     # own first, then lumped children in joint-name order ('a' before 'z'); a name starting with the
     # link's own keeps no prefix
     assert [s.name for s in urdf_collision_shapes(m, 'b')] == [
@@ -345,5 +345,6 @@ def test_urdf_reads_every_camera_and_the_contact_collisions(model):
 def test_a_plugin_racebot_does_not_simulate_is_named(model):
     specs = {s.name: s for s in model.sensors}
     assert sensor_config(specs['block_laser'], '/', 'sensor_robot') is None
-    assert unsupported_plugins(specs['block_laser']) == ['libgazebo_ros_block_laser.so']
-    assert unsupported_plugins(specs['sonar']) == []
+    warning, = (REGISTRY.not_simulated('sensor_robot', p, specs['block_laser']) for p in specs['block_laser'].plugins)
+    assert "sensor 'block_laser' (type ray): plugin 'block_laser_controller' (libgazebo_ros_block_laser.so)" in warning
+    assert [REGISTRY.not_simulated('sensor_robot', p, specs['sonar']) for p in specs['sonar'].plugins] == [None]

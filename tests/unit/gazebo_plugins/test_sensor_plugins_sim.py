@@ -8,8 +8,8 @@ import numpy as np
 import pybullet as pb
 import pytest
 
-from racebot_sim_bridge.description import sdf_world
-from racebot_sim_bridge.sensors import SensorManager
+from racebot_sim_bridge.description import sdf_reader
+from racebot_sim_bridge.sensors.sensor_manager import SensorManager
 from racebot_sim_bridge.engine.simulator import Simulator
 
 from racebot_sim_bridge.gazebo_ros_api.performance_metrics import PerformanceMetricsPublisher
@@ -36,7 +36,7 @@ BUMPER = 'sensor_robot::base_link::base_link_fixed_joint_lump__bumper_link_colli
 def make_world(tmp_path, urdf):
     path = tmp_path / 'box.world'
     path.write_text(WORLD)
-    sim = Simulator(sdf_world.load_world(str(path)), NullIO(), Log(), lambda path: None)
+    sim = Simulator(sdf_reader.load_world(str(path)), NullIO(), Log(), lambda path: None)
     fake = FakeRospy({'~sensors/report_period': 0, '~sensors/render_budget': 1.0, '~sensors/noise': False,
                       '~sensors/render_worker': False})
     manager = SensorManager(fake, sim)
@@ -69,11 +69,10 @@ def test_topics_and_one_warning_for_the_plugin_not_simulated(world):
     warned = [msg for level, msg in fake.logs if level == 'warn' and 'libgazebo_ros_block_laser.so' in msg]
     assert len(warned) == 1
     assert "'block_laser'" in warned[0]
-    # the README by its path in this checkout: a user can open it from the log line
-    readme = str(Path(__file__).resolve().parents[3] / 'README.md')
-    assert "see the table 'Supported plugins, sensors and controllers' in %s" % readme in warned[0]
-    with open(readme) as f:
-        assert '## Supported plugins, sensors and controllers' in f.read()
+    # the docs page by its path in this checkout: a user can open it from the log line
+    page = Path(__file__).resolve().parents[3] / 'docs' / 'SUPPORTED.md'
+    assert "see the table 'Supported plugins, sensors and controllers' in %s" % page in warned[0]
+    assert '# Supported plugins, sensors and controllers' in page.read_text().splitlines()
 
 
 def test_a_plugin_not_simulated_beside_one_that_is(tmp_path):
@@ -103,7 +102,7 @@ def test_sonar_reads_the_distance_to_the_box(world):
 def test_range_and_bumper_frames_take_the_tf_prefix_of_their_namespace(tmp_path):
     path = tmp_path / 'box.world'
     path.write_text(WORLD)
-    sim = Simulator(sdf_world.load_world(str(path)), NullIO(), Log(), lambda path: None)
+    sim = Simulator(sdf_reader.load_world(str(path)), NullIO(), Log(), lambda path: None)
     try:
         fake = FakeRospy({'~sensors/report_period': 0, '~sensors/render_worker': False, '/fleet/tf_prefix': 'bot1'})
         SensorManager(fake, sim)

@@ -4,7 +4,7 @@ import math
 
 import pytest
 
-from racebot_sim_bridge.description import sdf_world
+from racebot_sim_bridge.description import sdf_reader
 from racebot_sim_bridge.gazebo_ros_api.forces import (ForceSchedule, Job, job_due, job_over, link_address,
                                                       shift_wrench, start_and_duration, truncate_effort,
                                                       wrench_in_link)
@@ -139,7 +139,7 @@ class _Log(object):
 
 @pytest.fixture
 def box_sim():
-    sim = Simulator(sdf_world.parse_world(BOX_WORLD), io=None, log=_Log(), get_params=lambda p: None)
+    sim = Simulator(sdf_reader.parse_world(BOX_WORLD), io=None, log=_Log(), get_params=lambda p: None)
     yield sim
     sim.close()
 

@@ -1,10 +1,10 @@
-"""The pure parts of the property services (gazebo_properties), the world's lights (sdf_world) and the
+"""The pure parts of the property services (gazebo_properties), the world's lights (sdf_reader) and the
 performance_metrics arithmetic (performance_metrics). No master."""
 import math
 
 import pytest
 
-from racebot_sim_bridge.description import sdf_world, urdf_model
+from racebot_sim_bridge.description import sdf_reader, urdf_reader
 from racebot_sim_bridge.gazebo_ros_api.properties import principal_in_frame, tensor_from_principal, urdf_geom_names
 from racebot_sim_bridge.gazebo_ros_api.performance_metrics import NO_FPS, MetricsWindow
 from racebot_sim_bridge.kinematics.rotations import rpy_to_quaternion
@@ -48,7 +48,7 @@ LUMPED = """<robot name="r">
 
 
 def test_collision_names_as_sdformat_gives_them():
-    model = urdf_model.parse_urdf(LUMPED)
+    model = urdf_reader.parse_urdf(LUMPED)
     assert urdf_geom_names(model, 'base') == ['base_collision', 'base_collision_1',
                                               'base_fixed_joint_lump__plate_collision_2']
     assert urdf_geom_names(model, 'wheel') == ['wheel_collision']
@@ -56,14 +56,14 @@ def test_collision_names_as_sdformat_gives_them():
 
 # -- lights -----------------------------------------------------------------------------------------
 def test_the_empty_worlds_sun_is_gazebos():
-    (sun,) = sdf_world.parse_world(sdf_world.EMPTY_WORLD_SDF).lights
+    (sun,) = sdf_reader.parse_world(sdf_reader.EMPTY_WORLD_SDF).lights
     assert (sun.name, sun.type, sun.cast_shadows) == ('sun', 'directional', True)
     assert sun.diffuse == (0.8, 0.8, 0.8, 1.0) and sun.attenuation == (1000.0, 0.9, 0.01, 0.001)
     assert sun.direction == (-0.5, 0.1, -0.9) and sun.pose == (0.0, 0.0, 10.0, 0.0, 0.0, 0.0)
 
 
 def test_world_lights_are_read_with_sdf_defaults():
-    world = sdf_world.parse_world("""<sdf version="1.6"><world name="w">
+    world = sdf_reader.parse_world("""<sdf version="1.6"><world name="w">
       <include><uri>model://sun</uri><name>sun2</name><pose>1 2 3 0 0 0</pose></include>
       <light name="lamp" type="point"><pose>0 0 2 0 0 0</pose><diffuse>0.5 0.4 0.3 1</diffuse>
         <attenuation><range>20</range><linear>0.2</linear></attenuation></light>

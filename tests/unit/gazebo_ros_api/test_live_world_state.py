@@ -1,4 +1,4 @@
-"""The world file's description (Simulator.spec, an sdf_world.World) stays what the file said: the property
+"""The world file's description (Simulator.spec, an sdf_reader.World) stays what the file said: the property
 services change the live state, which lives in the engine (the Simulator's step size, update rate and
 lights, the PhysicsWorld's gravity), and read it back from there (issue 28, item 3). Real rospy services
 (no master), real PyBullet."""
@@ -11,7 +11,7 @@ from gazebo_msgs.srv import (DeleteLightRequest, GetLightPropertiesRequest, GetP
                              SetLightPropertiesRequest, SetPhysicsPropertiesRequest)
 from geometry_msgs.msg import Vector3
 
-from racebot_sim_bridge.description import sdf_world
+from racebot_sim_bridge.description import sdf_reader
 from racebot_sim_bridge.engine.simulator import Simulator
 from racebot_sim_bridge.gazebo_ros_api.properties import GazeboProperties
 
@@ -20,7 +20,7 @@ from test_plugin_namespace import _Log
 
 @pytest.fixture
 def world():
-    sim = Simulator(sdf_world.parse_world(sdf_world.EMPTY_WORLD_SDF), None, _Log(), lambda path: None)
+    sim = Simulator(sdf_reader.parse_world(sdf_reader.EMPTY_WORLD_SDF), None, _Log(), lambda path: None)
     properties = GazeboProperties(rospy, sim, '/gazebo')
     yield sim, properties, copy.deepcopy(sim.spec)
     properties.shutdown()

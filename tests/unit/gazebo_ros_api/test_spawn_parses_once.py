@@ -9,7 +9,7 @@ import rospy
 from gazebo_msgs.srv import SpawnModelRequest
 from geometry_msgs.msg import Pose, Quaternion
 
-from racebot_sim_bridge.description import sdf_world
+from racebot_sim_bridge.description import sdf_reader
 from racebot_sim_bridge.engine.simulator import Simulator
 from racebot_sim_bridge.gazebo_plugins.plugin_manager import PluginManager
 from racebot_sim_bridge.gazebo_ros_api.services import GazeboServices
@@ -17,7 +17,7 @@ from racebot_sim_bridge.gazebo_ros_control.gazebo_ros_control_plugin import Gaze
 
 from test_plugin_namespace import EMPTY_WORLD, _Log, _robot
 
-# An SDF robot: links and a joint (the URDF path simulates it), no plugin or sensor blocks (sdf_world keeps
+# An SDF robot: links and a joint (the URDF path simulates it), no plugin or sensor blocks (sdf_model keeps
 # those as text, which the conversion to URDF reads again).
 SDF_ROBOT = '''<sdf version="1.6"><model name="arm">
   <link name="base"><inertial><mass>1</mass></inertial>
@@ -43,7 +43,7 @@ def parses(monkeypatch):
 
 @pytest.fixture
 def world():
-    sim = Simulator(sdf_world.parse_world(EMPTY_WORLD), None, _Log(), lambda path: None)
+    sim = Simulator(sdf_reader.parse_world(EMPTY_WORLD), None, _Log(), lambda path: None)
     plugins = PluginManager(rospy, sim)
     GazeboRosControlPlugin.attach(sim, rospy)
     services = GazeboServices(rospy, sim, '/gazebo')
@@ -60,7 +60,7 @@ def _request(name, xml, namespace=''):
 
 def test_the_counter_counts_every_parse(parses):
     ET.fromstring('<a/>')
-    sdf_world.parse_world(EMPTY_WORLD)
+    sdf_reader.parse_world(EMPTY_WORLD)
     assert parses[0] == 2
 
 

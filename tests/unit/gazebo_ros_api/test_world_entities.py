@@ -6,7 +6,7 @@ import math
 import pytest
 
 from racebot_sim_bridge.gazebo_ros_api import frames
-from racebot_sim_bridge.description import sdf_world, urdf_model
+from racebot_sim_bridge.description import sdf_reader, urdf_reader
 from racebot_sim_bridge.engine.physics import PhysicsWorld
 from racebot_sim_bridge.gazebo_ros_api.entities import WorldEntities
 
@@ -26,8 +26,8 @@ YAW_90 = (0.0, 0.0, math.sqrt(0.5), math.sqrt(0.5))
 @pytest.fixture
 def world():
     w = PhysicsWorld(step_size=0.001, gravity=(0.0, 0.0, 0.0))
-    w.load_world(sdf_world.parse_world(SHELF))
-    w.spawn_urdf('arm', urdf_model.parse_urdf(ARM), ARM, (0.0, 0.0, 1.0))
+    w.load_world(sdf_reader.parse_world(SHELF))
+    w.spawn_urdf('arm', urdf_reader.parse_urdf(ARM), ARM, (0.0, 0.0, 1.0))
     yield w
     w.close()
 

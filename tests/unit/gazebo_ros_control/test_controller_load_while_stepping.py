@@ -11,7 +11,7 @@ import threading
 
 import pytest
 
-from racebot_sim_bridge.description import sdf_world
+from racebot_sim_bridge.description import sdf_reader
 from racebot_sim_bridge.engine.simulator import Simulator
 from racebot_sim_bridge.gazebo_ros_control.gazebo_ros_control_plugin import GazeboRosControlPlugin
 
@@ -92,7 +92,7 @@ class Rig(object):
         def get_params(path):
             self.gate.passing()
             return PARAMS.get(path)
-        world = sdf_world.parse_world(EMPTY_WORLD)
+        world = sdf_reader.parse_world(EMPTY_WORLD)
         self.sim = Simulator(world, GatedIO(self.gate), self.log, get_params)
         GazeboRosControlPlugin.attach(self.sim)
         self.cm = self.sim.spawn_urdf('bot', _robot(''), '/').control.cm

@@ -4,7 +4,7 @@ effort limit (DefaultRobotHWSim's POSITION_PID / VELOCITY_PID); without gains it
 directly; gains that are set and wrong are warned about and the joint follows its command directly."""
 import pytest
 
-from racebot_sim_bridge.description import sdf_world
+from racebot_sim_bridge.description import sdf_reader
 from racebot_sim_bridge.engine.simulator import Simulator
 from racebot_sim_bridge.gazebo_ros_control.gazebo_ros_control_plugin import GazeboRosControlPlugin
 
@@ -40,7 +40,7 @@ class Log(object):
 
 def turret(params, effort=10):
     log = Log()
-    sim = Simulator(sdf_world.parse_world(sdf_world.EMPTY_WORLD_SDF), io=None, log=log, get_params=params.get)
+    sim = Simulator(sdf_reader.parse_world(sdf_reader.EMPTY_WORLD_SDF), io=None, log=log, get_params=params.get)
     GazeboRosControlPlugin.attach(sim)
     robot = sim.spawn_urdf('turret', ARM % {'effort': effort}, position=(0, 0, 0.1))
     return sim, robot, log

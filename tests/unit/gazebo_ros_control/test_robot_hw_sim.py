@@ -2,7 +2,8 @@
 <transmission> gives, and the plugin's <robotSimType> default. Pure Python, no PyBullet."""
 import pytest
 
-from racebot_sim_bridge.description.urdf_model import UrdfError, parse_urdf
+from racebot_sim_bridge.description.urdf_model import UrdfError
+from racebot_sim_bridge.description.urdf_reader import parse_urdf
 from racebot_sim_bridge.gazebo_ros_control.gazebo_ros_control_plugin import GazeboRosControlPlugin, control_plugin
 from racebot_sim_bridge.gazebo_ros_control.robot_hw_sim import DEFAULT_ROBOT_SIM_TYPE, hardware_joints
 

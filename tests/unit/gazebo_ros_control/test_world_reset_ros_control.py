@@ -7,7 +7,7 @@ import math
 
 import pytest
 
-from racebot_sim_bridge.description import sdf_world
+from racebot_sim_bridge.description import sdf_reader
 from racebot_sim_bridge.ros_control.controller_manager import STRICT
 from racebot_sim_bridge.engine.simulator import Simulator
 from racebot_sim_bridge.gazebo_ros_control.gazebo_ros_control_plugin import GazeboRosControlPlugin
@@ -56,7 +56,7 @@ class _IO(object):
 def driving():
     """A robot at the root namespace, its wheel controller started and commanded to 3 rad/s for 0.3 s."""
     io = _IO()
-    world = sdf_world.parse_world(EMPTY_WORLD.replace('<physics', '<gravity>0 0 0</gravity><physics'))
+    world = sdf_reader.parse_world(EMPTY_WORLD.replace('<physics', '<gravity>0 0 0</gravity><physics'))
     sim = Simulator(world, io, _Log(), lambda path: PARAMS.get(path))
     GazeboRosControlPlugin.attach(sim)
     robot = sim.spawn_urdf('bot', _robot(''), '/')

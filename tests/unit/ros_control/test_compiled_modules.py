@@ -44,7 +44,7 @@ def outcome(function, *args):
 @pytest.mark.parametrize('module', [hardware, pid])
 def test_the_build_compiled_the_every_step_modules(module):
     # make setup installs Cython and python3-dev and the build compiles both; a plain .py here means the
-    # world runs ~10 % slower than the README says
+    # world runs ~10 % slower than docs/BENCHMARK.md says
     assert module.__file__.endswith(sysconfig.get_config_var('EXT_SUFFIX')), module.__file__
 
 

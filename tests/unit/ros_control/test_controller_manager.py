@@ -13,7 +13,7 @@ import pytest
 import rospy
 
 from racebot_sim_bridge.gazebo_ros_control.robot_hw_sim import hardware_joints
-from racebot_sim_bridge.description import urdf_model
+from racebot_sim_bridge.description import urdf_reader
 from racebot_sim_bridge.ros_control.controller_manager import BEST_EFFORT, STRICT, ControllerManager
 from racebot_sim_bridge.ros_controllers import CONTROLLER_TYPES, Controller
 from racebot_sim_bridge.ros_control.hardware_interface import EFFORT, STATE, VELOCITY, RobotHW
@@ -144,7 +144,7 @@ PARAMS = {
 
 class Rig(object):
     def __init__(self, params=None):
-        model = urdf_model.parse_urdf(racebot_like_urdf())
+        model = urdf_reader.parse_urdf(racebot_like_urdf())
         self.hw = RobotHW(model, hardware_joints(model))
         for h in self.hw.handles.values():
             h.read(0.0, 0.0)
@@ -609,7 +609,7 @@ def test_shutdown_unloads_everything(rig):
 
 def test_namespace_normalised():
     log = Log()
-    model = urdf_model.parse_urdf(racebot_like_urdf())
+    model = urdf_reader.parse_urdf(racebot_like_urdf())
     hw = RobotHW(model, hardware_joints(model))
     for ns, expected in (('racebot', '/racebot'), ('/racebot/', '/racebot'), ('/', ''), ('', '')):
         assert ControllerManager(ns, hw, lambda n: None, FakeIO(), log).ns == expected
@@ -618,7 +618,7 @@ def test_namespace_normalised():
 def test_a_controller_raising_in_update_is_stopped_and_the_others_keep_running():
     """One broken controller must not stop the simulation loop (nor the other controllers)."""
     log = Log()
-    model = urdf_model.parse_urdf(racebot_like_urdf())
+    model = urdf_reader.parse_urdf(racebot_like_urdf())
     hw = RobotHW(model, hardware_joints(model))
     params = {'broken': {'type': 'test/Broken'}, 'fine': {'type': 'test/Counting'}}
 

@@ -10,7 +10,7 @@ import rospy
 from hypothesis import HealthCheck, example, given, settings, strategies as st
 
 from racebot_sim_bridge.gazebo_ros_control.robot_hw_sim import hardware_joints
-from racebot_sim_bridge.description import urdf_model
+from racebot_sim_bridge.description import urdf_reader
 from racebot_sim_bridge.ros_control.controller_manager import ControllerManager
 from racebot_sim_bridge.ros_control.hardware_interface import EFFORT, JointHandle, RobotHW
 from racebot_sim_bridge.ros_control.pid import Pid
@@ -153,7 +153,7 @@ class _Log(object):
 
 
 def _manager(configs):
-    model = urdf_model.parse_urdf(_urdf())
+    model = urdf_reader.parse_urdf(_urdf())
     hw = RobotHW(model, hardware_joints(model))
     for h in hw.handles.values():
         h.read(0.0, 0.0)

@@ -11,7 +11,7 @@ import math
 import pytest
 
 from racebot_sim_bridge.gazebo_ros_control.robot_hw_sim import hardware_joints
-from racebot_sim_bridge.description import urdf_model
+from racebot_sim_bridge.description import urdf_reader
 from racebot_sim_bridge.ros_control.hardware_interface import (EFFORT, POSITION, STATE, VELOCITY, HardwareError,
                                                                JointHandle, RobotHW, cpp_name,
                                                                shortest_angular_distance)
@@ -50,7 +50,7 @@ def make_urdf():
 
 @pytest.fixture
 def hw():
-    model = urdf_model.parse_urdf(make_urdf())
+    model = urdf_reader.parse_urdf(make_urdf())
     return RobotHW(model, hardware_joints(model))
 
 

@@ -5,7 +5,7 @@ import math
 import pytest
 from geometry_msgs.msg import Twist, Vector3
 
-from racebot_sim_bridge.description import urdf_model
+from racebot_sim_bridge.description import urdf_reader
 from racebot_sim_bridge.ros_controllers import CONTROLLER_TYPES, ControllerInitError
 from racebot_sim_bridge.kinematics.controller_odometry import AckermannOdometry, ackermann_params_from_urdf
 
@@ -28,7 +28,7 @@ CAR = """<robot name="car">
 
 
 def test_geometry_from_the_urdf():
-    model = urdf_model.parse_urdf(CAR)
+    model = urdf_reader.parse_urdf(CAR)
     assert ackermann_params_from_urdf(model, 'rear_wheel_joint', 'front_steer_joint', True, True) == \
         pytest.approx((0.5, 0.1))
     with pytest.raises(ValueError, match="nope couldn't be retrieved"):

@@ -14,7 +14,7 @@ from sensor_msgs.msg import JointState
 from std_msgs.msg import Float64
 
 from racebot_sim_bridge.gazebo_ros_control.robot_hw_sim import hardware_joints
-from racebot_sim_bridge.description import urdf_model
+from racebot_sim_bridge.description import urdf_reader
 from racebot_sim_bridge.ros_controllers import (CONTROLLER_TYPES, STATE_PUBLISH_EVERY, ControllerInitError,
                                                 EffortForwardController, JointPositionController,
                                                 JointStateController, JointVelocityController,
@@ -76,7 +76,7 @@ class FakeIO(object):
 
 
 def make_hw(xml):
-    model = urdf_model.parse_urdf(xml)
+    model = urdf_reader.parse_urdf(xml)
     hw = RobotHW(model, hardware_joints(model))
     for h in hw.handles.values():
         h.read(0.0, 0.0)

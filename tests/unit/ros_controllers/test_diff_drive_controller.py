@@ -6,7 +6,7 @@ import math
 import pytest
 from geometry_msgs.msg import Twist
 
-from racebot_sim_bridge.description import urdf_model
+from racebot_sim_bridge.description import urdf_reader
 from racebot_sim_bridge.ros_controllers import CONTROLLER_TYPES, ControllerInitError
 from racebot_sim_bridge.kinematics.controller_odometry import Odometry, SpeedLimiter, wheel_params_from_urdf
 
@@ -68,14 +68,14 @@ def test_speed_limiter_velocity_acceleration_and_jerk():
 
 @pytest.mark.parametrize('wheel,radius', [(CYLINDER, 0.05), ('<sphere radius="0.07"/>', 0.07)])
 def test_wheel_geometry_from_the_urdf(wheel, radius):
-    model = urdf_model.parse_urdf(BOT % {'wheel': wheel})
+    model = urdf_reader.parse_urdf(BOT % {'wheel': wheel})
     assert wheel_params_from_urdf(model, 'left_wheel_joint', 'right_wheel_joint', True, True) == \
         pytest.approx((0.4, radius))
     assert wheel_params_from_urdf(model, 'left_wheel_joint', 'right_wheel_joint', False, False) == (None, None)
 
 
 def test_wheel_geometry_errors_say_what_to_set():
-    model = urdf_model.parse_urdf(BOT % {'wheel': '<box size="0.1 0.1 0.1"/>'})
+    model = urdf_reader.parse_urdf(BOT % {'wheel': '<box size="0.1 0.1 0.1"/>'})
     with pytest.raises(ValueError, match='NOT modeled as a cylinder or sphere.*set wheel_radius'):
         wheel_params_from_urdf(model, 'left_wheel_joint', 'right_wheel_joint', False, True)
     with pytest.raises(ValueError, match="nope couldn't be retrieved from model description"):

@@ -8,7 +8,7 @@ from control_msgs.msg import FollowJointTrajectoryGoal, FollowJointTrajectoryRes
 from control_msgs.srv import QueryTrajectoryStateRequest
 from trajectory_msgs.msg import JointTrajectory, JointTrajectoryPoint
 
-from racebot_sim_bridge.description import sdf_world
+from racebot_sim_bridge.description import sdf_reader
 from racebot_sim_bridge.ros_controllers.joint_trajectory_controller import (EffortJointTrajectoryController,
                                                                             PositionJointTrajectoryController,
                                                                             VelocityJointTrajectoryController)
@@ -113,7 +113,7 @@ class Log(object):
 
 
 def arm(cls, iface, params):
-    sim = Simulator(sdf_world.parse_world(sdf_world.EMPTY_WORLD_SDF), io=None, log=Log(), get_params={}.get)
+    sim = Simulator(sdf_reader.parse_world(sdf_reader.EMPTY_WORLD_SDF), io=None, log=Log(), get_params={}.get)
     GazeboRosControlPlugin.attach(sim)
     robot = sim.spawn_urdf('turret', TURRET % {'iface': iface})
     io = IO()

@@ -1,5 +1,5 @@
 """Races where the physics thread and the render worker's reader thread meet (render_worker.py,
-devices.py), provoked: many thousand request/reply cycles with the two threads forced to switch
+gazebo_plugins/gazebo_ros_camera.py), provoked: many thousand request/reply cycles with the two threads forced to switch
 between any two bytecodes of the code under test (interleaved(): an opcode trace function is a
 Python call, so with a 1 us switch interval the GIL can change hands before every instruction).
 
@@ -15,7 +15,8 @@ from multiprocessing.connection import Pipe
 import numpy as np
 import pytest
 
-from racebot_sim_bridge.sensors import devices, render_worker
+from racebot_sim_bridge.gazebo_plugins import gazebo_ros_camera
+from racebot_sim_bridge.sensors import render_worker
 from racebot_sim_bridge.sensors.schedule import RateMeter
 
 WAIT = 120.0  # wall seconds before a test gives up waiting (the machine is shared)
@@ -169,7 +170,7 @@ def test_every_accepted_frame_request_gets_one_reply_across_restarts(monkeypatch
     assert not problems, '; '.join(problems)
 
 
-# -- devices.CameraSensor: its count of frames in the worker, on both threads --------------------
+# -- gazebo_ros_camera.CameraSensor: its count of frames in the worker, on both threads --------------------
 
 class FakeWorker(object):
     """Takes frame requests on the physics thread; a reader thread answers them (every fifth one
@@ -213,12 +214,12 @@ class FakeWorker(object):
 def camera_sensor(worker):
     manager = types.SimpleNamespace(worker=worker, worker_expected=lambda: True, snapshot=lambda: None,
                                     frame_failed=lambda sensor, reason: None)
-    sensor = devices.CameraSensor.__new__(devices.CameraSensor)  # no ROS: only what capture() uses
+    sensor = gazebo_ros_camera.CameraSensor.__new__(gazebo_ros_camera.CameraSensor)  # no ROS: only what capture() uses
     sensor.__dict__.update(manager=manager, sim=types.SimpleNamespace(world=None), meter=RateMeter(),
                            mount=types.SimpleNamespace(pose=lambda: (np.zeros(3), (0.0, 0.0, 0.0, 1.0))),
                            camera=types.SimpleNamespace(width=4, height=4), worker_camera=(4, 4),
                            publishers={}, failed=False, buffers=None,
-                           in_worker=render_worker.InFlight(devices.FRAMES_IN_WORKER))
+                           in_worker=render_worker.InFlight(gazebo_ros_camera.FRAMES_IN_WORKER))
     return sensor
 
 
@@ -226,21 +227,21 @@ def test_frames_in_the_worker_are_counted_right_from_both_threads():
     worker = FakeWorker()
     sensor = camera_sensor(worker)
     try:
-        with interleaved(devices):
+        with interleaved(gazebo_ros_camera):
             worker.thread.start()
             deadline = time.monotonic() + WAIT
             while worker.submitted < 20000 and time.monotonic() < deadline:
                 sensor.capture(0.0, None, {'image'}, False)
             worker.queue.join()
         assert worker.submitted == 20000, 'the camera stopped sending frames after %d' % worker.submitted
-        assert worker.most_held <= devices.FRAMES_IN_WORKER, (
+        assert worker.most_held <= gazebo_ros_camera.FRAMES_IN_WORKER, (
             'the worker held %d frames at once' % worker.most_held)
         # All answered: the camera may again have FRAMES_IN_WORKER frames in the worker.
         worker.answering.clear()
         before = worker.submitted
-        for _ in range(devices.FRAMES_IN_WORKER + 1):
+        for _ in range(gazebo_ros_camera.FRAMES_IN_WORKER + 1):
             sensor.capture(0.0, None, {'image'}, False)
-        assert worker.submitted - before == devices.FRAMES_IN_WORKER
+        assert worker.submitted - before == gazebo_ros_camera.FRAMES_IN_WORKER
     finally:
         worker.answering.set()
         worker.queue.put(None)

@@ -227,16 +227,16 @@ def test_the_test_render_tells_a_working_renderer():
 def test_the_copy_follows_a_respawn_under_the_same_name():
     """Delete a model and spawn another under its name (PyBullet may reuse the body id): the copy
     must be rebuilt from the new model, and posed by the snapshot."""
-    from racebot_sim_bridge.description import sdf_world
+    from racebot_sim_bridge.description import sdf_reader
     from racebot_sim_bridge.engine.world_copy import WorldCopy, snapshot, sources
     from test_sensors_sim import RED_BOX
     world, other = PhysicsWorld(), PhysicsWorld()
     try:
         copy = WorldCopy(other)
-        world.add_sdf_model(sdf_world.parse_world(RED_BOX.format(x=1, y=0, z=0.1, s=0.1)).models[0])
+        world.add_sdf_model(sdf_reader.parse_world(RED_BOX.format(x=1, y=0, z=0.1, s=0.1)).models[0])
         copy.sync(sources(world))
         world.remove('red_box')
-        body = world.add_sdf_model(sdf_world.parse_world(RED_BOX.format(x=1, y=0, z=0.1, s=0.6)).models[0])
+        body = world.add_sdf_model(sdf_reader.parse_world(RED_BOX.format(x=1, y=0, z=0.1, s=0.6)).models[0])
         world.client.resetBasePositionAndOrientation(body.id, [2.0, 1.0, 0.5], [0, 0, 0, 1])
         copy.sync(sources(world))
         copy.prune(set(world.bodies))

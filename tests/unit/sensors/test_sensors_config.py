@@ -2,13 +2,13 @@
 and rates come from the URDF (no master, no physics)."""
 import pytest
 
-from racebot_sim_bridge.description import urdf_model
-from racebot_sim_bridge.sensors.config import resolve_frame, SensorConfigError, join_topic, plugin_kind, sensor_config
+from racebot_sim_bridge.description import urdf_reader
+from racebot_sim_bridge.sensors.config import resolve_frame, SensorConfigError, join_topic, sensor_config
 
 
 @pytest.fixture(scope='module')
 def configs(racebot_xml):
-    model = urdf_model.parse_urdf(racebot_xml)
+    model = urdf_reader.parse_urdf(racebot_xml)
     return {c.kind: c for c in (sensor_config(s, '/', 'racebot') for s in model.sensors)}  # spawn_model at the root
 
 
@@ -43,10 +43,7 @@ def test_imu(configs):
     assert c.params['gaussian_noise'] == 0.0 and c.params['rpy_offset'] == (0.0, 0.0, 0.0)
 
 
-def test_names():
-    assert plugin_kind('libgazebo_ros_laser.so') == 'laser'
-    assert plugin_kind('/opt/lib/libgazebo_ros_openni_kinect.so') == 'depth'
-    assert plugin_kind('libgazebo_ros_control.so') is None
+def test_join_topic():
     assert join_topic('', 'rrbot/camera1', 'image_raw') == '/rrbot/camera1/image_raw'
     assert join_topic('/robot', 'cam', '/abs/topic') == '/abs/topic'
     assert join_topic('robot/', '', 'scan') == '/robot/scan'
@@ -55,7 +52,7 @@ def test_names():
 def _sensor(body, plugin):
     xml = ('<robot name="r"><link name="a"/><gazebo reference="a">%s</gazebo></robot>'
            % body.replace('PLUGIN', plugin))
-    return urdf_model.parse_urdf(xml).sensors[0]
+    return urdf_reader.parse_urdf(xml).sensors[0]
 
 
 def test_plugin_rules_and_mismatches():

@@ -10,9 +10,11 @@ import pytest
 import rospy
 
 from racebot_sim_bridge.kinematics import rotations
-from racebot_sim_bridge.description import sdf_world, urdf_model
-from racebot_sim_bridge.sensors import devices, render
-from racebot_sim_bridge.sensors import SensorManager
+from racebot_sim_bridge.description import sdf_reader, urdf_reader
+from racebot_sim_bridge.gazebo_plugins import gazebo_ros_laser, gazebo_ros_range
+from racebot_sim_bridge.gazebo_plugins.gazebo_ros_imu_sensor import ImuSensor
+from racebot_sim_bridge.sensors import render
+from racebot_sim_bridge.sensors.sensor_manager import SensorManager
 from racebot_sim_bridge.engine.simulator import Simulator
 
 REPO = Path(__file__).resolve().parents[3]
@@ -92,7 +94,7 @@ class Log(object):
 
 
 def make_world(racebot_xml, params=None, pose=(0.0, 0.0, 0.0)):
-    spec = sdf_world.load_world(str(ROOM))
+    spec = sdf_reader.load_world(str(ROOM))
     sim = Simulator(spec, NullIO(), Log(), lambda path: None)
     # Rendering in the physics thread (the old path), synchronous; test_render_worker.py covers the worker.
     fake = FakeRospy(dict({'~sensors/report_period': 0, '~sensors/render_budget': 1.0,
@@ -136,7 +138,8 @@ def test_every_sensor_block_becomes_its_topics(world):
 def test_nobody_listening_costs_nothing(world, monkeypatch):
     sim, fake, manager, robot = world
     calls = []
-    monkeypatch.setattr(devices, 'cast_rays', lambda *a: calls.append('ray'))
+    for plugin in (gazebo_ros_laser, gazebo_ros_range):
+        monkeypatch.setattr(plugin, 'cast_rays', lambda *a: calls.append('ray'))
     monkeypatch.setattr(render, 'render', lambda *a: calls.append('render'))
     run(sim, 0.5)
     assert calls == []
@@ -194,7 +197,7 @@ def test_scan_intensities_are_the_laser_retro_of_what_each_ray_hits(world):
     """Row k of issue 17's audit: Gazebo's ray sensor reports the hit collision's laser_retro as intensity (SDF
     <laser_retro>, URDF <gazebo reference><laserRetro>), 0 elsewhere."""
     sim, fake, manager, robot = world
-    model = sdf_world.parse_world(RETRO_BOX).models[0]
+    model = sdf_reader.parse_world(RETRO_BOX).models[0]
     with sim.lock:
         sim.world.add_sdf_model(model)
     listen(fake, '/scan')
@@ -208,7 +211,7 @@ def test_scan_intensities_are_the_laser_retro_of_what_each_ray_hits(world):
             'ixz="0" iyz="0"/></inertial><collision><geometry><box size="1 1 1"/></geometry></collision></link>'
             '<gazebo reference="a"><laserRetro>80</laserRetro></gazebo></robot>')
     with sim.lock:
-        body = sim.world.spawn_urdf('retro', urdf_model.parse_urdf(urdf), urdf)
+        body = sim.world.spawn_urdf('retro', urdf_reader.parse_urdf(urdf), urdf)
     assert sim.world.laser_retro[(body.id, -1)] == 80.0
     with sim.lock:
         sim.world.remove('retro')
@@ -254,7 +257,7 @@ def test_imu_acceleration_is_over_the_last_step_before_each_update(world):
     body = robot.body
     links = [-1] + list(range(sim.world.client.getNumJoints(body.id)))
     mass = sum(sim.world.link_dynamics(body.id, i).mass for i in links)
-    imu = next(s for s in manager._active if isinstance(s, devices.ImuSensor))
+    imu = next(s for s in manager._active if isinstance(s, ImuSensor))
     due = imu.schedule.next
     force = 5.0 * 9.8 * mass  # 5 g upwards on the whole car, for one step
 
@@ -281,7 +284,7 @@ RED_BOX = """<sdf version="1.6"><world name="w"><model name="red_box"><static>tr
 
 
 def add_red_box(sim, x, y, z, size):
-    model = sdf_world.parse_world(RED_BOX.format(x=x, y=y, z=z, s=size)).models[0]
+    model = sdf_reader.parse_world(RED_BOX.format(x=x, y=y, z=z, s=size)).models[0]
     with sim.lock:
         sim.world.add_sdf_model(model)
 
@@ -354,12 +357,12 @@ def test_delete_closes_the_sensors(world):
 
 
 def test_a_sensor_on_a_missing_link_is_refused_with_a_warning(racebot_xml):
-    spec = sdf_world.load_world(str(ROOM))
+    spec = sdf_reader.load_world(str(ROOM))
     sim = Simulator(spec, NullIO(), Log(), lambda path: None)
     try:
         fake = FakeRospy({'~sensors/report_period': 0})
         manager = SensorManager(fake, sim)
-        model = urdf_model.parse_urdf(racebot_xml)
+        model = urdf_reader.parse_urdf(racebot_xml)
         assert len(model.sensors) == 4
         bad = racebot_xml.replace('<update_rate>40</update_rate>', '<update_rate>40</update_rate>').replace(
             '<min>0.1</min>', '<min>20</min>')  # range min above range max: not simulable

@@ -8,7 +8,7 @@ import rospy
 from std_msgs.msg import Float64
 
 from racebot_sim_bridge.gazebo_ros_control.robot_hw_sim import hardware_joints
-from racebot_sim_bridge.description import urdf_model
+from racebot_sim_bridge.description import urdf_reader
 from racebot_sim_bridge.ros_controllers import (CommandObserver, CommandTrace, EffortForwardController,
                                                 JointPositionController, JointVelocityController,
                                                 PositionForwardController, VelocityForwardController,
@@ -82,7 +82,7 @@ class Clock(object):
 
 
 def make(cls, joint, extra, io, name='c'):
-    model = urdf_model.parse_urdf(URDF)
+    model = urdf_reader.parse_urdf(URDF)
     hw = RobotHW(model, hardware_joints(model))
     for h in hw.handles.values():
         h.read(0.0, 0.0)

@@ -13,7 +13,7 @@ from multiprocessing.connection import Connection
 
 import pytest
 
-from racebot_sim_bridge.description import sdf_world, urdf_model
+from racebot_sim_bridge.description import sdf_reader, urdf_reader
 from racebot_sim_bridge.window import viewer, viewer_process
 from racebot_sim_bridge.window.gzclient import connect, display_problem
 from racebot_sim_bridge.engine.physics import PhysicsWorld
@@ -44,7 +44,7 @@ class Log(object):
 @pytest.fixture
 def world():
     w = PhysicsWorld()
-    w.load_world(sdf_world.parse_world(WORLD))
+    w.load_world(sdf_reader.parse_world(WORLD))
     yield w
     w.close()
 
@@ -59,7 +59,7 @@ def windows(world):
 
 
 def spawn_box(world, name='box', z=1.0):
-    return world.spawn_urdf(name, urdf_model.parse_urdf(BOX_URDF), BOX_URDF, position=(0.0, 0.0, z))
+    return world.spawn_urdf(name, urdf_reader.parse_urdf(BOX_URDF), BOX_URDF, position=(0.0, 0.0, z))
 
 
 def sync_until(windows, condition, what):

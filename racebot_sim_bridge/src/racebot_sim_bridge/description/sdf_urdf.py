@@ -1,10 +1,10 @@
-"""An SDF robot model (sdf_world.Model with joints, plugins or sensors) as the URDF this simulator spawns.
+"""An SDF robot model (sdf_model.Model with joints, plugins or sensors) as the URDF this simulator spawns.
 
 Pure Python: no rospy, no pybullet.  Gazebo simulates an SDF model's joints and runs its model plugins
 and sensors; here those live on the URDF path (urdf_model, physics.spawn_urdf, the plugin and sensor
 managers), so an SDF robot is written out as the URDF that path reads:
 
-- each link with its inertial, visuals and collisions (meshes already converted by sdf_world), its
+- each link with its inertial, visuals and collisions (meshes already converted by sdf_reader), its
   ODE friction and laser_retro as ``<gazebo reference>`` values, its ``<sensor>``s as written;
 - each joint with the origin of its child in its parent, the axis in the child's frame, SDF's
   limits (none: ``continuous``, effort/velocity 0, which the hardware reads as unlimited) and dynamics;
@@ -17,7 +17,7 @@ managers), so an SDF robot is written out as the URDF that path reads:
 URDF puts a joint's axis through its child's origin.  An SDF joint whose ``<pose>`` moves the axis off
 the child's origin (sideways of the axis: along it changes nothing) gets its child's URDF frame moved
 to the joint, and everything of that link moved back by as much, so the physics is Gazebo's; that
-link's frame as the services report it is then the joint's (the README lists this).
+link's frame as the services report it is then the joint's (docs/COMING_FROM_GAZEBO.md lists this).
 
 The links must form one tree under the joints, as URDF needs: ConversionError says which do not.
 """
@@ -151,7 +151,7 @@ def _limits(joint):
 
 
 def model_urdf(model):
-    """The Conversion of an sdf_world.Model; ConversionError when its links do not form one tree."""
+    """The Conversion of an sdf_model.Model; ConversionError when its links do not form one tree."""
     if not model.links:
         raise ConversionError("model '%s' has no link" % model.name)
     warnings = []

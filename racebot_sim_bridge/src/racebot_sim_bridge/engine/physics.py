@@ -18,7 +18,7 @@ Gazebo behaviours reproduced here, because the car drives differently without th
   ~2 degrees per metre driving straight with the hinges locked.
 
 Meshes (URDF and SDF) arrive as checked OBJ files in the mesh cache (meshes.py; urdf_assets.py for
-URDFs, sdf_world.py for SDF). A static SDF body collides with the exact triangles (concave triangle
+URDFs, sdf_elements.py for SDF). A static SDF body collides with the exact triangles (concave triangle
 mesh, as Gazebo does); a dynamic body (every URDF link) with one convex hull per part of the mesh.
 Colours are given when a body is built (visual shapes with their rgba; URDF colours written into the
 URDF before loadURDF), so any copy built from `Body.source` (the viewer's) looks the same.
@@ -57,7 +57,7 @@ class PhysicsError(RuntimeError):
 @dataclass(frozen=True)
 class BodySource:
     """What a body was built from, all another client needs to build a copy (picklable: the viewer and
-    the render worker get it through a pipe). kind 'sdf': `model` is the sdf_world.Model; kind 'urdf':
+    the render worker get it through a pipe). kind 'sdf': `model` is the sdf_model.Model; kind 'urdf':
     `model` is the urdf_model.RobotModel and `urdf_xml` its URDF, meshes resolved to files."""
     kind: str
     model: object
@@ -153,7 +153,7 @@ class PhysicsWorld(object):
 
     # -- world --------------------------------------------------------------------------------
     def load_world(self, world, warn=None):
-        """Creates every model of a parsed sdf_world.World but its robots (Model.is_robot, spawned through
+        """Creates every model of a parsed sdf_model.World but its robots (Model.is_robot, spawned through
         the URDF path by the Simulator); returns the names created. With `warn`,
         a model that cannot be built (no link with usable geometry left) is skipped and warn(message)
         told, as the reader skips degenerate elements; without it, PhysicsError."""
@@ -276,7 +276,7 @@ class PhysicsWorld(object):
         return shape.kind in ('box', 'cylinder', 'sphere', 'plane', 'mesh')
 
     def _visual_shapes(self, visuals):
-        """One visual shape index for a link's visuals (sdf_world.Visual), -1 for none."""
+        """One visual shape index for a link's visuals (sdf_model.Visual), -1 for none."""
         if not visuals:
             return -1
         c = self.client
@@ -303,7 +303,7 @@ class PhysicsWorld(object):
 
     @staticmethod
     def _visual_geometry(shape):
-        """createVisualShape's geometry arguments for an sdf_world.Shape (a plane: a thin box)."""
+        """createVisualShape's geometry arguments for a geometry.Shape (a plane: a thin box)."""
         if shape.kind == 'box':
             return dict(shapeType=pb.GEOM_BOX, halfExtents=[x / 2.0 for x in shape.size])
         if shape.kind == 'cylinder':

@@ -9,7 +9,7 @@ efforts; then step the physics. All mutation happens under `lock`, which service
 import threading
 
 from racebot_sim_bridge.engine import physics
-from racebot_sim_bridge.description import sdf_urdf, urdf_model
+from racebot_sim_bridge.description import sdf_urdf, urdf_model, urdf_reader
 from racebot_sim_bridge.kinematics.rotations import compose
 
 
@@ -34,7 +34,7 @@ class Robot:
 
 class Simulator:
     def __init__(self, world_spec, io, log, get_params):
-        """world_spec: sdf_world.World; io: controllers.RosIO-like; get_params(path) -> value or None."""
+        """world_spec: sdf_model.World; io: controllers.RosIO-like; get_params(path) -> value or None."""
         self.spec = world_spec  # what the world file says: read, never written (live state is below)
         self.io = io
         self.log = log
@@ -97,8 +97,8 @@ class Simulator:
             if model is None:
                 try:
                     if isinstance(urdf, (str, bytes, bytearray)):
-                        urdf = urdf_model.urdf_root(urdf)
-                    model = urdf_model.parse_urdf(urdf)
+                        urdf = urdf_reader.urdf_root(urdf)
+                    model = urdf_reader.parse_urdf(urdf)
                 except urdf_model.UrdfError as err:
                     raise SpawnError('SpawnModel: Failure - the URDF of %s is not valid: %s' % (name, err))
             try:
@@ -122,7 +122,7 @@ class Simulator:
             return robot
 
     def spawn_sdf_robot(self, model, robot_namespace=''):
-        """Spawns an SDF model with joints, plugins or sensors (sdf_world.Model.is_robot) through the URDF
+        """Spawns an SDF model with joints, plugins or sensors (sdf_model.Model.is_robot) through the URDF
         path (sdf_urdf.py), at its <pose>; returns the Robot. SpawnError when it cannot be."""
         try:
             conversion = sdf_urdf.model_urdf(model)

@@ -1,26 +1,30 @@
-"""Gazebo's model plugins (gazebo_plugins noetic-devel; hector_gazebo_plugins' GPS and IMU), simulated: one
-module per plugin.
+"""Gazebo's plugins, simulated: one module per plugin library, named after it (gazebo_ros_diff_drive.py answers
+filename="libgazebo_ros_diff_drive.so"; gazebo_ros_laser.py also answers libgazebo_ros_gpu_laser.so).
 
-MODEL_PLUGINS maps a plugin's library name, as `plugin_key` spells it ('gazebo_ros_diff_drive'
-for filename="libgazebo_ros_diff_drive.so", a path or the bare name alike), to its class (a
-base.ModelPlugin). A new plugin is a module here with one such class, added to MODULES below.
-manager.PluginManager builds them for each spawned robot and runs them with the physics.
-Sensor plugins (a <sensor>'s <plugin>) are in ../sensors; gazebo_ros_control is simulator.py's.
+  registry.py            REGISTRY: library name -> the class that answers it, for every kind of plugin; the one
+                         warning about a library racebot does not simulate
+  model plugins          gazebo_ros_diff_drive, _skid_steer_drive, _planar_move, _p3d, _joint_state_publisher, _imu,
+                         hector_gazebo_ros_gps, hector_gazebo_ros_imu (gazebo_plugins noetic-devel,
+                         hector_gazebo_plugins); their base model_plugin.py, built and run by plugin_manager.py
+  sensor plugins         gazebo_ros_laser, _camera, _multicamera, _openni_kinect, _imu_sensor, _range, _bumper; their
+                         base sensor_plugin.py, built and run by ../sensors/sensor_manager.py with the pipeline
+                         stages in ../sensors/
+  robot hardware         gazebo_ros_control: ../gazebo_ros_control/, hooked into the simulator at spawn
+  shared                 plugin_namespace.py (where a plugin's topics go), odometry_output.py, link_motion.py,
+                         update_timing.py, hector_reconfigure.py
+
+A new plugin is a module here named after its library, with one class that lists its `libraries`, added to
+registry.py. This package's own namespace holds only what the description needs too (no ROS, no PyBullet):
+`library_key`, the one way a filename becomes a library name, and PluginKind.
 """
+import enum
 import os
 
-from racebot_sim_bridge.gazebo_plugins import (gazebo_ros_diff_drive as diff_drive,
-                                               hector_gazebo_ros_gps as hector_gps,
-                                               hector_gazebo_ros_imu as hector_imu, gazebo_ros_imu as imu,
-                                               gazebo_ros_joint_state_publisher as joint_state_publisher,
-                                               gazebo_ros_p3d as p3d, gazebo_ros_planar_move as planar_move,
-                                               gazebo_ros_skid_steer_drive as skid_steer_drive)
 
-MODULES = (skid_steer_drive, planar_move, p3d, joint_state_publisher, diff_drive, imu, hector_gps, hector_imu)
-
-
-def plugin_key(filename):
-    """'libgazebo_ros_diff_drive.so', '/opt/x/libgazebo_ros_diff_drive.so' -> 'gazebo_ros_diff_drive'."""
+def library_key(filename):
+    """The library a plugin's filename names: 'libgazebo_ros_diff_drive.so', '/opt/x/libgazebo_ros_diff_drive.so'
+    and 'gazebo_ros_diff_drive' all give 'gazebo_ros_diff_drive' (as Gazebo, which adds lib and .so to a bare
+    name)."""
     base = os.path.basename(filename or '')
     if base.endswith('.so'):
         base = base[:-3]
@@ -29,9 +33,8 @@ def plugin_key(filename):
     return base
 
 
-def _registry():
-    classes = [c for m in MODULES for c in getattr(m, 'PLUGINS', ())]
-    return {plugin_key(c.filename): c for c in classes}
-
-
-MODEL_PLUGINS = _registry()
+class PluginKind(enum.Enum):
+    """Where a plugin sits, hence who builds it."""
+    MODEL = 'model'                    # a model's <gazebo><plugin>: plugin_manager.PluginManager
+    SENSOR = 'sensor'                  # a <sensor>'s <plugin>: sensors/sensor_manager.SensorManager
+    ROBOT_HARDWARE = 'robot hardware'  # gazebo_ros_control's RobotHWSim: GazeboRosControlPlugin, at spawn

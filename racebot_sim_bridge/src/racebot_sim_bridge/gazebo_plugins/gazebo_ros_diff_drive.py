@@ -40,10 +40,10 @@ ZERO_COVARIANCE = [0.0] * 36
 
 
 class DiffDrive(ModelPlugin):
-    filename = 'libgazebo_ros_diff_drive.so'
+    libraries = ('libgazebo_ros_diff_drive.so',)
 
     def __init__(self, ctx, robot, spec):
-        super(DiffDrive, self).__init__(ctx, robot, spec)
+        super().__init__(ctx, robot, spec)
         p = self.params
         level = p.string('rosDebugLevel', 'na').strip().lower()  # read first, as GazeboRos does
         self.log_level = LOG_LEVELS.index(level) if level in LOG_LEVELS else LOG_LEVELS.index('info')
@@ -117,11 +117,11 @@ class DiffDrive(ModelPlugin):
     # -- logging at rosDebugLevel ----------------------------------------------------------------
     def warn(self, message):
         if self.log_level <= LOG_LEVELS.index('warn'):
-            super(DiffDrive, self).warn(message)
+            super().warn(message)
 
     def info(self, message):
         if self.log_level <= LOG_LEVELS.index('info'):
-            super(DiffDrive, self).info(message)
+            super().info(message)
 
     # -- ROS and life cycle ----------------------------------------------------------------------
     def _on_cmd_vel(self, msg):
@@ -197,6 +197,3 @@ class DiffDrive(ModelPlugin):
                                      position=[states[1][0], states[0][0]])
         msg.header.stamp = stamp
         self.joint_state_pub.publish(msg)
-
-
-PLUGINS = (DiffDrive,)

@@ -45,10 +45,10 @@ def imu_vectors(orientation, offset_rotation, angular, linear_acceleration, nois
 
 
 class Imu(ModelPlugin):
-    filename = 'libgazebo_ros_imu.so'
+    libraries = ('libgazebo_ros_imu.so',)
 
     def __init__(self, ctx, robot, spec, rng=None):
-        super(Imu, self).__init__(ctx, robot, spec)
+        super().__init__(ctx, robot, spec)
         p = self.params
         self.body_name = self.link_param('bodyName', 'the link whose motion the IMU reports')
         self.topic = p.string('topicName', DEFAULT_NAME)
@@ -99,6 +99,3 @@ class Imu(ModelPlugin):
             cov[0] = cov[4] = cov[8] = variance
         self.pub.publish(msg)
         self.clock.mark(time)
-
-
-PLUGINS = (Imu,)

@@ -18,10 +18,10 @@ def joint_names(text):
 
 
 class JointStatePublisher(ModelPlugin):
-    filename = 'libgazebo_ros_joint_state_publisher.so'
+    libraries = ('libgazebo_ros_joint_state_publisher.so',)
 
     def __init__(self, ctx, robot, spec):
-        super(JointStatePublisher, self).__init__(ctx, robot, spec)
+        super().__init__(ctx, robot, spec)
         p = self.params
         names = []
         if p.has('jointName'):
@@ -53,6 +53,3 @@ class JointStatePublisher(ModelPlugin):
                              velocity=[s[1] for s in states])
         msg.header.stamp = self.stamp(time)
         self.pub.publish(msg)
-
-
-PLUGINS = (JointStatePublisher,)

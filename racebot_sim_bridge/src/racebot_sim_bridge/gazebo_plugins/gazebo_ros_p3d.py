@@ -52,10 +52,10 @@ def covariance(sigma):
 
 
 class P3D(ModelPlugin):
-    filename = 'libgazebo_ros_p3d.so'
+    libraries = ('libgazebo_ros_p3d.so',)
 
     def __init__(self, ctx, robot, spec, rng=None):
-        super(P3D, self).__init__(ctx, robot, spec)
+        super().__init__(ctx, robot, spec)
         p = self.params
         self.body_name = self.link_param('bodyName', 'the link whose pose is published')
         if not p.has('topicName'):
@@ -96,6 +96,3 @@ class P3D(ModelPlugin):
         self.pub.publish(odometry(self.stamp(time), self.frame_id, self.body_name, position, orientation, linear,
                                   angular, self.cov, self.cov))
         self.clock.mark(time)
-
-
-PLUGINS = (P3D,)

@@ -23,10 +23,10 @@ COVARIANCE = covariance(0.00001, 0.00001, 0.001)
 
 
 class PlanarMove(ModelPlugin):
-    filename = 'libgazebo_ros_planar_move.so'
+    libraries = ('libgazebo_ros_planar_move.so',)
 
     def __init__(self, ctx, robot, spec):
-        super(PlanarMove, self).__init__(ctx, robot, spec)
+        super().__init__(ctx, robot, spec)
         p = self.params
         self.odometry_rate = p.number('odometryRate', 20.0)
         self.cmd_timeout = p.number('cmdTimeout', -1.0)
@@ -77,6 +77,3 @@ class PlanarMove(ModelPlugin):
         self.odom_pub.publish(odometry(stamp, self.odom_frame, self.base_frame, (position[0], position[1], 0.0),
                                        orientation, (twist[0], twist[1], 0.0), (0.0, 0.0, twist[2]),
                                        COVARIANCE, (0.0,) * 36))
-
-
-PLUGINS = (PlanarMove,)

@@ -28,10 +28,10 @@ WHEELS = (('leftFrontJoint', 'left_front_joint', 'left front'),
 
 
 class SkidSteerDrive(ModelPlugin):
-    filename = 'libgazebo_ros_skid_steer_drive.so'
+    libraries = ('libgazebo_ros_skid_steer_drive.so',)
 
     def __init__(self, ctx, robot, spec):
-        super(SkidSteerDrive, self).__init__(ctx, robot, spec)
+        super().__init__(ctx, robot, spec)
         p = self.params
         self.joints = [self._wheel(tag, default, what) for tag, default, what in WHEELS]
         self.indices = [j.index for j in self.joints]
@@ -87,6 +87,3 @@ class SkidSteerDrive(ModelPlugin):
         vx, vy = world_to_base(linear[0], linear[1], yaw_of(orientation))
         self.odom_pub.publish(odometry(stamp, self.odom_frame, self.base_frame, (position[0], position[1], 0.0),
                                        orientation, (vx, vy, 0.0), (0.0, 0.0, angular[2]), self.cov, self.cov))
-
-
-PLUGINS = (SkidSteerDrive,)

@@ -36,10 +36,10 @@ def update_due(time, period, step):
 
 
 class HectorGps(ModelPlugin):
-    filename = 'libhector_gazebo_ros_gps.so'
+    libraries = ('libhector_gazebo_ros_gps.so',)
 
     def __init__(self, ctx, robot, spec, rng=None):
-        super(HectorGps, self).__init__(ctx, robot, spec)
+        super().__init__(ctx, robot, spec)
         p = self.params
         self.body_name = self.link_param('bodyName', None, default=self.root_link())
         if p.boolean('useWorldSphericalCoordinates', False):
@@ -127,6 +127,3 @@ class HectorGps(ModelPlugin):
         vel.vector.x, vel.vector.y, vel.vector.z = self.reference.velocity(velocity)
         self.fix_pub.publish(fix)
         self.velocity_pub.publish(vel)
-
-
-PLUGINS = (HectorGps,)

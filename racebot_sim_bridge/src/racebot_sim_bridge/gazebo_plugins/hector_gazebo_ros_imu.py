@@ -46,10 +46,10 @@ def rate_from_rotation(previous, current, dt):
 
 
 class HectorImu(ModelPlugin):
-    filename = 'libhector_gazebo_ros_imu.so'
+    libraries = ('libhector_gazebo_ros_imu.so',)
 
     def __init__(self, ctx, robot, spec, rng=None):
-        super(HectorImu, self).__init__(ctx, robot, spec)
+        super().__init__(ctx, robot, spec)
         p = self.params
         self.body_name = self.link_param('bodyName', None, default=self.root_link())
         self.frame_id = p.string('frameId', self.body_name)
@@ -170,6 +170,3 @@ class HectorImu(ModelPlugin):
             bias.angular_velocity.x, bias.angular_velocity.y, bias.angular_velocity.z = rate_bias
             bias.linear_acceleration.x, bias.linear_acceleration.y, bias.linear_acceleration.z = accel_bias
             self.bias_pub.publish(bias)
-
-
-PLUGINS = (HectorImu,)

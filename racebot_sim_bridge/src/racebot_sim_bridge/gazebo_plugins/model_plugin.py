@@ -1,7 +1,7 @@
 """What every simulated Gazebo model plugin shares: its life cycle, its parameters, its ROS I/O.
 
 A model plugin is one `<gazebo><plugin filename="libgazebo_ros_X.so">` block of a spawned robot
-(not gazebo_ros_control, which simulator.py runs, and not a `<sensor>`'s plugin: sensors/). It is
+(not gazebo_ros_control, which the simulator runs, and not a `<sensor>`'s plugin: sensor_plugin.py). It is
 built when the robot spawns (Gazebo's Load): bad parameters are warned about with the value used
 instead (PluginParams), or the plugin is refused with PluginError and the robot spawns without it.
 Then, on the physics thread under Simulator.lock:
@@ -16,13 +16,14 @@ assignment, atomic), which the physics thread reads.
 import math
 
 from racebot_sim_bridge.engine.sim_time import ros_time
+from racebot_sim_bridge.gazebo_plugins import PluginKind
 
 
 class PluginError(ValueError):
     """The plugin cannot work with these parameters; the message says which and what to do."""
 
 
-class PluginParams(object):
+class PluginParams:
     """A plugin's SDF parameters (child tag -> text), read with upstream's defaults. A value that is
     missing gets the default silently (as upstream, which logs at most a debug line); a value that is
     present and wrong gets a warning naming the tag, what was wrong and the value used instead."""
@@ -113,10 +114,11 @@ class PluginParams(object):
         return default
 
 
-class ModelPlugin(object):
+class ModelPlugin:
     """Base of every simulated model plugin. `ctx` is the PluginManager (rospy, the Simulator, the
     shared /tf publisher, logging); `robot` the simulator.Robot; `spec` the urdf_model.GazeboPlugin."""
-    filename = None  # upstream's library name, e.g. 'libgazebo_ros_diff_drive.so'
+    libraries = ()  # upstream's library names it answers, e.g. ('libgazebo_ros_diff_drive.so',); registry.py
+    plugin_kind = PluginKind.MODEL
 
     def __init__(self, ctx, robot, spec):
         self.ctx = ctx
@@ -144,7 +146,7 @@ class ModelPlugin(object):
     # -- helpers ----------------------------------------------------------------------------
     @property
     def label(self):
-        return "%s: plugin '%s' (%s)" % (self.robot.name, self.spec.name, self.filename)
+        return "%s: plugin '%s' (%s)" % (self.robot.name, self.spec.name, self.libraries[0])
 
     def warn(self, message):
         self.ctx.rospy.logwarn('%s: %s' % (self.label, message))
@@ -224,7 +226,7 @@ class ModelPlugin(object):
         return name
 
 
-class _ServiceHandle(object):
+class _ServiceHandle:
     def __init__(self, service):
         self.service = service
 
@@ -232,7 +234,7 @@ class _ServiceHandle(object):
         self.service.shutdown()
 
 
-class _ReconfigureHandle(object):
+class _ReconfigureHandle:
     def __init__(self, server):
         self.server = server
 

@@ -1,15 +1,15 @@
 """PluginManager: the Gazebo model plugins of every spawned robot, hooked into a Simulator.
 
-When a URDF robot spawns, each of its model-level <gazebo><plugin> blocks (not gazebo_ros_control,
-not a sensor's) is looked up in plugins.MODEL_PLUGINS by its filename and built. A plugin racebot
-does not simulate gets one warning naming it, and the robot works without it; a plugin refused for
-its parameters (PluginError) gets an error with the reason. Nothing a plugin raises reaches the
-world server: a plugin whose update fails is stopped with an error, the world goes on.
+When a URDF robot spawns, each of its model-level <gazebo><plugin> blocks (not a sensor's) is looked up
+in registry.REGISTRY by its filename and built when it is a model plugin (gazebo_ros_control hooks in
+itself: gazebo_ros_control/). A plugin racebot does not simulate gets the registry's one warning naming it, and the
+robot works without it; a plugin refused for its parameters (PluginError) gets an error with the
+reason. Nothing a plugin raises reaches the world server: a plugin whose update fails is stopped with
+an error, the world goes on.
 """
-from racebot_sim_bridge.gazebo_plugins import MODEL_PLUGINS, plugin_key
+from racebot_sim_bridge.gazebo_plugins import PluginKind
 from racebot_sim_bridge.gazebo_plugins.model_plugin import PluginError
-from racebot_sim_bridge.supported_table import WHERE as README_TABLE
-NOT_MODEL_PLUGINS = ('gazebo_ros_control',)  # simulator.py runs it
+from racebot_sim_bridge.gazebo_plugins.registry import REGISTRY
 
 
 def dynamic_reconfigure_server(namespace, config_type, callback):
@@ -19,13 +19,13 @@ def dynamic_reconfigure_server(namespace, config_type, callback):
     return Server(config_type, callback, namespace=namespace)
 
 
-class PluginManager(object):
-    def __init__(self, rospy, sim, registry=None, reconfigure=dynamic_reconfigure_server):
+class PluginManager:
+    def __init__(self, rospy, sim, registry=REGISTRY, reconfigure=dynamic_reconfigure_server):
         """reconfigure(namespace, config_type, callback): makes a plugin's dynamic_reconfigure server
         (tests without a master give a stand-in)."""
         self.rospy = rospy
         self.sim = sim
-        self.registry = MODEL_PLUGINS if registry is None else registry
+        self.registry = registry
         self.reconfigure = reconfigure
         self.plugins = {}  # robot name -> [ModelPlugin]
         self._active = []
@@ -46,14 +46,11 @@ class PluginManager(object):
     def on_spawn(self, robot):
         created = []
         for spec in robot.model.plugins:
-            key = plugin_key(spec.filename)
-            if key in NOT_MODEL_PLUGINS:
-                continue
-            cls = self.registry.get(key)
+            cls = self.registry.find(spec.filename, PluginKind.MODEL)
             if cls is None:
-                self.rospy.logwarn("%s: plugin '%s' (%s) is not simulated by racebot, so what it would do does "
-                                   "not happen; the rest of the robot works. See %s"
-                                   % (robot.name, spec.name, spec.filename, README_TABLE))
+                warning = self.registry.not_simulated(robot.name, spec)
+                if warning:
+                    self.rospy.logwarn(warning)
                 continue
             try:
                 plugin = cls(self, robot, spec)

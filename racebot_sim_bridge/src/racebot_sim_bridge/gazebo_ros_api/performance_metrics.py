@@ -72,7 +72,7 @@ class PerformanceMetricsPublisher(object):
 
     def sensors(self):
         """[(scoped name, measurements so far, is camera)] of the sensors now in the world."""
-        from racebot_sim_bridge.sensors.devices import CameraSensor
+        from racebot_sim_bridge.gazebo_plugins.gazebo_ros_camera import CameraSensor
         out, seen = [], set()
         with self.sim.lock:
             for robot_name, group in self.sensor_manager.sensors.items():

@@ -18,7 +18,7 @@ from std_srvs.srv import Empty, EmptyResponse
 import xml.etree.ElementTree as ET
 
 from racebot_sim_bridge.gazebo_ros_api import frames
-from racebot_sim_bridge.description import model_path, sdf_world, spawn_xml, urdf_model
+from racebot_sim_bridge.description import model_path, sdf_reader, spawn_xml, urdf_model, urdf_reader
 from racebot_sim_bridge.engine.physics import PhysicsError
 from racebot_sim_bridge.gazebo_ros_api.forces import GazeboForces
 from racebot_sim_bridge.gazebo_ros_api.properties import GazeboProperties
@@ -153,7 +153,7 @@ class GazeboServices:
     def _spawn_urdf(self, req, root, pose):
         name = req.model_name
         try:
-            model = urdf_model.parse_urdf(root)
+            model = urdf_reader.parse_urdf(root)
         except urdf_model.UrdfError as err:
             # Gazebo cannot load it and the service waits out its 10 s; the reason is in the server's log
             self.rospy.logerr('SpawnModel: the URDF of %s is not valid: %s' % (name, err))
@@ -174,8 +174,8 @@ class GazeboServices:
         document = ET.Element('sdf', version='1.6')
         ET.SubElement(document, 'world', name='spawn').extend(_sdf_models(root))
         try:
-            world = sdf_world.parse_world(document, source='spawn_sdf_model request')
-        except (sdf_world.WorldError, ValueError) as err:
+            world = sdf_reader.parse_world(document, source='spawn_sdf_model request')
+        except (sdf_reader.WorldError, ValueError) as err:
             self.rospy.logerr('SpawnModel: the SDF of %s is not valid: %s' % (req.model_name, err))
             return srv.SpawnModelResponse(False, SPAWN_NOT_LOADED % req.model_name)
         for w in world.warnings:

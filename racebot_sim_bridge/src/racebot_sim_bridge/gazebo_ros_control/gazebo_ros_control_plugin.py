@@ -13,7 +13,7 @@ WorldUpdateBegin; `read` and `write` are the RobotHWSim's own methods, so that l
 """
 from racebot_sim_bridge.description.urdf_model import UrdfError
 from racebot_sim_bridge.engine.simulator import SpawnError
-from racebot_sim_bridge.gazebo_plugins import plugin_namespace
+from racebot_sim_bridge.gazebo_plugins import PluginKind, plugin_namespace
 from racebot_sim_bridge.gazebo_ros_control.robot_hw_sim import (DEFAULT_ROBOT_SIM_TYPE, DefaultRobotHWSim,
                                                                 hardware_joints, pid_gains)
 from racebot_sim_bridge.ros_control.controller_manager import ControllerManager, ControllerManagerServices
@@ -30,7 +30,9 @@ class GazeboRosControlPlugin:
     `read`, `write`, `cm`, `control_period` and `last_update` every step, and calls close() when
     the robot goes."""
 
-    filename = 'libgazebo_ros_control.so'
+    libraries = ('libgazebo_ros_control.so',)  # what gazebo_plugins/registry.py knows it by
+    plugin_kind = PluginKind.ROBOT_HARDWARE
+    filename = libraries[0]
 
     def __init__(self, sim, robot, spec, rospy=None):
         """Load(): `spec` is the robot's gazebo_ros_control <plugin> (urdf_model.GazeboPlugin). Leaves

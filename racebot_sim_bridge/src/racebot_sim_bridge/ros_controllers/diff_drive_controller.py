@@ -2,7 +2,7 @@
 wheels: `cmd_vel` (geometry_msgs/Twist) in, wheel velocities out, `odom` (nav_msgs/Odometry) and the
 odom -> base TF at publish_rate. Parameters, defaults and errors as upstream's init(); the kinematics
 are kinematics/diff_drive_controller.py. Upstream's dynamic_reconfigure server and
-publish_wheel_joint_controller_state are not here (README)."""
+publish_wheel_joint_controller_state are not here (docs/SUPPORTED.md)."""
 import math
 
 from geometry_msgs.msg import TransformStamped, TwistStamped
@@ -14,6 +14,7 @@ from racebot_sim_bridge.ros_control import hardware_interface as hardware
 from racebot_sim_bridge.ros_control.hardware_interface import VELOCITY
 from racebot_sim_bridge.kinematics.controller_odometry import Odometry, SpeedLimiter, wheel_params_from_urdf
 from racebot_sim_bridge.ros_control.controller_interface import Controller, ControllerInitError
+from racebot_sim_bridge.supported_table import WHERE as SUPPORTED_TABLE
 
 
 class OdometryDriveController(Controller):
@@ -187,8 +188,8 @@ class DiffDriveController(OdometryDriveController):
         self.publish_cmd = self._flag('publish_cmd', False)
         if self._flag('publish_wheel_joint_controller_state', False):
             self.io.warn_throttle(self.param_ns + '/state', 0.0, '%s: publish_wheel_joint_controller_state is not '
-                                  'simulated by racebot (see the README table); the controller runs without it'
-                                  % self.param_ns)
+                                  'simulated by racebot (see %s); the controller runs without it'
+                                  % (self.param_ns, SUPPORTED_TABLE))
         self.separation = self._geometry_param('wheel_separation')
         self.radius = self._geometry_param('wheel_radius')
         try:

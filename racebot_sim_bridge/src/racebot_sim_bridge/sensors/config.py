@@ -1,7 +1,8 @@
 """What gazebo_ros's sensor plugins would publish for a URDF <sensor>: kind, topics, frame, rate.
 
-Pure Python: no rospy, no pybullet. `sensor_config(spec)` reads a urdf_model.SensorSpec and the
-<plugin> inside it, applying each plugin's own defaults and naming rules:
+No rospy, no pybullet in this module. `sensor_config(spec)` reads a urdf_model.SensorSpec and the first
+<plugin> inside it that the registry (../gazebo_plugins/registry.py) has a sensor class for,
+applying each plugin's own defaults and naming rules:
 
 | plugin (filename)                              | kind   | topics                                        |
 | gazebo_ros_laser, gazebo_ros_gpu_laser         | laser  | topicName                                     |
@@ -13,8 +14,10 @@ Pure Python: no rospy, no pybullet. `sensor_config(spec)` reads a urdf_model.Sen
 | gazebo_ros_bumper                              | bumper | bumperTopicName                               |
 | gazebo_ros_multicamera                         | multicamera | cameraName/{left,right}/{image..., cameraInfo...} |
 
+(the kind is the class's `kind`; the sensor types it may sit in, its `sensor_types`)
+
 Relative topic names resolve in the plugin's namespace as Gazebo sets it: its own <robotNamespace>,
-else the spawn request's robot_namespace, else each plugin's default (../plugin_namespace.py has
+else the spawn request's robot_namespace, else each plugin's default (../gazebo_plugins/plugin_namespace.py has
 the rules); absolute ones stay. So the racebot's IMU (topicName imu, no robotNamespace) publishes
 /imu when spawn_model runs at the root (it sends '/'), and /<model>/imu for a spawn request with an
 empty robot_namespace, as gazebo_ros_imu_sensor does. Frame ids are the plugins': the laser's and
@@ -27,31 +30,11 @@ frames (params['update_rate'], schedule.FrameThrottle), as upstream's OnNewFrame
 """
 from dataclasses import dataclass, field, replace
 
+from racebot_sim_bridge.gazebo_plugins import PluginKind, library_key
 from racebot_sim_bridge.gazebo_plugins.plugin_namespace import sensor_namespace
+from racebot_sim_bridge.gazebo_plugins.registry import REGISTRY
 from racebot_sim_bridge.kinematics.rotations import as_xyz_rpy, compose
-
-KINDS = {
-    'gazebo_ros_laser': 'laser',
-    'gazebo_ros_gpu_laser': 'laser',
-    'gazebo_ros_camera': 'camera',
-    'gazebo_ros_openni_kinect': 'depth',
-    'gazebo_ros_depth_camera': 'depth',
-    'gazebo_ros_imu_sensor': 'imu',
-    'gazebo_ros_range': 'range',
-    'gazebo_ros_bumper': 'bumper',
-    'gazebo_ros_multicamera': 'multicamera',
-}
-# Which sensor types each kind of plugin can sit in.
-SENSOR_TYPES = {
-    'laser': ('ray', 'gpu_ray'),
-    'camera': ('camera',),
-    'depth': ('depth',),
-    'imu': ('imu',),
-    'range': ('ray',),  # gazebo_ros_range needs a RaySensor: a gpu_ray is refused (gzthrow upstream)
-    'bumper': ('contact',),
-    'multicamera': ('multicamera',),
-}
-
+from racebot_sim_bridge.supported_table import WHERE as SUPPORTED_TABLE
 
 class SensorConfigError(ValueError):
     """A sensor block that cannot be simulated as written; the message says why."""
@@ -60,30 +43,14 @@ class SensorConfigError(ValueError):
 @dataclass
 class SensorConfig:
     name: str
-    kind: str                       # laser, camera, depth, imu
+    kind: str                       # the sensor class's kind: laser, camera, depth, imu, range, ...
     reference: str                  # the URDF link the <gazebo reference> names
     frame_id: str
     rate: float                     # Hz of sim time; 0 = every world update
     topics: dict = field(default_factory=dict)   # role -> absolute topic name
     params: dict = field(default_factory=dict)   # kind-specific numbers (cutoffs, baseline, noise)
     warnings: list = field(default_factory=list)
-
-
-def plugin_kind(filename):
-    """'libgazebo_ros_laser.so' -> 'laser'; None for a plugin we do not simulate."""
-    base = (filename or '').rsplit('/', 1)[-1]
-    if base.endswith('.so'):
-        base = base[:-3]
-    if base.startswith('lib'):
-        base = base[3:]
-    return KINDS.get(base)
-
-
-def plugin_kind_name(plugin):
-    """'libgazebo_ros_openni_kinect.so' -> 'openni_kinect'."""
-    base = (plugin.filename or '').rsplit('/', 1)[-1]
-    return base[len('libgazebo_ros_'):-len('.so')] if base.startswith('libgazebo_ros_') and base.endswith('.so') \
-        else base
+    sensor_class: type = None       # the registered sensor plugin class that runs it
 
 
 def join_topic(namespace, *parts):
@@ -112,26 +79,27 @@ def sensor_config(spec, spawn_namespace='', model_name='', node_namespace='/'):
     does not fit its sensor (e.g. a camera plugin in a ray sensor). spawn_namespace: the spawn
     request's robot_namespace; model_name: the spawned model's name; node_namespace: the world
     server's."""
-    plugin, kind = None, None
+    plugin, cls = None, None
     for p in spec.plugins:
-        kind = plugin_kind(p.filename)
-        if kind is not None:
+        cls = REGISTRY.find(p.filename, PluginKind.SENSOR)
+        if cls is not None:
             plugin = p
             break
     if plugin is None:
         return None
+    kind = cls.kind
     what = "sensor '%s' plugin '%s'" % (spec.name, plugin.name)
-    if spec.type not in SENSOR_TYPES[kind]:
+    if spec.type not in cls.sensor_types:
         raise SensorConfigError('%s: %s is a %s plugin but the sensor is of type %r (expected %s)'
-                                % (what, plugin.filename, kind, spec.type, ' or '.join(SENSOR_TYPES[kind])))
+                                % (what, plugin.filename, kind, spec.type, ' or '.join(cls.sensor_types)))
     if kind in ('camera', 'depth') and spec.camera is None:
         raise SensorConfigError('%s: the sensor has no <camera> block' % what)
     if kind in ('laser', 'range') and spec.ray is None:
         raise SensorConfigError('%s: the sensor has no <ray> block' % what)
     if kind == 'multicamera':
-        return _multicamera_config(spec, plugin, what, spawn_namespace, model_name, node_namespace)
+        return _multicamera_config(cls, spec, plugin, what, spawn_namespace, model_name, node_namespace)
     if kind in ('range', 'bumper'):
-        return _range_or_bumper_config(kind, spec, plugin, what, spawn_namespace, model_name, node_namespace)
+        return _range_or_bumper_config(cls, spec, plugin, what, spawn_namespace, model_name, node_namespace)
     params = plugin.params
     warnings = []
     own_ns = params.get('robotNamespace')
@@ -139,7 +107,7 @@ def sensor_config(spec, spawn_namespace='', model_name='', node_namespace='/'):
     def namespace(camera_name=''):
         return sensor_namespace(kind, own_ns, spawn_namespace, model_name, camera_name, node_namespace)
     rate = spec.update_rate
-    config = SensorConfig(spec.name, kind, spec.reference, '', rate, warnings=warnings)
+    config = SensorConfig(spec.name, kind, spec.reference, '', rate, warnings=warnings, sensor_class=cls)
     if kind == 'laser':
         topic = params.get('topicName')
         if topic == '':
@@ -207,7 +175,8 @@ def sensor_config(spec, spawn_namespace='', model_name='', node_namespace='/'):
             config.params['cutoff'] = _number(params, 'pointCloudCutoff', 0.4, warnings, what)
             # gazebo_ros_openni_kinect's useDepth16UC1Format (sdformat's bool: true/1, false/0)
             flag = (params.get('useDepth16UC1Format') or 'false').strip().lower()
-            config.params['depth_16uc1'] = flag in ('true', '1') and plugin_kind_name(plugin) == 'openni_kinect'
+            config.params['depth_16uc1'] = (flag in ('true', '1')
+                                            and library_key(plugin.filename) == 'gazebo_ros_openni_kinect')
             if flag not in ('true', '1', 'false', '0'):
                 warnings.append('%s: <useDepth16UC1Format> %r is not true or false; 32FC1 it is' % (what, flag))
             config.params['cutoff_max'] = _number(params, 'pointCloudCutoffMax', 5.0, warnings, what)
@@ -215,8 +184,8 @@ def sensor_config(spec, spawn_namespace='', model_name='', node_namespace='/'):
             warnings.append('%s: <focalLength>, <Cx>, <Cy> go into camera_info as set; the image is rendered from '
                             'the image size and horizontal_fov (as in Gazebo)' % what)
         if any(config.params['distortion']) or any(spec.camera.distortion):
-            warnings.append('%s: lens distortion is not rendered (README: supported sensors); camera_info reports '
-                            'the coefficients' % what)
+            warnings.append('%s: lens distortion is not rendered (see %s); camera_info reports '
+                            'the coefficients' % (what, SUPPORTED_TABLE))
     return config
 
 
@@ -224,11 +193,6 @@ def _throttled(sensor_rate, plugin_rate):
     """The rate a plugin publishes at: the sensor's, or the plugin's own if that is lower."""
     rates = [r for r in (sensor_rate, plugin_rate) if r and r > 0]
     return min(rates) if rates else 0.0
-
-
-def unsupported_plugins(spec):
-    """Filenames of a urdf_model.SensorSpec's plugins that racebot does not simulate."""
-    return [p.filename for p in spec.plugins if plugin_kind(p.filename) is None]
 
 
 def tf_resolve(prefix, frame):
@@ -255,9 +219,10 @@ def resolve_frame(config, tf_prefix):
     config.frame_id = tf_resolve(str(tf_prefix or ''), config.params['frame_name'])
 
 
-def _range_or_bumper_config(kind, spec, plugin, what, spawn_namespace, model_name, node_namespace):
+def _range_or_bumper_config(cls, spec, plugin, what, spawn_namespace, model_name, node_namespace):
     """gazebo_ros_range (a ray sensor to sensor_msgs/Range) and gazebo_ros_bumper (a contact sensor
     to gazebo_msgs/ContactsState): parameters and defaults as their Load() reads them."""
+    kind = cls.kind
     params = plugin.params
     warnings = []
     ns = sensor_namespace(kind, params.get('robotNamespace'), spawn_namespace, model_name, '', node_namespace)
@@ -265,7 +230,8 @@ def _range_or_bumper_config(kind, spec, plugin, what, spawn_namespace, model_nam
         if not spec.contact_collisions or not all(spec.contact_collisions):
             raise SensorConfigError("%s: the contact sensor needs <contact><collision>NAME</collision></contact> "
                                     "naming one of its link's collisions" % what)
-        config = SensorConfig(spec.name, kind, spec.reference, '', spec.update_rate, warnings=warnings)
+        config = SensorConfig(spec.name, kind, spec.reference, '', spec.update_rate, warnings=warnings,
+                              sensor_class=cls)
         _frame(config, params, 'world', ns)
         config.topics['bumper'] = join_topic(ns, params.get('bumperTopicName') or 'bumper_states')
         config.params['collisions'] = list(spec.contact_collisions)
@@ -282,7 +248,8 @@ def _range_or_bumper_config(kind, spec, plugin, what, spawn_namespace, model_nam
                         "gazebo_ros_range does with any text but 'ultrasound'" % (what, radiation))
     if params.get('fov') is None:
         warnings.append('%s has no <fov>; field_of_view 0.05 rad, as gazebo_ros_range defaults' % what)
-    config = SensorConfig(spec.name, kind, spec.reference, '', spec.update_rate, warnings=warnings)
+    config = SensorConfig(spec.name, kind, spec.reference, '', spec.update_rate, warnings=warnings,
+                          sensor_class=cls)
     _frame(config, params, '/world', ns)
     config.topics['range'] = join_topic(ns, '/range' if topic is None else topic)
     config.params['radiation'] = radiation
@@ -297,7 +264,7 @@ def _range_or_bumper_config(kind, spec, plugin, what, spawn_namespace, model_nam
 STEREO_SIDES = (('left', False), ('right', True))
 
 
-def _multicamera_config(spec, plugin, what, spawn_namespace, model_name, node_namespace):
+def _multicamera_config(cls, spec, plugin, what, spawn_namespace, model_name, node_namespace):
     """A SensorConfig of kind 'multicamera' whose params['parts'] are (camera SensorSpec, camera
     SensorConfig) pairs: each <camera> as the gazebo_ros_camera that gazebo_ros_multicamera makes
     of it, under <cameraName>/left or <cameraName>/right, posed at the sensor's pose + its own."""
@@ -320,7 +287,8 @@ def _multicamera_config(spec, plugin, what, spawn_namespace, model_name, node_na
         part = sensor_config(part_spec, spawn_namespace, model_name, node_namespace)
         if part is not None:
             parts.append((part_spec, part))
-    config = SensorConfig(spec.name, 'multicamera', spec.reference, '', spec.update_rate, warnings=warnings)
+    config = SensorConfig(spec.name, cls.kind, spec.reference, '', spec.update_rate, warnings=warnings,
+                          sensor_class=cls)
     for part_spec, part in parts:
         config.topics.update({'%s/%s' % (part_spec.camera.name, role): topic for role, topic in part.topics.items()})
         warnings.extend(w for w in part.warnings if w not in warnings)  # both sides share the plugin's

@@ -44,7 +44,7 @@ class SceneColours(object):
         self.done = set()  # (model name, body id) of the bodies already coloured
 
     def refresh(self, models=()):
-        """Colours every SDF body not coloured yet: those that carry their sdf_world.Model
+        """Colours every SDF body not coloured yet: those that carry their sdf_model.Model
         (Body.source, as physics.PhysicsWorld records it) and those of `models`; forgets
         the planes of removed bodies."""
         world = self.world
@@ -62,7 +62,7 @@ class SceneColours(object):
         self.done &= alive
 
     def colour_model(self, model, body=None):
-        """`model`: sdf_world.Model, already added to the world (its Body found by name)."""
+        """`model`: sdf_model.Model, already added to the world (its Body found by name)."""
         body = body if body is not None else self.world.bodies.get(model.name)
         if body is None:
             return

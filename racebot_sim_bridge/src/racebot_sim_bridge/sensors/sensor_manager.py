@@ -1,9 +1,10 @@
 """SensorManager: the simulated sensors of every spawned robot, hooked into a Simulator.
 
 When a URDF robot spawns, every <gazebo reference><sensor> block of its URDF that carries a
-gazebo_ros plugin becomes a sensor (config.py says which topics, frame and rate; devices.py has
-one class per plugin); after every physics step each sensor whose update is due in sim time
-measures the world and publishes, stamped with that sim time.
+gazebo_ros plugin becomes a sensor (config.py says which topics, frame and rate and which class of
+../gazebo_plugins/ runs it: one module per plugin library, found through the registry); after every
+physics step each sensor whose update is due in sim time measures the world and publishes, stamped
+with that sim time.
 
 Cost is paid only for what somebody reads: a sensor whose topics have no subscriber does no ray
 cast, render or message at all, and a depth camera works out depth only while its depth image or
@@ -33,26 +34,24 @@ import math
 import threading
 import time as walltime
 
-from racebot_sim_bridge.sensors.config import SensorConfigError, resolve_frame, sensor_config, unsupported_plugins
-from racebot_sim_bridge.sensors.devices import make_sensors
+from racebot_sim_bridge.gazebo_plugins.registry import REGISTRY
+from racebot_sim_bridge.sensors.config import SensorConfigError, resolve_frame, sensor_config
 from racebot_sim_bridge.sensors.render import RENDERER_CHOICES, RENDERER_NAMES, TINY
 from racebot_sim_bridge.sensors.render_worker import RenderWorker
 from racebot_sim_bridge.sensors.scene import SceneColours
 from racebot_sim_bridge.sensors.schedule import TIME_EPS, RenderBudget
-from racebot_sim_bridge import supported_table
 from racebot_sim_bridge.engine.world_copy import snapshot
 
 DEFAULT_RENDER_BUDGET = 0.5
 DEFAULT_REPORT_PERIOD = 10.0
-SUPPORTED_TABLE = 'see ' + supported_table.WHERE
 
 
-class RospyLog(object):
+class RospyLog:
     def __init__(self, rospy):
         self.info, self.warn, self.error = rospy.loginfo, rospy.logwarn, rospy.logerr
 
 
-class SensorManager(object):
+class SensorManager:
     def __init__(self, rospy, sim, clock=walltime.perf_counter):
         self.rospy = rospy
         self.sim = sim
@@ -112,11 +111,9 @@ class SensorManager(object):
             except SensorConfigError as err:
                 self.rospy.logwarn('%s: %s; not simulated' % (robot.name, err))
                 continue
-            unsupported = unsupported_plugins(spec)
-            if unsupported:  # said once, at spawn
-                self.rospy.logwarn("%s: sensor '%s' (type %s): plugin %s is not simulated by racebot, so it "
-                                   'publishes nothing (the rest of the robot works); %s'
-                                   % (robot.name, spec.name, spec.type, ', '.join(unsupported), SUPPORTED_TABLE))
+            unsupported = [w for w in (REGISTRY.not_simulated(robot.name, p, spec) for p in spec.plugins) if w]
+            for warning in unsupported:  # said once, at spawn
+                self.rospy.logwarn(warning)
             if config is None:
                 if spec.plugins and not unsupported:
                     self.rospy.loginfo("%s: sensor '%s' publishes nothing: its plugin has an empty topic name"
@@ -125,7 +122,7 @@ class SensorManager(object):
             if 'tf_prefix_param' in config.params:  # gazebo_ros_range and _bumper resolve their frame with it
                 resolve_frame(config, self.rospy.get_param(config.params['tf_prefix_param'], ''))
             try:
-                sensors = make_sensors(self, robot, spec, config)
+                sensors = config.sensor_class.create(self, robot, spec, config)
             except (KeyError, ValueError) as err:
                 self.rospy.logwarn("%s: sensor '%s' cannot be simulated: %s" % (robot.name, spec.name, err))
                 continue

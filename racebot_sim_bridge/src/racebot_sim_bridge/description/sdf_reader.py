@@ -1,6 +1,8 @@
-"""Read SDF 1.6 world files into plain dataclasses.
+"""Read SDF 1.6 world files into sdf_model's dataclasses: ``load_world``, ``parse_world``.
 
-Pure Python: no rospy, no pybullet.  ``physics.py`` turns the result into bodies.
+Pure Python: no rospy, no pybullet.  ``physics.py`` turns the result into bodies. The values of each
+element (numbers, poses, shapes, meshes, colours) are read by sdf_elements.ElementReader, which the world
+reader here extends with the world's structure.
 
 What is understood: the world's physics block and gravity; models made of links with box,
 cylinder, sphere, plane and mesh geometry, their poses, masses, inertias, ODE friction (mu, mu2)
@@ -9,8 +11,8 @@ Gazebo model path (model_path.py: GAZEBO_MODEL_PATH, packages' gazebo_model_path
 ~/.gazebo/models; model.config picks the SDF file) with the include's name, pose and static,
 ``model://ground_plane`` and ``model://sun`` built in as Gazebo ships them; the first ``<state>``
 block's model and link poses, which Gazebo applies when it loads a saved world.  Mesh URIs
-(model://, package://, file://, paths) are resolved and the files converted here
-(meshes.convert), so a parsed world names only absolute files and needs no search path again.
+(model://, package://, file://, paths) are resolved and the files converted while reading
+(sdf_elements, meshes.convert), so a parsed world names only absolute files and needs no search path again.
 
 A model's joints (revolute, prismatic, fixed), its ``<plugin>``s and its links' ``<sensor>``s are
 kept (plugins and sensors as the XML written): such a model is a robot, spawned through the URDF
@@ -20,27 +22,21 @@ geometry, world plugins, nested models, includes inside models, actors) is skipp
 unusable (non-numeric, non-finite, zero or negative sizes) and models or meshes that cannot be
 found (the warning names the URI and every place searched) or read.  Only a missing file, text
 that is not XML and a document without ``<world>`` raise ``WorldError``.
-
-Poses are 6-tuples ``(x, y, z, roll, pitch, yaw)`` as SDF writes them; the maths on them (and
-their conventions) is rotations.py's.
 """
 
-import math
 import os
 import xml.etree.ElementTree as ET
-from dataclasses import dataclass, field
 from typing import NamedTuple
 
-__all__ = [
-    'WorldError', 'World', 'Physics', 'Light', 'sun_light', 'Model', 'Link', 'Joint', 'Collision', 'Visual', 'Shape',
-    'parse_world', 'load_world', 'GAZEBO_MATERIALS', 'EMPTY_WORLD_SDF', 'ZERO_POSE',
-]
-
-from racebot_sim_bridge.description import meshes, model_path
-from racebot_sim_bridge.description.materials import GAZEBO_MATERIALS, gazebo_material_rgba  # re-exported
+from racebot_sim_bridge.description import model_path
+from racebot_sim_bridge.description.geometry import Shape
+from racebot_sim_bridge.description.materials import GAZEBO_MATERIALS
+from racebot_sim_bridge.description.sdf_elements import ElementReader, Unusable, child_bool, child_float, floats, quote
+from racebot_sim_bridge.description.sdf_model import (UNLIMITED, ZERO_POSE, Collision, Joint, Light, Link, Model,
+                                                      Physics, Visual, World)
 from racebot_sim_bridge.kinematics.rotations import as_xyz_rpy, compose, inverse
 
-ZERO_POSE = (0.0, 0.0, 0.0, 0.0, 0.0, 0.0)
+__all__ = ['WorldError', 'parse_world', 'load_world', 'sun_light', 'EMPTY_WORLD_SDF']
 
 # What Gazebo's worlds/empty.world holds, for world_name:=worlds/empty.world (the default of
 # empty_world.launch), which Gazebo finds in its own resource path.
@@ -60,188 +56,10 @@ class WorldError(ValueError):
     """The world cannot be read at all (missing file, not XML, no <world>)."""
 
 
-# ---------------------------------------------------------------------------------------
-# Data
-# ---------------------------------------------------------------------------------------
-
-@dataclass
-class Physics:
-    """The physics block, with Gazebo's defaults."""
-    type: str = 'ode'
-    max_step_size: float = 0.001
-    real_time_factor: float = 1.0
-    real_time_update_rate: float = 1000.0
-    gravity: tuple = (0.0, 0.0, -9.8)
-
-
-@dataclass
-class Shape:
-    """Geometry.  box: ``size`` (x, y, z); cylinder: ``radius``, ``length`` (along z);
-    sphere: ``radius``; plane: unit ``normal`` and ``size`` (x, y), infinite for physics;
-    mesh: ``filename`` (the absolute path of the converted OBJ in the mesh cache, so that any
-    process can build it), ``scale`` (x, y, z) and ``uri`` (as written, for messages)."""
-    kind: str
-    size: tuple = None
-    radius: float = None
-    length: float = None
-    normal: tuple = None
-    filename: str = None
-    scale: tuple = None
-    uri: str = None
-
-
-@dataclass
-class Collision:
-    name: str
-    pose: tuple
-    shape: Shape
-    mu: float = None
-    mu2: float = None
-    laser_retro: float = 0.0  # what a laser ray that hits it reads as intensity (Gazebo's <laser_retro>)
-
-
-@dataclass
-class Visual:
-    name: str
-    pose: tuple
-    shape: Shape
-    rgba: tuple = None
-
-
-@dataclass
-class Link:
-    """A link.  ``mass`` is SDF's default 1.0 when no <inertial> gives one; ``inertia`` is
-    ``(ixx, ixy, ixz, iyy, iyz, izz)`` about ``inertial_pose``, or None when not given."""
-    name: str
-    pose: tuple = ZERO_POSE
-    mass: float = 1.0
-    inertia: tuple = None
-    inertial_pose: tuple = ZERO_POSE
-    collisions: list = field(default_factory=list)
-    visuals: list = field(default_factory=list)
-    sensors: list = field(default_factory=list)  # each <sensor> element as written (XML text)
-
-
-# SDF's "no limit": <limit> defaults of lower/upper (+-1e16) and of effort/velocity (-1)
-UNLIMITED = 1e16
-
-
-@dataclass
-class Joint:
-    """A joint.  ``pose`` is the joint frame in the child link's frame (SDF 1.6); ``axis`` is in that
-    frame, or in the model's when ``axis_in_model`` (<use_parent_model_frame> or expressed_in
-    __model__).  ``type`` is revolute, prismatic or fixed; limits are SDF's (``lower``/``upper`` of
-    magnitude UNLIMITED and negative ``effort``/``velocity`` mean none)."""
-    name: str
-    type: str
-    parent: str
-    child: str
-    pose: tuple = ZERO_POSE
-    axis: tuple = (0.0, 0.0, 1.0)
-    axis_in_model: bool = False
-    lower: float = -UNLIMITED
-    upper: float = UNLIMITED
-    effort: float = -1.0
-    velocity: float = -1.0
-    damping: float = 0.0
-    friction: float = 0.0
-
-
-@dataclass
-class Model:
-    name: str
-    pose: tuple = ZERO_POSE
-    static: bool = False
-    links: list = field(default_factory=list)
-    joints: list = field(default_factory=list)
-    plugins: list = field(default_factory=list)  # each <plugin> element as written (XML text)
-
-    @property
-    def is_robot(self):
-        """Joints, plugins or sensors: what only the URDF path (sdf_urdf.py) simulates."""
-        return bool(self.joints or self.plugins or any(link.sensors for link in self.links))
-
-    def link(self, name):
-        """The link called ``name``; KeyError naming the model's links otherwise."""
-        for link in self.links:
-            if link.name == name:
-                return link
-        raise KeyError('model %r has no link %r (links: %s)'
-                       % (self.name, name, ', '.join(lk.name for lk in self.links) or 'none'))
-
-    def world_pose_of(self, link, element=None):
-        """World pose ``(xyz, quaternion xyzw)`` of a link, or of a collision or visual of
-        it when ``element`` is given.  ``link`` is a Link or a link name."""
-        if isinstance(link, str):
-            link = self.link(link)
-        transform = compose(self.pose, link.pose)
-        if element is not None:
-            transform = compose(transform, element.pose)
-        return transform
-
-
-@dataclass
-class Light:
-    """A world <light>, SDF 1.6's defaults. ``pose`` is a 6-tuple in the world; colours are rgba;
-    ``attenuation``: (range, constant, linear, quadratic). Nothing is lit by it here: it is world
-    state that gazebo_ros's light services read, change and delete."""
-    name: str
-    type: str = 'point'
-    cast_shadows: bool = False
-    pose: tuple = ZERO_POSE
-    diffuse: tuple = (1.0, 1.0, 1.0, 1.0)
-    specular: tuple = (0.1, 0.1, 0.1, 1.0)
-    attenuation: tuple = (10.0, 1.0, 1.0, 0.0)
-    direction: tuple = (0.0, 0.0, -1.0)
-
-
 def sun_light(name='sun', pose=None):
     """Gazebo's model://sun: one directional light (its model.sdf's values)."""
     return Light(name, 'directional', True, pose or (0.0, 0.0, 10.0, 0.0, 0.0, 0.0), (0.8, 0.8, 0.8, 1.0),
                  (0.2, 0.2, 0.2, 1.0), (1000.0, 0.9, 0.01, 0.001), (-0.5, 0.1, -0.9))
-
-
-@dataclass
-class World:
-    name: str = 'default'
-    physics: Physics = field(default_factory=Physics)
-    models: list = field(default_factory=list)
-    lights: list = field(default_factory=list)
-    warnings: list = field(default_factory=list)
-    source: str = '<string>'
-
-    def model(self, name):
-        """The model called ``name``; KeyError naming the world's models otherwise."""
-        for model in self.models:
-            if model.name == name:
-                return model
-        raise KeyError('world %r has no model %r (models: %s)'
-                       % (self.name, name, ', '.join(m.name for m in self.models) or 'none'))
-
-
-# ---------------------------------------------------------------------------------------
-# Parsing
-# ---------------------------------------------------------------------------------------
-
-class _Unusable(Exception):
-    """A value written in the file cannot be used (non-numeric, non-finite, out of range); the message
-    says which and why.  Raised by the value readers (_floats, _child_float, _child_bool, pose, the
-    size checks), caught where the element holding the value is skipped with one warning."""
-
-
-class _Geometry(NamedTuple):
-    """A usable <geometry>: its Shape and the colour its mesh file gives (None: a primitive, or a mesh
-    without one)."""
-    shape: Shape
-    mesh_rgba: tuple = None
-
-
-class _MeshFile(NamedTuple):
-    """A mesh URI read once (per folder it is relative to): the converted file and its colour, or
-    `problem` (why it cannot be used; warned about the first time only)."""
-    obj_path: str = None
-    rgba: tuple = None
-    problem: str = None
 
 
 class _ModelFolder(NamedTuple):
@@ -253,14 +71,6 @@ class _ModelFolder(NamedTuple):
     missing: bool = False
 
 
-_UNSUPPORTED_GEOMETRY = {
-    'heightmap': 'heightmap geometry is not supported',
-    'polyline': 'polyline geometry is not supported; use boxes',
-    'image': 'image geometry is not supported',
-    'capsule': 'capsule geometry is not part of SDF 1.6; use a cylinder',
-    'ellipsoid': 'ellipsoid geometry is not part of SDF 1.6; use a sphere',
-    'empty': 'empty geometry has nothing to simulate',
-}
 _WORLD_SILENT = {'physics', 'gravity', 'light', 'gui', 'scene', 'spherical_coordinates',
                  'magnetic_field', 'atmosphere', 'wind', 'audio', 'state', 'model', 'include'}
 _WORLD_UNSUPPORTED = {
@@ -285,229 +95,67 @@ _LINK_UNSUPPORTED = {
 }
 
 
-def _floats(text, count, what):
-    """``count`` finite floats from whitespace-separated ``text``, else ``_Unusable``."""
-    parts = (text or '').split()
-    if len(parts) != count:
-        raise _Unusable('%s needs %d numbers, got %r' % (what, count, (text or '').strip()))
-    try:
-        values = tuple(float(p) for p in parts)
-    except ValueError:
-        raise _Unusable('%s must be numbers, got %r' % (what, text.strip())) from None
-    if not all(math.isfinite(v) for v in values):
-        raise _Unusable('%s must be finite, got %r' % (what, text.strip()))
-    return values
+def _keep(items, item):
+    """Appends `item` unless it is None (skipped, and warned about where it was read)."""
+    if item is not None:
+        items.append(item)
 
 
-def _child_float(elem, tag, default, what):
-    child = elem.find(tag)
-    if child is None:
-        return default
-    return _floats(child.text, 1, what)[0]
-
-
-def _child_bool(elem, tag, default, what):
-    child = elem.find(tag)
-    if child is None:
-        return default
-    text = (child.text or '').strip().lower()
-    if text in ('true', '1'):
-        return True
-    if text in ('false', '0'):
-        return False
-    raise _Unusable('%s must be true or false, got %r' % (what, (child.text or '').strip()))
-
-
-def _quote(name):
-    return "'%s'" % name
-
-
-class _WorldReader:
+class _WorldReader(ElementReader):
     def __init__(self, source, search=None):
-        self.source = source
-        self.warnings = []
-        self._search = search  # the model path, looked up on first use (it lists ROS packages)
-        # relative mesh URIs: relative to the folder of the model being read, else the world file's
-        self.base_dir = os.path.dirname(source) if os.path.isfile(source) else None
-        self._meshes = {}  # (uri, base_dir) -> _MeshFile: each mesh read and warned about once
+        super().__init__(source, search)
         self._missing_models = {}  # model:// URI -> [message, names of the includes skipped]
 
-    @property
-    def search(self):
-        if self._search is None:
-            self._search = model_path.model_path()
-        return self._search
-
-    def warn(self, where, message):
-        self.warnings.append('%s: %s' % (where, message) if where else message)
-
-    def skipped(self, where, problem):
-        """Warns that the element at `where` is skipped because of `problem`; returns None, its value."""
-        self.warn(where, '%s; skipped' % problem)
-        return None
-
-    # -- small pieces -----------------------------------------------------------------
-
-    def pose(self, elem, where):
-        """The <pose> child of ``elem`` as a 6-tuple (zeros when absent)."""
-        child = elem.find('pose')
-        if child is None:
-            return ZERO_POSE
-        frame = child.get('frame') or child.get('relative_to')
-        if frame:
-            self.warn(where, "pose frame %s is not supported; the pose is taken relative to "
-                             "the parent" % _quote(frame))
-        if not (child.text or '').strip():
-            return ZERO_POSE
-        return _floats(child.text, 6, 'pose')
-
-    def shape(self, geometry, where):
-        """The _Geometry of a <geometry>, or None when it cannot be simulated: warned about here, once
-        (a mesh that failed for an earlier element is not warned about again)."""
-        if geometry is None:
-            self.warn(where, 'no <geometry>; skipped')
-            return None
-        kinds = list(geometry)
-        if not kinds:
-            self.warn(where, 'empty <geometry>; skipped')
-            return None
-        if len(kinds) > 1:
-            self.warn(where, 'several shapes in one <geometry> (%s); only the first is used'
-                      % ', '.join(k.tag for k in kinds))
-        elem = kinds[0]
-        kind = elem.tag
-        if kind not in ('box', 'cylinder', 'sphere', 'plane', 'mesh'):
-            return self.skipped(where, _UNSUPPORTED_GEOMETRY.get(kind, 'unknown geometry <%s>' % kind))
-        try:
-            return self.mesh(elem, where) if kind == 'mesh' else _Geometry(self.primitive(elem))
-        except _Unusable as err:
-            return self.skipped(where, err)
-
-    def primitive(self, elem):
-        """The Shape of a <box>, <cylinder>, <sphere> or <plane>; _Unusable naming a value that is not usable."""
-        kind = elem.tag
-        if kind == 'box':
-            size_elem = elem.find('size')
-            size = (1.0, 1.0, 1.0) if size_elem is None else _floats(size_elem.text, 3,
-                                                                      'box size')
-            self._positive(size, 'box size')
-            return Shape('box', size=size)
-        if kind == 'cylinder':
-            radius = _child_float(elem, 'radius', 1.0, 'cylinder radius')
-            length = _child_float(elem, 'length', 1.0, 'cylinder length')
-            self._positive((radius,), 'cylinder radius')
-            self._positive((length,), 'cylinder length')
-            return Shape('cylinder', radius=radius, length=length)
-        if kind == 'sphere':
-            radius = _child_float(elem, 'radius', 1.0, 'sphere radius')
-            self._positive((radius,), 'sphere radius')
-            return Shape('sphere', radius=radius)
-        normal_elem, size_elem = elem.find('normal'), elem.find('size')
-        normal = (0.0, 0.0, 1.0) if normal_elem is None else _floats(normal_elem.text, 3,
-                                                                      'plane normal')
-        norm = math.sqrt(sum(c * c for c in normal))
-        if norm == 0.0:
-            raise _Unusable('degenerate geometry: plane normal is the zero vector')
-        size = (1.0, 1.0) if size_elem is None else _floats(size_elem.text, 2, 'plane size')
-        self._positive(size, 'plane size')
-        return Shape('plane', size=size, normal=tuple(c / norm for c in normal))
-
-    def mesh(self, elem, where):
-        """The _Geometry of a <mesh>, its file resolved and converted (meshes.convert); None when the
-        file cannot be used: warned about (naming the URI and where it was looked for) the first
-        time only. _Unusable for an unusable value (no URI, a bad scale)."""
-        uri = (elem.findtext('uri') or '').strip()
-        if not uri:
-            raise _Unusable('a <mesh> without <uri>; give <uri>model://NAME/meshes/FILE.dae</uri>')
-        scale_elem = elem.find('scale')
-        scale = (1.0, 1.0, 1.0) if scale_elem is None else _floats(scale_elem.text, 3, 'mesh scale')
-        self._positive(tuple(abs(c) for c in scale), 'mesh scale')
-        if elem.find('submesh') is not None:
-            self.warn('', 'mesh %s: <submesh> is not supported; the whole mesh is used' % uri)
-        key = (uri, self.base_dir)
-        known = self._meshes.get(key)
-        if known is None:
-            known = self._meshes[key] = self._read_mesh(uri)
-            if known.problem is not None:
-                return self.skipped(where, known.problem)
-        if known.problem is not None:
-            return None  # warned about when it was first read
-        return _Geometry(Shape('mesh', filename=known.obj_path, scale=scale, uri=uri), known.rgba)
-
-    def _read_mesh(self, uri):
-        """The _MeshFile of a mesh URI (relative ones: to the current base folder)."""
-        try:
-            path = model_path.resolve_uri(uri, self.base_dir, self.search if uri.startswith('model://') else None)
-            converted = meshes.convert(path)
-        except (model_path.ResolveError, meshes.MeshError) as err:
-            return _MeshFile(problem=str(err))
-        return _MeshFile(converted.obj_path, converted.rgba)
-
-    @staticmethod
-    def _positive(values, what):
-        if not all(v > 0.0 for v in values):
-            raise _Unusable('degenerate geometry: %s must be > 0, got %s'
-                            % (what, ' '.join('%g' % v for v in values)))
-
-    @staticmethod
-    def rgba(material):
-        if material is None:
-            return None
-        for tag in ('diffuse', 'ambient'):
-            child = material.find(tag)
-            if child is not None and (child.text or '').strip():
-                parts = child.text.split()
-                values = _floats(child.text, len(parts) if len(parts) in (3, 4) else 4,
-                                 'material %s colour' % tag)
-                return values if len(values) == 4 else values + (1.0,)
-        script = material.find('script/name')
-        if script is not None:
-            return gazebo_material_rgba(script.text)
-        return None
+    def unsupported(self, where, child, reasons):
+        """Warns that `child` is skipped for its tag's reason in `reasons`."""
+        self.warn(where, '<%s> %s: %s; skipped' % (child.tag, quote(child.get('name', '')), reasons[child.tag]))
 
     # -- elements ---------------------------------------------------------------------
 
-    def collision(self, elem, where):
+    def placed_shape(self, elem, where):
+        """(name, where, pose, _Geometry) of a <collision> or <visual>, or None when it is skipped (warned)."""
         name = elem.get('name', '')
-        where = '%s collision %s' % (where, _quote(name))
+        where = '%s %s %s' % (where, elem.tag, quote(name))
         try:
             pose = self.pose(elem, where)
-        except _Unusable as err:
+        except Unusable as err:
             return self.skipped(where, err)
         geometry = self.shape(elem.find('geometry'), where)
         if geometry is None:
             return None
+        return name, where, pose, geometry
+
+    def collision(self, elem, where):
+        placed = self.placed_shape(elem, where)
+        if placed is None:
+            return None
+        name, where, pose, geometry = placed
         mu = mu2 = None
         ode = elem.find('surface/friction/ode')
         if ode is not None:
             try:
-                mu = _child_float(ode, 'mu', None, 'friction mu')
-                mu2 = _child_float(ode, 'mu2', None, 'friction mu2')
-            except _Unusable as err:
+                mu = child_float(ode, 'mu', None, 'friction mu')
+                mu2 = child_float(ode, 'mu2', None, 'friction mu2')
+            except Unusable as err:
                 return self.skipped(where, err)
             for label, value in (('mu', mu), ('mu2', mu2)):
                 if value is not None and value < 0.0:
                     return self.skipped(where, 'friction %s must be >= 0, got %g' % (label, value))
         try:
-            retro = _child_float(elem, 'laser_retro', 0.0, 'laser_retro')
-        except _Unusable as err:
+            retro = child_float(elem, 'laser_retro', 0.0, 'laser_retro')
+        except Unusable as err:
             return self.skipped(where, err)
         return Collision(name, pose, geometry.shape, mu, mu2, retro)
 
     def visual(self, elem, where):
-        name = elem.get('name', '')
-        where = '%s visual %s' % (where, _quote(name))
-        try:
-            pose = self.pose(elem, where)
-        except _Unusable as err:
-            return self.skipped(where, err)
-        geometry = self.shape(elem.find('geometry'), where)
-        if geometry is None:
+        placed = self.placed_shape(elem, where)
+        if placed is None:
             return None
+        name, where, pose, geometry = placed
         try:
             # an SDF <material> overrides the mesh's own, as in Gazebo
             rgba = self.rgba(elem.find('material')) or geometry.mesh_rgba
-        except _Unusable as err:
+        except Unusable as err:
             return self.skipped(where, err)
         return Visual(name, pose, geometry.shape, rgba)
 
@@ -516,12 +164,12 @@ class _WorldReader:
         if not name:
             self.warn(where, 'a <link> without a name; skipped')
             return None
-        where = '%s link %s' % (where, _quote(name))
+        where = '%s link %s' % (where, quote(name))
         try:
             link = Link(name, pose=self.pose(elem, where))
             inertial = elem.find('inertial')
             if inertial is not None:
-                mass = _child_float(inertial, 'mass', 1.0, 'mass')
+                mass = child_float(inertial, 'mass', 1.0, 'mass')
                 if mass > 0.0:
                     link.mass = mass
                 elif not static:  # a static link's mass does not matter
@@ -532,24 +180,19 @@ class _WorldReader:
                 if inertia is not None:
                     defaults = {'ixx': 1.0, 'ixy': 0.0, 'ixz': 0.0,
                                 'iyy': 1.0, 'iyz': 0.0, 'izz': 1.0}
-                    link.inertia = tuple(_child_float(inertia, key, default, key)
+                    link.inertia = tuple(child_float(inertia, key, default, key)
                                          for key, default in defaults.items())
-        except _Unusable as err:
+        except Unusable as err:
             return self.skipped(where, err)
         for child in elem:
             if child.tag == 'collision':
-                collision = self.collision(child, where)
-                if collision is not None:
-                    link.collisions.append(collision)
+                _keep(link.collisions, self.collision(child, where))
             elif child.tag == 'visual':
-                visual = self.visual(child, where)
-                if visual is not None:
-                    link.visuals.append(visual)
+                _keep(link.visuals, self.visual(child, where))
             elif child.tag == 'sensor':
                 link.sensors.append(ET.tostring(child, encoding='unicode'))
             elif child.tag in _LINK_UNSUPPORTED:
-                self.warn(where, '<%s> %s: %s; skipped' % (
-                    child.tag, _quote(child.get('name', '')), _LINK_UNSUPPORTED[child.tag]))
+                self.unsupported(where, child, _LINK_UNSUPPORTED)
         return link
 
     def joint(self, elem, where):
@@ -558,7 +201,7 @@ class _WorldReader:
         name = elem.get('name')
         if not name:
             return self.skipped(where, 'a <joint> without a name')
-        where = '%s joint %s' % (where, _quote(name))
+        where = '%s joint %s' % (where, quote(name))
         kind = elem.get('type', '')
         parent, child = (elem.findtext('parent') or '').strip(), (elem.findtext('child') or '').strip()
         if not parent or not child:
@@ -566,7 +209,7 @@ class _WorldReader:
         if kind not in ('revolute', 'prismatic', 'fixed'):
             if kind not in ('ball', 'universal', 'revolute2', 'screw', 'gearbox'):
                 return self.skipped(where, 'unknown joint type %s (SDF has revolute, prismatic, fixed, ball, '
-                                    'universal, revolute2, screw, gearbox)' % _quote(kind))
+                                    'universal, revolute2, screw, gearbox)' % quote(kind))
             self.warn(where, '%s joints are not supported; made fixed' % kind)
             kind = 'fixed'
         try:
@@ -575,28 +218,28 @@ class _WorldReader:
             if axis is not None and kind != 'fixed':
                 xyz = axis.find('xyz')
                 if xyz is not None:
-                    joint.axis = _floats(xyz.text, 3, 'axis xyz')
+                    joint.axis = floats(xyz.text, 3, 'axis xyz')
                     joint.axis_in_model = xyz.get('expressed_in') == '__model__'
-                joint.axis_in_model = _child_bool(axis, 'use_parent_model_frame', joint.axis_in_model,
-                                                  'use_parent_model_frame')
+                joint.axis_in_model = child_bool(axis, 'use_parent_model_frame', joint.axis_in_model,
+                                                 'use_parent_model_frame')
                 if not any(joint.axis):
-                    raise _Unusable('axis xyz is the zero vector; give the direction the joint moves along')
+                    raise Unusable('axis xyz is the zero vector; give the direction the joint moves along')
                 limit = axis.find('limit')
                 if limit is not None:
-                    joint.lower = _child_float(limit, 'lower', -UNLIMITED, 'limit lower')
-                    joint.upper = _child_float(limit, 'upper', UNLIMITED, 'limit upper')
-                    joint.effort = _child_float(limit, 'effort', -1.0, 'limit effort')
-                    joint.velocity = _child_float(limit, 'velocity', -1.0, 'limit velocity')
+                    joint.lower = child_float(limit, 'lower', -UNLIMITED, 'limit lower')
+                    joint.upper = child_float(limit, 'upper', UNLIMITED, 'limit upper')
+                    joint.effort = child_float(limit, 'effort', -1.0, 'limit effort')
+                    joint.velocity = child_float(limit, 'velocity', -1.0, 'limit velocity')
                     if joint.lower > joint.upper:
-                        raise _Unusable('limit lower %g is above upper %g' % (joint.lower, joint.upper))
+                        raise Unusable('limit lower %g is above upper %g' % (joint.lower, joint.upper))
                 dynamics = axis.find('dynamics')
                 if dynamics is not None:
-                    joint.damping = _child_float(dynamics, 'damping', 0.0, 'dynamics damping')
-                    joint.friction = _child_float(dynamics, 'friction', 0.0, 'dynamics friction')
+                    joint.damping = child_float(dynamics, 'damping', 0.0, 'dynamics damping')
+                    joint.friction = child_float(dynamics, 'friction', 0.0, 'dynamics friction')
                     if joint.damping < 0 or joint.friction < 0:
-                        raise _Unusable('dynamics damping and friction must be >= 0, got %g and %g'
-                                        % (joint.damping, joint.friction))
-        except _Unusable as err:
+                        raise Unusable('dynamics damping and friction must be >= 0, got %g and %g'
+                                       % (joint.damping, joint.friction))
+        except Unusable as err:
             return self.skipped(where, err)
         return joint
 
@@ -605,11 +248,11 @@ class _WorldReader:
         if not name:
             self.warn('world', 'a <model> without a name; skipped')
             return None
-        where = 'model %s' % _quote(name)
+        where = 'model %s' % quote(name)
         try:
             model = Model(name, pose=self.pose(elem, where),
-                          static=_child_bool(elem, 'static', False, 'static'))
-        except _Unusable as err:
+                          static=child_bool(elem, 'static', False, 'static'))
+        except Unusable as err:
             return self.skipped(where, err)
         warnings_before = len(self.warnings)
         for child in elem:
@@ -618,23 +261,20 @@ class _WorldReader:
                 if link is None:
                     continue
                 if any(other.name == link.name for other in model.links):
-                    self.warn(where, 'a second link %s; skipped' % _quote(link.name))
+                    self.warn(where, 'a second link %s; skipped' % quote(link.name))
                     continue
                 model.links.append(link)
             elif child.tag == 'joint':
-                joint = self.joint(child, where)
-                if joint is not None:
-                    model.joints.append(joint)
+                _keep(model.joints, self.joint(child, where))
             elif child.tag == 'plugin':
                 model.plugins.append(ET.tostring(child, encoding='unicode'))
             elif child.tag in _MODEL_UNSUPPORTED:
-                self.warn(where, '<%s> %s: %s; skipped' % (
-                    child.tag, _quote(child.get('name', '')), _MODEL_UNSUPPORTED[child.tag]))
+                self.unsupported(where, child, _MODEL_UNSUPPORTED)
         if not model.links:
             if elem.find('link') is not None and len(self.warnings) > warnings_before:
                 # Its links were skipped with a warning each: say the model went with them.
                 self.warnings[-1] += ", and so model %s, which has no usable link left" % (
-                    _quote(name))
+                    quote(name))
             else:
                 self.warn(where, 'has no links; skipped')
             return None
@@ -650,7 +290,7 @@ class _WorldReader:
             return None  # a light, not a model: world() reads it with light_of_include
         if target == 'model://ground_plane':
             return self.ground_plane(elem)
-        where = 'include %s' % _quote(uri or '(no uri)')
+        where = 'include %s' % quote(uri or '(no uri)')
         if not uri:
             self.warn(where, 'no <uri>; give <uri>model://NAME</uri>; skipped')
             return None
@@ -678,8 +318,8 @@ class _WorldReader:
             return self.skipped(where, '%s has no <model> (only models can be included)' % sdf_file)
         try:
             pose = self.pose(elem, where) if elem.find('pose') is not None else None
-            static = _child_bool(elem, 'static', None, 'static')
-        except _Unusable as err:
+            static = child_bool(elem, 'static', None, 'static')
+        except Unusable as err:
             return self.skipped(where, err)
         if name:
             model_elem.set('name', name)  # before reading, so that its warnings name it
@@ -724,11 +364,11 @@ class _WorldReader:
 
     def ground_plane(self, elem):
         name = (elem.findtext('name') or '').strip() or 'ground_plane'
-        where = 'include %s' % _quote(name)
+        where = 'include %s' % quote(name)
         try:
             pose = self.pose(elem, where)
-            static = _child_bool(elem, 'static', True, 'static')
-        except _Unusable as err:
+            static = child_bool(elem, 'static', True, 'static')
+        except Unusable as err:
             return self.skipped(where, err)
         # Gazebo's ground_plane model: a static 100 m x 100 m plane, mu 100, mu2 50.
         def plane():
@@ -741,7 +381,7 @@ class _WorldReader:
     def light(self, elem):
         """A world <light>, or None (one warning) when a value is unusable."""
         name = (elem.get('name') or '').strip()
-        where = 'light %s' % _quote(name)
+        where = 'light %s' % quote(name)
         if not name:
             self.warn('world', '<light> without a name; skipped (give it name="...")')
             return None
@@ -749,16 +389,16 @@ class _WorldReader:
             att = elem.find('attenuation')
             default = Light(name)
             attenuation = default.attenuation if att is None else tuple(
-                _child_float(att, tag, value, 'attenuation ' + tag)
+                child_float(att, tag, value, 'attenuation ' + tag)
                 for tag, value in zip(('range', 'constant', 'linear', 'quadratic'), default.attenuation))
-            colour = lambda tag, value: _floats(elem.findtext(tag), 4, tag) if elem.find(tag) is not None else value
+            colour = lambda tag, value: floats(elem.findtext(tag), 4, tag) if elem.find(tag) is not None else value
             return Light(name, (elem.get('type') or 'point').strip(),
-                         _child_bool(elem, 'cast_shadows', default.cast_shadows, 'cast_shadows'),
+                         child_bool(elem, 'cast_shadows', default.cast_shadows, 'cast_shadows'),
                          self.pose(elem, where), colour('diffuse', default.diffuse),
                          colour('specular', default.specular), attenuation,
-                         _floats(elem.findtext('direction'), 3, 'direction') if elem.find('direction') is not None
+                         floats(elem.findtext('direction'), 3, 'direction') if elem.find('direction') is not None
                          else default.direction)
-        except _Unusable as err:
+        except Unusable as err:
             return self.skipped(where, err)
 
     def light_of_include(self, elem):
@@ -767,9 +407,9 @@ class _WorldReader:
             return None
         name = (elem.findtext('name') or '').strip() or 'sun'
         try:
-            pose = self.pose(elem, 'include %s' % _quote(name)) if elem.find('pose') is not None else None
-        except _Unusable as err:
-            return self.skipped('include %s' % _quote(name), err)
+            pose = self.pose(elem, 'include %s' % quote(name)) if elem.find('pose') is not None else None
+        except Unusable as err:
+            return self.skipped('include %s' % quote(name), err)
         return sun_light(name, pose)
 
     def physics(self, world_elem):
@@ -789,8 +429,8 @@ class _WorldReader:
                                     ('real_time_update_rate', True)):
                 default = getattr(physics, tag)
                 try:
-                    value = _child_float(chosen, tag, default, tag)
-                except _Unusable as err:
+                    value = child_float(chosen, tag, default, tag)
+                except Unusable as err:
                     self.warn('physics', '%s; using the default %g' % (err, default))
                     continue
                 if value < 0.0 or (value == 0.0 and not allow_zero):
@@ -803,8 +443,8 @@ class _WorldReader:
             gravity = chosen.find('gravity')  # SDF <= 1.5 kept it in <physics>
         if gravity is not None:
             try:
-                physics.gravity = _floats(gravity.text, 3, 'gravity')
-            except _Unusable as err:
+                physics.gravity = floats(gravity.text, 3, 'gravity')
+            except Unusable as err:
                 self.warn('world', '%s; using the default %s' % (err, physics.gravity))
         return physics
 
@@ -818,10 +458,10 @@ class _WorldReader:
             model = by_name.get(model_state.get('name'))
             if model is None:
                 continue
-            where = 'state of model %s' % _quote(model.name)
+            where = 'state of model %s' % quote(model.name)
             try:
                 scale = model_state.find('scale')
-                if scale is not None and _floats(scale.text, 3, 'scale') != (1.0, 1.0, 1.0):
+                if scale is not None and floats(scale.text, 3, 'scale') != (1.0, 1.0, 1.0):
                     self.warn(where, 'model scale is not supported; ignored')
                 if model_state.find('pose') is not None:
                     model_pose = self.pose(model_state, where)
@@ -831,8 +471,8 @@ class _WorldReader:
                 for link_state in model_state.findall('link'):
                     if link_state.find('pose') is not None:
                         link_poses[link_state.get('name')] = self.pose(
-                            link_state, '%s link %s' % (where, _quote(link_state.get('name'))))
-            except _Unusable as err:
+                            link_state, '%s link %s' % (where, quote(link_state.get('name'))))
+            except Unusable as err:
                 self.warn(where, '%s; the state is ignored for this model' % err)
                 continue
             model.pose = model_pose
@@ -858,7 +498,7 @@ class _WorldReader:
                        if has_model else ''))
             if len(worlds) > 1:
                 self.warn('', '%d <world> elements; only the first (%s) is loaded'
-                          % (len(worlds), _quote(worlds[0].get('name', 'default'))))
+                          % (len(worlds), quote(worlds[0].get('name', 'default'))))
             world_elem = worlds[0]
         world = World(name=world_elem.get('name') or 'default', source=self.source)
         world.physics = self.physics(world_elem)
@@ -869,22 +509,17 @@ class _WorldReader:
                 model = self.model(child)
             elif child.tag == 'include':
                 model = self.include(child)
-                light = self.light_of_include(child)
-                if light is not None:
-                    world.lights.append(light)
+                _keep(world.lights, self.light_of_include(child))
             elif child.tag == 'light':
-                light = self.light(child)
-                if light is not None:
-                    world.lights.append(light)
+                _keep(world.lights, self.light(child))
             elif child.tag in _WORLD_UNSUPPORTED:
-                self.warn('world', '<%s> %s: %s; skipped' % (
-                    child.tag, _quote(child.get('name', '')), _WORLD_UNSUPPORTED[child.tag]))
+                self.unsupported('world', child, _WORLD_UNSUPPORTED)
             elif child.tag not in _WORLD_SILENT:
                 self.warn('world', 'unknown element <%s>; ignored' % child.tag)
             if model is None:
                 continue
             if model.name in names:
-                self.warn('model %s' % _quote(model.name),
+                self.warn('model %s' % quote(model.name),
                           'a second model with this name; skipped (names must be unique)')
                 continue
             names.add(model.name)
@@ -893,16 +528,16 @@ class _WorldReader:
         if state is not None:
             self.state(state, world.models)
         for uri, (message, names) in self._missing_models.items():
-            self.warn('include %s' % _quote(uri), '%s; skipped%s' % (message, '' if len(names) == 1 else (
+            self.warn('include %s' % quote(uri), '%s; skipped%s' % (message, '' if len(names) == 1 else (
                 ' (all %d includes of it: %s)' % (len(names), ', '.join(names)))))
         world.warnings = self.warnings
         return world
 
 
-def parse_world(xml_text, source='<string>', search=None):
-    """Parse SDF world text (str or bytes, or its root element already parsed) into a World.  ``source``
-    names it in messages (and, when it is a file, relative mesh URIs are relative to its folder);
-    ``search``: the model path for model:// URIs (default: model_path.model_path())."""
+def parse_world(xml_text: str | bytes | ET.Element, source: str = '<string>', search: list | None = None) -> World:
+    """Parse SDF world text (str or bytes, or its root element already parsed) into a World.  ``source`` names it
+    in messages (and, when it is a file, relative mesh URIs are relative to its folder); ``search``: the model
+    path for model:// URIs (default: model_path.model_path())."""
     if isinstance(xml_text, ET.Element):
         return _WorldReader(source, search).world(xml_text)
     try:
@@ -916,7 +551,7 @@ def parse_world(xml_text, source='<string>', search=None):
     return _WorldReader(source, search).world(root)
 
 
-def load_world(path, search_path=()):
+def load_world(path, search_path=()) -> World:
     """Read the world file at ``path``.
 
     A relative path that does not exist is looked for under each directory of

@@ -1,4 +1,4 @@
-"""Unit tests of racebot_sim_bridge.description.sdf_world (SDF 1.6 worlds)."""
+"""Unit tests of racebot_sim_bridge.description.sdf_reader (SDF 1.6 worlds) and its sdf_elements."""
 
 import math
 import sys
@@ -8,7 +8,8 @@ import pytest
 from hypothesis import given, settings, strategies as st
 
 from racebot_sim_bridge.kinematics.rotations import quaternion_to_rpy
-from racebot_sim_bridge.description.sdf_world import Physics, WorldError, load_world, parse_world
+from racebot_sim_bridge.description.sdf_model import Physics
+from racebot_sim_bridge.description.sdf_reader import WorldError, load_world, parse_world
 
 HALF_PI = math.pi / 2
 
@@ -317,7 +318,7 @@ def test_random_input_raises_only_world_error(data):
 
 def reader(tmp_path, monkeypatch, models=()):
     """A _WorldReader with its own mesh cache and a model path of `models` (folders under tmp_path)."""
-    from racebot_sim_bridge.description.sdf_world import _WorldReader
+    from racebot_sim_bridge.description.sdf_reader import _WorldReader
     monkeypatch.setenv('RACEBOT_MESH_CACHE', str(tmp_path / 'cache'))
     return _WorldReader('<test>', search=[str(tmp_path / m) for m in models])
 

@@ -1,0 +1,23 @@
+"""The shape of a collision or visual: one type for URDF links (urdf_model.Geometry, a Shape with its origin)
+and SDF links (sdf_model.Collision and Visual hold one), so that the physics and the sensors build from
+either alike."""
+from dataclasses import dataclass
+
+__all__ = ['Shape']
+
+
+@dataclass
+class Shape:
+    """box: ``size`` (x, y, z); cylinder: ``radius``, ``length`` (along z); sphere: ``radius``; plane (SDF
+    only): unit ``normal`` and ``size`` (x, y), infinite for physics; mesh: ``filename`` and ``scale``
+    (x, y, z). An SDF mesh's ``filename`` is the absolute path of the converted OBJ in the mesh cache (so
+    that any process can build it) and ``uri`` the URI as written, for messages; a URDF mesh's ``filename``
+    is as written until urdf_assets resolves it."""
+    kind: str
+    size: tuple = None
+    radius: float = None
+    length: float = None
+    normal: tuple = None
+    filename: str = None
+    scale: tuple = None
+    uri: str = None

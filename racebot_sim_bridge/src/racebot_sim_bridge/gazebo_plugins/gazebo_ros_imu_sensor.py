@@ -1,0 +1,70 @@
+"""libgazebo_ros_imu_sensor.so (gazebo_plugins noetic-devel): an imu sensor's sensor_msgs/Imu. What an IMU
+measures: ../sensors/imu_reading.py; Gazebo's noise models: ../sensors/noise.py. (libgazebo_ros_imu.so, the model
+plugin, is gazebo_ros_imu.py.)
+"""
+import numpy as np
+from sensor_msgs.msg import Imu
+
+from racebot_sim_bridge.gazebo_plugins.sensor_plugin import Sensor
+from racebot_sim_bridge.kinematics.rotations import quaternion_multiply, rpy_to_quaternion
+from racebot_sim_bridge.sensors import messages as msgs
+from racebot_sim_bridge.sensors.imu_reading import ImuKinematics
+from racebot_sim_bridge.sensors.noise import AxisNoise, make_noise
+
+
+class ImuSensor(Sensor):
+    """gazebo_ros_imu_sensor on Gazebo's ImuSensor: per-axis noise with bias (<imu><angular_velocity><x>...),
+    the plugin's gaussianNoise on every field, rpyOffset, initialOrientationAsReference, and the acceleration
+    over the physics step that ends at each update (the velocity is recorded one step before: wake_time)."""
+    libraries = ('libgazebo_ros_imu_sensor.so',)
+    sensor_types = ('imu',)
+    kind = 'imu'
+    main_topic = 'imu'
+
+    def __init__(self, manager, robot, spec, config):
+        super().__init__(manager, robot, spec, config)
+        reference = self.mount.pose()[1] if config.params.get('initial_orientation_as_reference') else None
+        self.kinematics = ImuKinematics(manager.sim.world.gravity, reference)
+        enabled = manager.noise_enabled
+        imu = spec.imu
+        self.gyro_noise = AxisNoise.make(imu.angular_velocity_noise, enabled)
+        self.accel_noise = AxisNoise.make(imu.linear_acceleration_noise, enabled)
+        self.plugin_stddev = config.params['gaussian_noise']
+        self.plugin_noise = make_noise('gaussian', 0.0, self.plugin_stddev, enabled)
+        self.offset = rpy_to_quaternion(*config.params['rpy_offset'])
+        self.advertise('imu', Imu, 10)
+
+    def wake_time(self):
+        # The step before an update primes the velocity, while somebody listens; unheard, only the update
+        # (which resets the kinematics: the first update heard again primes the next).
+        if self.listened():
+            return self.schedule.next - self.sim.step_size
+        return self.schedule.next
+
+    def step(self, time):
+        if not self.schedule.due(time):
+            if time >= self.schedule.next - self.sim.step_size - 1e-9 and self.listened():
+                self.kinematics.prime(time, self.mount.motion()[2])
+            return
+        super().step(time)
+
+    def update(self, time, stamp):
+        if not self.listened():
+            self.kinematics.reset()  # a silence: the next update after it has no velocity to start from
+            return
+        _, orientation, velocity, omega = self.mount.motion()
+        m = self.kinematics.measure(time, orientation, velocity, omega)
+        if m is None:
+            return
+        q = np.asarray(quaternion_multiply(self.offset, m.orientation))  # the plugin's rpyOffset
+        gyro, accel = m.angular_velocity, m.linear_acceleration
+        if self.gyro_noise is not None:
+            gyro = self.gyro_noise.apply(gyro)
+        if self.accel_noise is not None:
+            accel = self.accel_noise.apply(accel)
+        if self.plugin_noise is not None:  # gazebo_ros_imu_sensor's gaussianNoise: on every field
+            gyro, accel = self.plugin_noise.apply(gyro), self.plugin_noise.apply(accel)
+            q = self.plugin_noise.apply(q)
+            q = q / np.linalg.norm(q)  # unlike the plugin, keep it a unit quaternion
+        self.publishers['imu'].publish(msgs.imu(stamp, self.config.frame_id, q, gyro, accel, self.plugin_stddev))
+        self.meter.tick()

@@ -1,0 +1,44 @@
+"""libgazebo_ros_range.so (gazebo_plugins noetic-devel): a ray sensor's shortest ray as sensor_msgs/Range
+(../sensors/range_reading.py).
+"""
+from sensor_msgs.msg import Range
+
+from racebot_sim_bridge.gazebo_plugins.sensor_plugin import Sensor
+from racebot_sim_bridge.sensors import messages as msgs
+from racebot_sim_bridge.sensors.imu_reading import quaternion_to_matrix
+from racebot_sim_bridge.sensors.noise import make_noise
+from racebot_sim_bridge.sensors.range_reading import radiation_type, range_reading, ray_lengths
+from racebot_sim_bridge.sensors.ray import ScanGeometry
+from racebot_sim_bridge.sensors.raycast import cast_rays
+from racebot_sim_bridge.sensors.schedule import FrameThrottle
+
+
+class RangeSensor(Sensor):
+    """gazebo_ros_range: the ray sensor's shortest ray as sensor_msgs/Range (range_reading.py)."""
+    libraries = ('libgazebo_ros_range.so',)
+    sensor_types = ('ray',)  # it needs a RaySensor: a gpu_ray is refused (gzthrow upstream)
+    kind = 'range'
+    main_topic = 'range'
+
+    def __init__(self, manager, robot, spec, config):
+        super().__init__(manager, robot, spec, config)
+        self.geometry = ScanGeometry(spec.ray)
+        self.throttle = FrameThrottle(config.params['update_rate'])
+        stddev = config.params['gaussian_noise']
+        self.noise = make_noise('gaussian', 0.0, stddev, manager.noise_enabled) if stddev > 0 else None
+        self.radiation = radiation_type(config.params['radiation'])
+        self.advertise('range', Range, 1)
+
+    def update(self, time, stamp):
+        if not self.throttle.passes(time) or not self.listened():
+            return
+        position, orientation = self.mount.pose()
+        starts, ends = self.geometry.endpoints(position, quaternion_to_matrix(orientation))
+        fractions, hit = cast_rays(self.sim.world, starts, ends)
+        g = self.geometry
+        sample = float(self.noise.apply(0.0)) if self.noise is not None else 0.0
+        reading = range_reading(ray_lengths(fractions, hit, g.range_min, g.range_max), g.range_max, sample)
+        self.publishers['range'].publish(msgs.range_message(
+            stamp, self.config.frame_id, self.radiation, self.config.params['fov'], g.range_min, g.range_max,
+            reading))
+        self.meter.tick()
