@@ -10,7 +10,7 @@ import xml.etree.ElementTree as ET
 PACKAGE_PREFIX = 'package://'
 
 
-def parse(xml):
+def parse(xml: str | bytes) -> ET.Element | None:
     """The document's root element (its one parse per spawn), or None when the text is not XML."""
     try:
         return ET.fromstring(xml)
@@ -18,21 +18,21 @@ def parse(xml):
         return None
 
 
-def root_tag(xml):
+def root_tag(xml: str | bytes | ET.Element) -> str | None:
     """The root element's tag (of the text, or of its parsed root element), or None when the text is not XML."""
     root = xml if isinstance(xml, ET.Element) else parse(xml)
     return None if root is None else root.tag
 
 
-def is_urdf(xml):
+def is_urdf(xml: str | bytes | ET.Element) -> bool:
     return root_tag(xml) == 'robot'
 
 
-def is_sdf(xml):
+def is_sdf(xml: str | bytes | ET.Element) -> bool:
     return root_tag(xml) in ('sdf', 'gazebo')
 
 
-def add_robot_namespace(xml, namespace):
+def add_robot_namespace(xml: str | ET.Element, namespace: str) -> str | ET.Element:
     """The document with <robotNamespace>namespace</robotNamespace> added to every <plugin> that
     has none; unchanged when namespace is empty. `xml`: text (a new text is returned) or a parsed
     root element (changed in place and returned)."""

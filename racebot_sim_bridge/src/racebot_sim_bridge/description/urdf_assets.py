@@ -19,7 +19,7 @@ from racebot_sim_bridge.description.materials import gazebo_material_rgba
 __all__ = ['resolve_assets']
 
 
-def resolve_assets(urdf, urdf_model, warn=None):
+def resolve_assets(urdf: str | ET.Element, urdf_model, warn=None) -> str | ET.Element:
     """Meshes resolved and colours inline; warn(message) for what was left out. `urdf`: the URDF text, whose
     resolved text is returned, or its root element (as parsed once per spawn), changed in place and returned."""
     warn = warn or (lambda message: None)

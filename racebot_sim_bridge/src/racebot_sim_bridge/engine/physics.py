@@ -316,7 +316,8 @@ class PhysicsWorld(object):
         return dict(shapeType=pb.GEOM_BOX, halfExtents=[size[0] / 2.0, size[1] / 2.0, 0.0005])
 
     # -- robots ---------------------------------------------------------------------------------
-    def spawn_urdf(self, name, urdf_model, urdf, position=(0, 0, 0), orientation=(0, 0, 0, 1), warn=None):
+    def spawn_urdf(self, name: str, urdf_model, urdf: str | ET.Element, position=(0, 0, 0), orientation=(0, 0, 0, 1),
+                   warn=None) -> Body:
         """Spawns a parsed URDF (urdf_model.RobotModel) under `name`; returns its Body. `urdf`: the URDF
         text, or its root element as already parsed (rewritten here in place: meshes resolved, then
         what PyBullet reads). Its meshes are resolved and converted first (urdf_assets); warn(message)
@@ -547,7 +548,7 @@ def link_friction(urdf_model, link):
     return min(mus) if mus else 1.0
 
 
-def prepare_urdf_for_bullet(root, urdf_model, visuals=True):
+def prepare_urdf_for_bullet(root: ET.Element, urdf_model, visuals: bool = True) -> str:
     """The URDF text PyBullet should read, rewritten from its root element (changed in place): links
     lumped as Gazebo lumps them; negligible inertia for links that declare none; <gazebo>, <transmission>
     and sensor blocks dropped; the visuals dropped unless `visuals`; an <axis> without xyz given urdfdom's

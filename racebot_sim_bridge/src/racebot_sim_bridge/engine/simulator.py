@@ -7,6 +7,7 @@ read its joints, update its controller manager when a control period has elapsed
 efforts; then step the physics. All mutation happens under `lock`, which service threads take.
 """
 import threading
+import xml.etree.ElementTree as ET
 
 from racebot_sim_bridge.engine import physics
 from racebot_sim_bridge.description import sdf_urdf, urdf_model, urdf_reader
@@ -81,7 +82,8 @@ class Simulator:
             setattr(self, hooks, [h for h in current if h != hook])
 
     # -- spawning -------------------------------------------------------------------------------
-    def spawn_urdf(self, name, urdf, robot_namespace='', position=(0, 0, 0), orientation=(0, 0, 0, 1), model=None):
+    def spawn_urdf(self, name: str, urdf: str | ET.Element, robot_namespace: str = '', position=(0, 0, 0),
+                   orientation=(0, 0, 0, 1), model: urdf_model.RobotModel | None = None) -> Robot:
         """Spawns a URDF; returns the Robot. Raises SpawnError with gazebo_ros's status wording.
 
         urdf: the URDF text, or its root element already parsed (the spawn's own: it is rewritten for
