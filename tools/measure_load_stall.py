@@ -26,11 +26,11 @@ from racebot_sim_bridge.engine.simulator import Simulator  # noqa: E402
 from racebot_sim_bridge.gazebo_ros_control.gazebo_ros_control_plugin import GazeboRosControlPlugin  # noqa: E402
 
 
-class _Log(object):
+class _Log:
     error = warn = info = staticmethod(lambda msg: None)
 
 
-class WaitTimedLock(object):
+class WaitTimedLock:
     """The controller manager's lock, recording how long the stepping thread waits for it."""
 
     def __init__(self, lock):

@@ -90,7 +90,7 @@ def run_lint(python):
     failed with ruff's findings."""
     cmd = [python, '-m', 'ruff', 'check', '--no-cache', '--output-format', 'concise', ROOT]
     print('== lint: %s' % ' '.join(cmd), flush=True)
-    done = subprocess.run(cmd, cwd=ROOT, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, universal_newlines=True)
+    done = subprocess.run(cmd, cwd=ROOT, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
     if done.returncode == 0:
         print('   ruff: no findings', flush=True)
         return 1, 0, 0, []

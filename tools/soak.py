@@ -117,7 +117,7 @@ def rss_windows(samples, warmup, window=RSS_WINDOW):
     return min(after[:window], key=lambda s: s[1]), min(after[-window:], key=lambda s: s[1])
 
 
-class Soak(object):
+class Soak:
     def __init__(self, args, run_dir):
         self.args = args
         self.run_dir = run_dir

@@ -14,7 +14,7 @@ BUILD_TIMEOUT = 240.0  # wall s for catkin_make of a few tiny packages on a busy
 STOP_TIMEOUT = 30.0    # wall s roslaunch gets to stop its nodes after SIGINT
 
 
-class Workspace(object):
+class Workspace:
     """A catkin workspace in a fresh folder under /tmp: `src/` holds the given packages, `catkin_make`
     builds it on top of whatever workspace the calling environment has sourced (racebot's devel)."""
 
@@ -52,7 +52,7 @@ class Workspace(object):
         shutil.rmtree(self.root, ignore_errors=True)
 
 
-class ShellCommand(object):
+class ShellCommand:
     """`bash -c` (or `bash -lc`, a login shell) running `command` in a session of its own, output in a log
     file; stop() ends it and every process it started, as Ctrl-C in that terminal would."""
 
@@ -105,7 +105,7 @@ def fixture_launch(args, name):
     return shell, LaunchWatch(shell)
 
 
-class LaunchWatch(object):
+class LaunchWatch:
     """Waits on conditions while a ShellCommand runs roslaunch. A wait fails at once, with roslaunch's
     output, when roslaunch has ended or one of its nodes died; after one wait failed, later waits fail at
     once (each would otherwise sit out its whole timeout on a launch that is already broken)."""

@@ -40,7 +40,7 @@ SEPARATION = 0.4
 P3D_SIGMA = 0.01
 
 
-class State(object):
+class State:
     """A model's ground truth at sim time t: x, y, yaw and its world twist."""
 
     def __init__(self, t, res):

@@ -24,7 +24,7 @@ STARTUP_TIMEOUT = 90.0  # wall s
 WALL_TIMEOUT = 30.0
 
 
-class Driver(object):
+class Driver:
     """Publishes the latest `command` on each of `topics` at 20 Hz (wall time) until stopped; None sends nothing."""
 
     def __init__(self, *topics):

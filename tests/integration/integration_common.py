@@ -22,7 +22,7 @@ def yaw_of(q):
     return math.atan2(2 * (q.w * q.z + q.x * q.y), 1 - 2 * (q.y * q.y + q.z * q.z))
 
 
-class Latest(object):
+class Latest:
     """The latest message of a topic, and how many came."""
 
     def __init__(self, topic, cls):

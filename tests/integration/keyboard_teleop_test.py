@@ -71,8 +71,7 @@ class KeyboardTeleopTest(unittest.TestCase):
 
     # -- helpers ----------------------------------------------------------------------------------
     def x(self, *args, timeout=20.0):
-        return subprocess.run(list(args), env=self.env, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
-                              universal_newlines=True, timeout=timeout)
+        return subprocess.run(list(args), env=self.env, capture_output=True, text=True, timeout=timeout)
 
     def auto_repeat(self):
         return auto_repeat(self.env)
@@ -186,7 +185,7 @@ class KeyboardTeleopTest(unittest.TestCase):
             if display:
                 env['DISPLAY'] = display
             done = subprocess.run(['rosrun', 'racebot_gazebo', 'keyboard_teleop.py'], env=env, timeout=60,
-                                  stdout=subprocess.PIPE, stderr=subprocess.PIPE, universal_newlines=True)
+                                  capture_output=True, text=True)
             lines = [line for line in done.stdout.splitlines() if line.strip()]
             self.assertEqual(done.returncode, 0, 'DISPLAY=%s: exit status %d' % (display, done.returncode))
             self.assertEqual(len(lines), 1, 'DISPLAY=%s: expected one line, got %r' % (display, done.stdout))

@@ -66,8 +66,7 @@ def screen_pixels(fbdir):
 
 def auto_repeat(env):
     """'on' or 'off': the X server's key auto-repeat, from `xset q`."""
-    out = subprocess.run(['xset', 'q'], env=env, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
-                         universal_newlines=True, timeout=20).stdout
+    out = subprocess.run(['xset', 'q'], env=env, capture_output=True, text=True, timeout=20).stdout
     for line in out.splitlines():
         if 'auto repeat:' in line:
             return line.split('auto repeat:')[1].split()[0]

@@ -172,7 +172,7 @@ class RacebotDriving(unittest.TestCase):
         return result
 
 
-class CmdVelDrive(object):
+class CmdVelDrive:
     """cmd_vel through transform moves the car: linear.x 0.5, angular.z 0.3 for 3 s of sim time.
     The yaw rate tells the conversion apart: the tutorial's transform passes angular.z through as a
     steering angle (0.3 rad: a bicycle turns at 0.5 tan(0.3) / 0.26 = 0.59 rad/s); convert_yaw_rate
@@ -279,8 +279,7 @@ class RacebotLaunchTest(CmdVelDrive, RacebotDriving):
         env = dict(os.environ, DISPLAY=display)
 
         def x(*args, timeout=60.0):
-            return subprocess.run(list(args), env=env, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
-                                  universal_newlines=True, timeout=timeout)
+            return subprocess.run(list(args), env=env, capture_output=True, text=True, timeout=timeout)
         teleop = subprocess.Popen(['rosrun', 'racebot_gazebo', 'keyboard_teleop.py'], env=env)
         try:
             found = x('xdotool', 'search', '--sync', '--name', WINDOW_NAME).stdout.split()

@@ -20,7 +20,7 @@ WALL_TIMEOUT = 90.0
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 
 
-class Rosout(object):
+class Rosout:
     """Every /rosout message since start, searchable by level, node and text."""
 
     def __init__(self):
@@ -52,7 +52,7 @@ class Rosout(object):
                         'a /rosout message (level >= %d) containing %r' % (level, needles), timeout)
 
 
-class SimProbe(object):
+class SimProbe:
     """The simulator seen from outside: /clock and the /gazebo query services."""
 
     def __init__(self):
@@ -123,7 +123,7 @@ def pid_alive(pid):
         return False
 
 
-class Process(object):
+class Process:
     """A child process (rosrun ...) with its stdout and stderr collected in one text."""
 
     def __init__(self, args, env=None):

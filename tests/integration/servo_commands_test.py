@@ -38,7 +38,7 @@ def f32(x):
     return struct.unpack('f', struct.pack('f', x))[0]
 
 
-class Recorder(object):
+class Recorder:
     """Every Float64 on the six command topics, with its wall arrival time."""
 
     def __init__(self):

@@ -45,7 +45,7 @@ class UnresolvableHostName(unittest.TestCase):
             cmd = self.unshare + [sys.executable, '-c', SET_HOSTNAME_AND_EXEC, self.hostname,
                                   'rostest', '--results-base-dir', results, INNER_TEST]
             run = subprocess.run(cmd, env=env, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
-                                 universal_newlines=True, timeout=240)
+                                 text=True, timeout=240)
         return run.returncode, run.stdout
 
     def test_1_without_ros_networking_rostest_fails(self):

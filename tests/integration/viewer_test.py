@@ -97,7 +97,7 @@ class ViewerTest(unittest.TestCase):
 
     def xdotool(self, *args):
         return subprocess.run(['xdotool'] + list(args), env=self.env,
-                              stdout=subprocess.PIPE, stderr=subprocess.PIPE, universal_newlines=True, timeout=20)
+                              capture_output=True, text=True, timeout=20)
 
     def window_ids(self):
         return self.xdotool('search', '--name', 'Bullet Physics').stdout.split()
@@ -255,7 +255,7 @@ class ViewerTest(unittest.TestCase):
 
     def test_5_gzclient_ends_when_the_world_server_goes(self):
         result = subprocess.run(['rosnode', 'kill', '/gazebo'], stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
-                                universal_newlines=True, timeout=30)
+                                text=True, timeout=30)
         self.assertEqual(result.returncode, 0, result.stdout)
         self.assertEqual(self.second.wait_exit(30.0), 0, self.second.text[-2000:])
         self.assertIn('the world server /gazebo shut down: the window closes with it', self.second.text)

@@ -26,7 +26,7 @@ class PluginRospy(FakeRospy):
     """FakeRospy with subscribers (callbacks by topic) and parameters looked up by has_param."""
 
     def __init__(self, params=None):
-        super(PluginRospy, self).__init__(params)
+        super().__init__(params)
         self.subscribers = {}
 
     def Subscriber(self, topic, msg_class, callback, queue_size=None):
@@ -41,7 +41,7 @@ class PluginRospy(FakeRospy):
         pass
 
 
-class Reconfigure(object):
+class Reconfigure:
     """dynamic_reconfigure's Server as the plugins see it, without a master: the first call with level ~0
     (the configuration the callback fills), then change(values) as a set_parameters call (level 1)."""
 
@@ -54,7 +54,7 @@ class Reconfigure(object):
         return self.config
 
 
-class PluginWorld(object):
+class PluginWorld:
     def __init__(self, tmp_path, params=None):
         path = tmp_path / 'ground.world'
         path.write_text(GROUND)

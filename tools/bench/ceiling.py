@@ -23,7 +23,7 @@ GAINS = {'left_rear_wheel_joint': (0.0, 1.0), 'right_rear_wheel_joint': (0.0, 1.
 SETTLE_S = 0.5  # sim seconds before timing: the car lands on its wheels
 
 
-class Ceiling(object):
+class Ceiling:
     def __init__(self, world_file, urdf_xml=None):
         spec = sdf_reader.load_world(world_file)
         self.step_size = spec.physics.max_step_size

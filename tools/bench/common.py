@@ -121,7 +121,7 @@ def ros_env(port):
     return env
 
 
-class Process(object):
+class Process:
     """A child process in its own process group (so that stopping it stops what it started, and
     nothing else); output to a log file."""
 
@@ -246,7 +246,7 @@ def python():
     return sys.executable
 
 
-class quiet_stdout(object):
+class quiet_stdout:
     """Silences file descriptor 1 (PyBullet's URDF loader prints every merged link there)."""
 
     def __enter__(self):

@@ -37,7 +37,7 @@ def render_urdf():
     return subprocess.run(['xacro', URDF_XACRO], check=True, capture_output=True, text=True, env=env).stdout
 
 
-class FleetCeiling(object):
+class FleetCeiling:
     """Bare PyBullet: n copies of the robot in the empty world, wheels at the command's speeds, the lasers' and
     IMUs' reads at their rates."""
 

@@ -23,7 +23,7 @@ HINGE_STEP_DURATION = 1.0  # s of sim time recorded after the step
 SETTLING_BAND = 0.02      # settling: within 2 % of the step for good
 
 
-class _Topic(object):
+class _Topic:
     def publish(self, msg):
         pass
 
@@ -34,7 +34,7 @@ class _Topic(object):
         return 0
 
 
-class NullIO(object):
+class NullIO:
     """The controllers' I/O with nobody listening and nothing arriving: commands are set directly."""
 
     def publisher(self, topic, cls, queue_size):
@@ -50,13 +50,13 @@ class NullIO(object):
         pass
 
 
-class _Log(object):
+class _Log:
     errors = []
     error = staticmethod(errors.append)
     warn = info = staticmethod(lambda msg: None)
 
 
-class Car(object):
+class Car:
     """A Simulator with the racebot spawned at the origin and the tutorial's seven controllers running."""
 
     def __init__(self, world_file, urdf_xml=None):

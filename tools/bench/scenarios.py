@@ -370,7 +370,7 @@ def startup(p, out):
 
 
 # -- fidelity: through servo_commands, read from /gazebo/model_states ---------------------------------
-class Recorder(object):
+class Recorder:
     """The racebot's pose and twist from /gazebo/model_states, stamped with sim time on arrival."""
 
     def __init__(self):

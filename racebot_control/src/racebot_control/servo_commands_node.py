@@ -53,7 +53,7 @@ WARN_PERIOD_S = 5.0
 ABSURD_STEERING_ANGLE = math.pi
 
 
-class ServoCommands(object):
+class ServoCommands:
     """Forwards each AckermannDriveStamped as six Float64 joint commands (module docstring)."""
 
     def __init__(self):

@@ -27,7 +27,7 @@ QUEUE_SIZE = 100
 WARN_PERIOD_S = 5.0
 
 
-class Transform(object):
+class Transform:
     """Converts every Twist on cmd_vel into one AckermannDriveStamped (module docstring)."""
 
     def __init__(self):

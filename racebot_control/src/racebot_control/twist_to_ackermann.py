@@ -38,7 +38,7 @@ AckermannCommand = collections.namedtuple('AckermannCommand', [
     'speed', 'steering_angle', 'steering_angle_velocity', 'acceleration', 'jerk'])
 
 
-class TwistToAckermann(object):
+class TwistToAckermann:
     """Converts (linear.x, angular.z) pairs; keeps the last steering angle for v = 0."""
 
     def __init__(self, convert_yaw_rate=False, wheelbase=WHEELBASE,

@@ -78,7 +78,7 @@ class CarGeometry(collections.namedtuple('CarGeometry', [
             raise ValueError('max_steering_angle must be in (0, pi/2), got %r' % max_steering_angle)
         if not 0.0 <= wheel_hinge_offset < track / 2:
             raise ValueError('wheel_hinge_offset must be in [0, track/2), got %r' % wheel_hinge_offset)
-        return super(CarGeometry, cls).__new__(cls, **{k: float(v) for k, v in values.items()})
+        return super().__new__(cls, **{k: float(v) for k, v in values.items()})
 
     @property
     def hinge_y(self):

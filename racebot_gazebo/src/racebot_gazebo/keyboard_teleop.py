@@ -53,7 +53,7 @@ def say(line):
     sys.stdout.flush()
 
 
-class TkWindow(object):
+class TkWindow:
     """The Tk window: the UI of a TeleopController (schedule/cancel/close on Tk's after())."""
 
     def __init__(self, tkinter):
@@ -162,7 +162,7 @@ class TkWindow(object):
             pass
 
 
-class KeyboardTeleopNode(object):
+class KeyboardTeleopNode:
     """The ROS side: parameters, the publisher, and DriveCommand -> AckermannDriveStamped."""
 
     def __init__(self, rospy, msg_type):

@@ -42,7 +42,7 @@ def normalize_key(keysym, char=''):
     return None
 
 
-class KeyState(object):
+class KeyState:
     """Which drive keys are held, in the order they were pressed, and the command they mean.
 
     W/S set the speed (+speed / -speed), A/D the steering angle (+max left / -max right, REP 103);
@@ -102,7 +102,7 @@ class KeyState(object):
         return DriveCommand(speed, steer)
 
 
-class TeleopController(object):
+class TeleopController:
     """Publishes the commands of a KeyState on a UI's clock (see the module docstring)."""
 
     def __init__(self, keys, ui, publish, period=DEFAULT_PERIOD, repeat_window=DEFAULT_REPEAT_WINDOW):

@@ -23,7 +23,7 @@ REAR_WHEEL_JOINTS = ('left_rear_wheel_joint', 'right_rear_wheel_joint')
 STEERING_JOINTS = ('left_steering_hinge_joint', 'right_steering_hinge_joint')
 
 
-class AckermannOdometry(object):
+class AckermannOdometry:
     def __init__(self, wheel_radius=WHEEL_RADIUS, wheelbase=WHEELBASE, rear_axle_x=REAR_AXLE_X):
         if not wheel_radius > 0 or not wheelbase > 0:
             raise ValueError('wheel radius and wheelbase must be > 0, got %r and %r' % (wheel_radius, wheelbase))

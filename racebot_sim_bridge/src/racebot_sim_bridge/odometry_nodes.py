@@ -64,7 +64,7 @@ def _frame(name, default):
     return str(rospy.get_param(name, default)).strip().lstrip('/') or default
 
 
-class GroundTruthOdometry(object):
+class GroundTruthOdometry:
     def __init__(self):
         self.link_name = rospy.get_param('~link_name', 'racebot::base_footprint')
         self.frame_id = _frame('~frame_id', 'odom')
@@ -113,7 +113,7 @@ class GroundTruthOdometry(object):
             self.tf.sendTransform(transform(odom))
 
 
-class WheelOdometry(object):
+class WheelOdometry:
     def __init__(self):
         self.model = odometry.AckermannOdometry(float(rospy.get_param('~wheel_radius', odometry.WHEEL_RADIUS)),
                                                 float(rospy.get_param('~wheelbase', odometry.WHEELBASE)),

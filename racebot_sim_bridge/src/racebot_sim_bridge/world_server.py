@@ -100,7 +100,7 @@ def clock_publisher():
     return pub
 
 
-class RospyLog(object):
+class RospyLog:
     error = staticmethod(rospy.logerr)
     warn = staticmethod(rospy.logwarn)
     info = staticmethod(rospy.loginfo)
@@ -159,7 +159,7 @@ def resolve_world(name):
     return name  # load_world reports it missing, with the path
 
 
-class WorldServer(object):
+class WorldServer:
     def __init__(self, world_path, paused, gui):
         spec = sdf_reader.load_world(world_path)
         for w in spec.warnings:

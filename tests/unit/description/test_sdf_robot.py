@@ -215,7 +215,7 @@ def test_a_model_that_cannot_be_built_is_a_spawn_error_and_the_world_goes_on(wor
     world.run(0.01)
 
 
-class RecordingLog(object):
+class RecordingLog:
     def __init__(self):
         self.warnings = []
 

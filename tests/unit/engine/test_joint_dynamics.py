@@ -22,7 +22,7 @@ SPINNER = """<robot name="spinner">
 </robot>"""
 
 
-class Log(object):
+class Log:
     def __getattr__(self, _name):
         return lambda *a: None
 

@@ -18,7 +18,7 @@ CYCLES = 3000
 BOUND = 10.0  # s: only how long a failing wait lasts before it is reported
 
 
-class Log(object):
+class Log:
     def warn(self, message):
         pass
     info = error = warn

@@ -10,7 +10,7 @@ from racebot_sim_bridge.engine.simulator import Simulator
 from racebot_sim_bridge.description.urdf_model import GazeboPlugin, RobotModel
 
 
-class Log(object):
+class Log:
     def __init__(self):
         self.lines = []
 
@@ -24,7 +24,7 @@ class Log(object):
         self.lines.append(('info', m))
 
 
-class Sim(object):
+class Sim:
     set_step_hook = Simulator.set_step_hook  # the Simulator's own hook bookkeeping
 
     def __init__(self):
@@ -32,7 +32,7 @@ class Sim(object):
         self.world = None
 
 
-class Robot(object):
+class Robot:
     def __init__(self, plugins):
         self.name = 'bot'
         self.model = RobotModel('bot', plugins=plugins)
@@ -81,7 +81,7 @@ class Recorder(ModelPlugin):
     def __init__(self, ctx, robot, spec):
         if spec.params.get('refuse'):
             raise PluginError('<refuse> says so')
-        super(Recorder, self).__init__(ctx, robot, spec)
+        super().__init__(ctx, robot, spec)
         self.calls = []
         ctx.made.append(self)
 

@@ -107,7 +107,7 @@ def _robot(control_ns_element):
             '</plugin></gazebo></robot>' % control_ns_element)
 
 
-class _Log(object):
+class _Log:
     def __init__(self):
         self.lines = []
 

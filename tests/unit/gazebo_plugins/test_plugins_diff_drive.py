@@ -22,7 +22,7 @@ class ServiceRospy(PluginRospy):
     """PluginRospy that also records services by name."""
 
     def __init__(self, params=None):
-        super(ServiceRospy, self).__init__(params)
+        super().__init__(params)
         self.services = {}
 
     def Service(self, name, cls, handler):

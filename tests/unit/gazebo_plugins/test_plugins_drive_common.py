@@ -58,7 +58,7 @@ def test_tf_resolve(prefix, frame, expected):
     assert tf_resolve(prefix, frame) == expected
 
 
-class Params(object):
+class Params:
     def __init__(self, values):
         self.values = values
 

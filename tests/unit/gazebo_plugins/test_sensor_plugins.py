@@ -203,7 +203,7 @@ def test_contacts_grouped_per_pair_with_wrenches_in_the_link_frame():
     assert (s.contact_positions[1].z, s.contact_normals[0].x, s.depths[1]) == (1.0, -1.0, 0.002)
 
 
-class FakeClient(object):
+class FakeClient:
     """getContactPoints' answer for read_contacts, and a link frame at the origin."""
 
     def __init__(self, points):
@@ -222,7 +222,7 @@ class FakeClient(object):
         return ((0.0, 0.0, 0.0), (0, 0, 0, 1), None, None, (0.0, 0.0, 0.0), (0.0, 0.0, 0.0, 1.0))
 
 
-class FakeNames(object):
+class FakeNames:
     def name(self, body, link, point):
         return 'other%d::link%d::collision' % (body, link)
 
@@ -234,7 +234,7 @@ def _bullet_point(on_a, distance, normal_force, friction1=0.0, friction2=0.0, bo
 
 
 def test_pybullet_contact_points_converted():
-    class World(object):
+    class World:
         client = FakeClient([
             _bullet_point((0.0, 0.0, 0.0), -0.002, 5.0, friction1=-1.0, friction2=0.5),  # touching the base
             _bullet_point((0.22, 0.0, 0.05), -0.001, 2.0),                              # on the bumper

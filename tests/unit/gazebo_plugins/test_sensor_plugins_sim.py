@@ -208,7 +208,7 @@ def _box_urdf(tmp_path, collisions):
 def test_friction_on_a_sliding_link_opposes_its_motion(tmp_path, ground, collisions, ground_first):
     """read_contacts on real PyBullet: a link sliding +x over the ground feels friction along -x,
     whichever way round Bullet keeps the pair."""
-    class World(object):
+    class World:
         client = PybulletClient()
     world = World()
     c = world.client

@@ -132,7 +132,7 @@ BOX_WORLD = """<sdf version="1.6"><world name="w">
 </world></sdf>"""
 
 
-class _Log(object):
+class _Log:
     def __getattr__(self, _name):
         return lambda *a: None
 

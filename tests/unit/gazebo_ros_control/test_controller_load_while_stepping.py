@@ -26,7 +26,7 @@ PARAMS = {
 }
 
 
-class Log(object):
+class Log:
     def __init__(self):
         self.errors = []
 
@@ -38,7 +38,7 @@ class Log(object):
     info = warn
 
 
-class Gate(object):
+class Gate:
     """Blocks the thread that passes it until released; says when one is waiting."""
 
     def __init__(self):
@@ -52,7 +52,7 @@ class Gate(object):
             assert self.release.wait(GATE_LIMIT), 'the test never released the gate'
 
 
-class _Topic(object):
+class _Topic:
     def __init__(self, gate):
         self.gate = gate
 
@@ -63,7 +63,7 @@ class _Topic(object):
         self.gate.passing()
 
 
-class GatedIO(object):
+class GatedIO:
     """The controllers' I/O; creating a publisher or unregistering a topic passes the gate."""
 
     def __init__(self, gate):
@@ -84,7 +84,7 @@ class GatedIO(object):
         pass
 
 
-class Rig(object):
+class Rig:
     def __init__(self):
         self.gate = Gate()
         self.log = Log()

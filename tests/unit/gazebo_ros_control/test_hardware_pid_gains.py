@@ -27,7 +27,7 @@ ARM = """<robot name="turret">
 </robot>"""
 
 
-class Log(object):
+class Log:
     def __init__(self):
         self.warnings = []
 

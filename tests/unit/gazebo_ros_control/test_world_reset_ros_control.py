@@ -21,7 +21,7 @@ PARAMS = {
 }
 
 
-class _Topic(object):
+class _Topic:
     def __init__(self, callback=None):
         self.callback, self.messages = callback, []
 
@@ -35,7 +35,7 @@ class _Topic(object):
         return 1
 
 
-class _IO(object):
+class _IO:
     def __init__(self):
         self.topics = {}
 

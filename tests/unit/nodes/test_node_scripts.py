@@ -137,6 +137,6 @@ def test_running_a_script_loads_no_module_from_its_folder(script):
     env['PYTHONPATH'] = os.pathsep.join([str(REPO / package / 'src')]
                                         + [p for p in env.get('PYTHONPATH', '').split(os.pathsep) if p])
     done = subprocess.run([sys.executable, '-c', LOADED_FROM, str(script)] + folders, env=env,
-                          stdout=subprocess.PIPE, stderr=subprocess.PIPE, universal_newlines=True, timeout=120)
+                          capture_output=True, text=True, timeout=120)
     assert done.returncode == 0, done.stderr
     assert done.stdout == '', 'modules loaded from the script folders (self-import):\n' + done.stdout

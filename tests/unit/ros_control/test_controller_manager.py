@@ -43,7 +43,7 @@ def racebot_like_urdf():
     return ''.join(parts)
 
 
-class FakeTopic(object):
+class FakeTopic:
     def __init__(self, cls, callback=None):
         self.cls, self.callback = cls, callback
         self.messages = []
@@ -56,7 +56,7 @@ class FakeTopic(object):
         self.unregistered = True
 
 
-class FakeIO(object):
+class FakeIO:
     def __init__(self):
         self.topics = {}
 
@@ -79,7 +79,7 @@ class FakeIO(object):
         self.topics[topic].callback(Float64(value))
 
 
-class Log(object):
+class Log:
     def __init__(self):
         self.errors, self.warnings, self.infos = [], [], []
 
@@ -100,7 +100,7 @@ class Recorder(Controller):
     journal = None
 
     def __init__(self, name, ns, params, hw, io):
-        super(Recorder, self).__init__(name, ns, params, hw, io)
+        super().__init__(name, ns, params, hw, io)
         self.joints = list(self.params.get('joints', []))
         for j in self.joints:
             hw.handle(j, EFFORT)
@@ -142,7 +142,7 @@ PARAMS = {
 }
 
 
-class Rig(object):
+class Rig:
     def __init__(self, params=None):
         model = urdf_reader.parse_urdf(racebot_like_urdf())
         self.hw = RobotHW(model, hardware_joints(model))

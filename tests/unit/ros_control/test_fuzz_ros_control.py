@@ -120,7 +120,7 @@ def _urdf():
     return ''.join(parts) + '</robot>'
 
 
-class _Topic(object):
+class _Topic:
     def publish(self, msg):
         pass
 
@@ -128,7 +128,7 @@ class _Topic(object):
         pass
 
 
-class _IO(object):
+class _IO:
     def publisher(self, topic, cls, queue_size):
         return _Topic()
 
@@ -142,7 +142,7 @@ class _IO(object):
         pass
 
 
-class _Log(object):
+class _Log:
     def __init__(self):
         self.lines = []
 

@@ -29,7 +29,7 @@ RACEBOT_JOINTS = sorted(['left_steering_hinge_joint', 'right_steering_hinge_join
 
 # -- fakes and fixtures ---------------------------------------------------------------------------
 
-class FakeTopic(object):
+class FakeTopic:
     def __init__(self, io, topic, cls, queue_size=None, callback=None):
         self.io, self.topic, self.cls, self.queue_size, self.callback = io, topic, cls, queue_size, callback
         self.messages = []
@@ -43,7 +43,7 @@ class FakeTopic(object):
         self.unregistered = True
 
 
-class FakeIO(object):
+class FakeIO:
     """The I/O object controllers take: publisher/subscriber/stamp, recorded in memory."""
 
     def __init__(self):

@@ -43,7 +43,7 @@ VARIANTS = [(PositionJointTrajectoryController, 'PositionJointInterface', {}),
             (EffortJointTrajectoryController, 'EffortJointInterface', {'gains': GAINS})]
 
 
-class Topic(object):
+class Topic:
     def __init__(self, callback=None):
         self.callback, self.messages = callback, []
 
@@ -54,7 +54,7 @@ class Topic(object):
         pass
 
 
-class IO(object):
+class IO:
     def __init__(self):
         self.topics, self.warnings, self.services, self.actions = {}, [], {}, {}
 
@@ -79,7 +79,7 @@ class IO(object):
         self.warnings.append(message)
 
 
-class GoalHandle(object):
+class GoalHandle:
     """actionlib's ServerGoalHandle as the controller uses it, recording what it was told."""
 
     def __init__(self, goal):
@@ -107,7 +107,7 @@ class GoalHandle(object):
         self.feedback.append(feedback)
 
 
-class Log(object):
+class Log:
     def __getattr__(self, _name):
         return lambda *a: None
 

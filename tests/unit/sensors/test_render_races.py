@@ -51,7 +51,7 @@ def interleaved(*modules):
 
 # -- render_worker.RenderWorker: submit on the physics thread, replies and restarts on the reader --
 
-class FakeWorkerProcess(object):
+class FakeWorkerProcess:
     """The render process's side, a thread: answers 'init', then each frame request, and dies
     (closes its end) after `lifetime` requests, so that the reader fails what is pending and
     starts another. A request naming a body this incarnation was never sent is answered with an
@@ -108,7 +108,7 @@ def fake_child_process(lifetimes, log):
     return types.SimpleNamespace(start=start, stop=stop, ask_to_stop=ask_to_stop)
 
 
-class FakeBuffers(object):
+class FakeBuffers:
     path = '/nonexistent'
     maps = [(None, None)]
 
@@ -172,7 +172,7 @@ def test_every_accepted_frame_request_gets_one_reply_across_restarts(monkeypatch
 
 # -- gazebo_ros_camera.CameraSensor: its count of frames in the worker, on both threads --------------------
 
-class FakeWorker(object):
+class FakeWorker:
     """Takes frame requests on the physics thread; a reader thread answers them (every fifth one
     fails). Records the most requests it ever held at once."""
 

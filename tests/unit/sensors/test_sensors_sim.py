@@ -23,7 +23,7 @@ sys.path.insert(0, str(REPO / 'tests' / 'integration'))
 import sensors_geometry  # noqa: E402  (the rostest's own geometry, shared)
 
 
-class FakePublisher(object):
+class FakePublisher:
     def __init__(self, topic):
         self.topic = topic
         self.connections = 0
@@ -39,12 +39,12 @@ class FakePublisher(object):
         pass
 
 
-class FakeService(object):
+class FakeService:
     def shutdown(self):
         pass
 
 
-class FakeRospy(object):
+class FakeRospy:
     """The part of rospy SensorManager uses; publishers are recorded by topic."""
     Time = rospy.Time
 
@@ -82,12 +82,12 @@ class FakeRospy(object):
         return True
 
 
-class NullIO(object):
+class NullIO:
     def __getattr__(self, name):
         return lambda *args, **kwargs: None
 
 
-class Log(object):
+class Log:
     def info(self, msg):
         pass
     warn = error = info

@@ -41,7 +41,7 @@ TYPES = [(EffortForwardController, 'effort_joint', {}),
          (PositionForwardController, 'position_joint', {})]
 
 
-class Topic(object):
+class Topic:
     def __init__(self, callback=None):
         self.callback = callback
 
@@ -52,7 +52,7 @@ class Topic(object):
         pass
 
 
-class IO(object):
+class IO:
     def __init__(self, trace=None):
         if trace is not None:
             self.command_trace = trace
@@ -72,7 +72,7 @@ class IO(object):
         pass
 
 
-class Clock(object):
+class Clock:
     def __init__(self):
         self.t = 100.0
 

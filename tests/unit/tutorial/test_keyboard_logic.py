@@ -13,7 +13,7 @@ from racebot_gazebo.teleop_keys import STOP, DriveCommand, KeyState, TeleopContr
 SPEED, STEER = 0.5, 0.34
 
 
-class FakeUI(object):
+class FakeUI:
     """The UI interface of TeleopController on a virtual clock."""
 
     def __init__(self):

@@ -217,7 +217,7 @@ def mutated(draw, document, max_mutations=3):
     return text
 
 
-class Log(object):
+class Log:
     def __init__(self):
         self.lines = []
 
@@ -231,7 +231,7 @@ class Log(object):
         self.lines.append(('info', m))
 
 
-class NoIO(object):
+class NoIO:
     """No topics: controllers are not loaded by these tests."""
 
     def publisher(self, *a):

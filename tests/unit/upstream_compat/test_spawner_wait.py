@@ -16,7 +16,7 @@ class ROSInterruptException(ROSException):
     pass
 
 
-class FakeRospy(object):
+class FakeRospy:
     """The simulated time is 0 until the first wait times out; the service appears during the
     `service_on_wait`-th wait (None: never)."""
     ROSException = ROSException

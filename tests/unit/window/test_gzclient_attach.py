@@ -30,7 +30,7 @@ BOX_URDF = """<?xml version="1.0"?><robot name="box"><link name="base">
 WAIT = 10.0
 
 
-class Log(object):
+class Log:
     def __init__(self):
         self.lines = []
 
@@ -213,7 +213,7 @@ def test_the_socket_is_private_to_this_user(windows):
     assert os.stat(os.path.dirname(windows.address)).st_mode & 0o077 == 0
 
 
-class FakeWindow(object):
+class FakeWindow:
     def __init__(self):
         self.shown = []
 
@@ -250,13 +250,13 @@ class SlowWindow(FakeWindow):
     """Shows an update only when let (an update that takes a while: a GUI under load)."""
 
     def __init__(self):
-        super(SlowWindow, self).__init__()
+        super().__init__()
         self.showing, self.go_on = threading.Event(), threading.Event()
 
     def show(self, *update):
         self.showing.set()
         assert self.go_on.wait(WAIT)
-        super(SlowWindow, self).show(*update)
+        super().show(*update)
 
 
 def serve_closed_while_showing(then_stop):

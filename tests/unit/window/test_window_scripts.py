@@ -28,7 +28,7 @@ def calls(tree):
 def test_gzclient_runs():
     env = dict(os.environ, PYTHONPATH=os.pathsep.join(p for p in sys.path if p))
     result = subprocess.run([sys.executable, str(GAZEBO_ROS_SCRIPTS / 'gzclient'), '--version'], env=env,
-                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, universal_newlines=True, timeout=60)
+                            capture_output=True, text=True, timeout=60)
     assert (result.returncode, result.stdout.strip()) == (0, VERSION), result.stderr
 
 

@@ -2,8 +2,21 @@
 and SDF links (sdf_model.Collision and Visual hold one), so that the physics and the sensors build from
 either alike."""
 from dataclasses import dataclass
+from enum import Enum
 
-__all__ = ['Shape']
+__all__ = ['Shape', 'ShapeKind']
+
+
+class ShapeKind(str, Enum):
+    """A shape's geometry element. A str: it compares equal to the element's tag ('box' == ShapeKind.BOX)."""
+    BOX = 'box'
+    CYLINDER = 'cylinder'
+    SPHERE = 'sphere'
+    PLANE = 'plane'
+    MESH = 'mesh'
+
+    def __str__(self):
+        return self.value
 
 
 @dataclass
@@ -13,7 +26,7 @@ class Shape:
     (x, y, z). An SDF mesh's ``filename`` is the absolute path of the converted OBJ in the mesh cache (so
     that any process can build it) and ``uri`` the URI as written, for messages; a URDF mesh's ``filename``
     is as written until urdf_assets resolves it."""
-    kind: str
+    kind: ShapeKind
     size: tuple = None
     radius: float = None
     length: float = None
@@ -21,3 +34,6 @@ class Shape:
     filename: str = None
     scale: tuple = None
     uri: str = None
+
+    def __post_init__(self):
+        self.kind = ShapeKind(self.kind)  # the readers pass the element's tag

@@ -26,6 +26,7 @@ import math
 import xml.etree.ElementTree as ET
 from typing import NamedTuple
 
+from racebot_sim_bridge.description.geometry import ShapeKind
 from racebot_sim_bridge.kinematics.rotations import (as_transform, compose, inverse, quaternion_to_rpy, rotate,
                                                      rotate_back)
 
@@ -116,11 +117,11 @@ def _axis_in_child(joint, child_rotation):
 
 def _geometry(parent_elem, shape):
     geometry = ET.SubElement(parent_elem, 'geometry')
-    if shape.kind == 'box':
+    if shape.kind is ShapeKind.BOX:
         ET.SubElement(geometry, 'box', size=_fmt(shape.size))
-    elif shape.kind == 'cylinder':
+    elif shape.kind is ShapeKind.CYLINDER:
         ET.SubElement(geometry, 'cylinder', radius='%.17g' % shape.radius, length='%.17g' % shape.length)
-    elif shape.kind == 'sphere':
+    elif shape.kind is ShapeKind.SPHERE:
         ET.SubElement(geometry, 'sphere', radius='%.17g' % shape.radius)
     else:
         ET.SubElement(geometry, 'mesh', filename=shape.filename, scale=_fmt(shape.scale or (1.0, 1.0, 1.0)))
@@ -178,7 +179,7 @@ def model_urdf(model):
                       iyy='%.17g' % iyy, iyz='%.17g' % iyz, izz='%.17g' % izz)
         for tag, items in (('visual', link.visuals), ('collision', link.collisions)):
             for item in items:
-                if item.shape.kind == 'plane':
+                if item.shape.kind is ShapeKind.PLANE:
                     warnings.append("model '%s' link '%s' %s '%s': a plane cannot be part of a robot; left out"
                                     % (model.name, name, tag, item.name))
                     continue

@@ -14,6 +14,7 @@ import math
 import xml.etree.ElementTree as ET
 
 from racebot_sim_bridge.description import xml_values
+from racebot_sim_bridge.description.geometry import ShapeKind
 from racebot_sim_bridge.description.urdf_model import (
     JOINT_TYPES, KEEP_FIXED_JOINT, CameraSpec, Dynamics, GazeboPlugin, Geometry, ImuSpec, Inertial, Joint, Limit, Link,
     RaySpec, RobotModel, SensorSpec, Transmission, UrdfError, normalise_interface, read_value)
@@ -42,6 +43,9 @@ def _boolean(text, what):
 # The <gazebo reference> elements sdformat's URDF reader knows (parser_urdf.cc, ParseSDFExtension).
 # It reads them through GetKeyValueAsString: the `value` attribute when there is one (the old style,
 # <mu1 value="1.0"/>), else the text. Any other element it copies into the SDF as written.
+# The shapes a URDF <geometry> may hold (urdfdom; a <plane> is SDF only).
+URDF_SHAPES = (ShapeKind.BOX, ShapeKind.CYLINDER, ShapeKind.SPHERE, ShapeKind.MESH)
+
 EXTENSION_VALUES = frozenset((
     'material', 'static', 'turnGravityOff', 'dampingFactor', 'maxVel', 'minDepth', 'mu1', 'mu2', 'fdir1',
     'kp', 'kd', 'selfCollide', 'maxContacts', 'laserRetro', 'springReference', 'springStiffness', 'stopCfm',
@@ -170,6 +174,9 @@ class _UrdfReader:
             raise UrdfError('%s has no <geometry> shape; add <geometry><box size="..."/>'
                             '</geometry> (or cylinder, sphere, mesh)' % what)
         shape = shapes[0]
+        if shape.tag not in URDF_SHAPES:
+            raise UrdfError('%s: unknown geometry <%s>; use box, cylinder, sphere or mesh'
+                            % (what, shape.tag))
         result = Geometry(shape.tag, origin_xyz=xyz, origin_rpy=rpy, name=elem.get('name'))
         where = '%s <%s>' % (what, shape.tag)
         if shape.tag == 'box':
@@ -179,7 +186,7 @@ class _UrdfReader:
             result.length = _attr_number(shape, 'length', where, required=True)
         elif shape.tag == 'sphere':
             result.radius = _attr_number(shape, 'radius', where, required=True)
-        elif shape.tag == 'mesh':
+        else:  # mesh
             result.filename = shape.get('filename')
             if not result.filename:
                 raise UrdfError('%s has no filename attribute; add filename="package://..."'
@@ -187,9 +194,6 @@ class _UrdfReader:
             scale = shape.get('scale')
             result.scale = (1.0, 1.0, 1.0) if scale is None else _vector(scale, 3,
                                                                         where + ' scale')
-        else:
-            raise UrdfError('%s: unknown geometry <%s>; use box, cylinder, sphere or mesh'
-                            % (what, shape.tag))
         if visual:
             material = elem.find('material')
             if material is not None:

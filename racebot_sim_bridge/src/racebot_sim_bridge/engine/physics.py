@@ -29,10 +29,12 @@ import tempfile
 import xml.etree.ElementTree as ET
 from collections import namedtuple
 from dataclasses import dataclass
+from enum import Enum
 
 import pybullet as pb
 
 from racebot_sim_bridge.description import urdf_assets, urdf_lumping
+from racebot_sim_bridge.description.geometry import ShapeKind
 from racebot_sim_bridge.engine.pybullet_client import PybulletClient
 from racebot_sim_bridge.kinematics.rotations import as_transform
 
@@ -54,17 +56,26 @@ class PhysicsError(RuntimeError):
     """A request the physics world cannot carry out; the message says why."""
 
 
+class BodyKind(str, Enum):
+    """What a body was built from: a URDF (a robot, one PyBullet body) or an SDF model (a body per link)."""
+    URDF = 'urdf'
+    SDF = 'sdf'
+
+    def __str__(self):
+        return self.value
+
+
 @dataclass(frozen=True)
 class BodySource:
     """What a body was built from, all another client needs to build a copy (picklable: the viewer and
-    the render worker get it through a pipe). kind 'sdf': `model` is the sdf_model.Model; kind 'urdf':
+    the render worker get it through a pipe). kind SDF: `model` is the sdf_model.Model; kind URDF:
     `model` is the urdf_model.RobotModel and `urdf_xml` its URDF, meshes resolved to files."""
-    kind: str
+    kind: BodyKind
     model: object
     urdf_xml: str = None
 
 
-class Body(object):
+class Body:
     """A body in the world: its PyBullet id, links by name and movable joints by name. `client`: the
     PybulletClient of the world it is in.
 
@@ -80,7 +91,7 @@ class Body(object):
         self.id = body_id
         self.static = static
         self.source = source
-        self.kind = source.kind  # 'urdf' or 'sdf'
+        self.kind = source.kind
         self.extra_bodies = list(extra_bodies)
         self.copy_key = None
         self.model_offset = None
@@ -126,7 +137,7 @@ class Body(object):
         return list(self.link_index)
 
 
-class PhysicsWorld(object):
+class PhysicsWorld:
     """Owns one PyBullet client (`client`, a pybullet_client.PybulletClient). `gui=True` opens
     PyBullet's own window (needs a display). `visuals=False` builds no visual shapes (no meshes to
     draw, no colours): for a client that only steps physics and casts rays while another client draws."""
@@ -188,7 +199,8 @@ class PhysicsWorld(object):
                                "plane or mesh of positive size)" % model.name)
         # A multi-link SDF model is kept as its first link's body plus extra bodies named model::link.
         first_link, first_id = ids[0]
-        body = Body(self.client, model.name, first_id, model.static, BodySource('sdf', model), extra_bodies=ids[1:])
+        body = Body(self.client, model.name, first_id, model.static, BodySource(BodyKind.SDF, model),
+                    extra_bodies=ids[1:])
         body.link_index = {first_link: -1}
         self.bodies[model.name] = body
         return body
@@ -221,7 +233,7 @@ class PhysicsWorld(object):
             ixx, _, _, iyy, _, izz = link.inertia
             self.client.changeDynamics(body, -1, localInertiaDiagonal=(ixx, iyy, izz))
         mus = [c.mu for _, c in shapes if c.mu is not None]
-        is_ground = any(c.shape.kind == 'plane' for _, c in shapes)
+        is_ground = any(c.shape.kind is ShapeKind.PLANE for _, c in shapes)
         if is_ground and mus:
             self.ground_mu = min(mus)
         # Static world surfaces get 1 so that Bullet's product equals the robot side's min(mu).
@@ -234,14 +246,14 @@ class PhysicsWorld(object):
                       meshScales=[], flags=[], collisionFramePositions=[], collisionFrameOrientations=[])
         for col in link.collisions:
             s = col.shape
-            if s.kind == 'plane':
+            if s.kind is ShapeKind.PLANE:
                 continue
             pos, orn = as_transform(col.pose)
             kwargs['shapeTypes'].append({'box': pb.GEOM_BOX, 'cylinder': pb.GEOM_CYLINDER,
                                          'sphere': pb.GEOM_SPHERE, 'mesh': pb.GEOM_MESH}[s.kind])
             kwargs['fileNames'].append(s.filename or '')
             kwargs['meshScales'].append(list(s.scale or (1.0, 1.0, 1.0)))
-            kwargs['flags'].append(_mesh_flags(static) if s.kind == 'mesh' else 0)
+            kwargs['flags'].append(_mesh_flags(static) if s.kind is ShapeKind.MESH else 0)
             kwargs['radii'].append(s.radius or 0.0)
             kwargs['halfExtents'].append([x / 2.0 for x in (s.size or (0, 0, 0))])
             kwargs['lengths'].append(s.length or 0.0)
@@ -254,26 +266,26 @@ class PhysicsWorld(object):
 
     def _collision_shape(self, shape, pos, orn, static):
         c = self.client
-        if shape.kind == 'mesh':
+        if shape.kind is ShapeKind.MESH:
             return c.createCollisionShape(pb.GEOM_MESH, fileName=shape.filename, meshScale=list(shape.scale),
                                           flags=_mesh_flags(static), collisionFramePosition=pos,
                                           collisionFrameOrientation=orn)
-        if shape.kind == 'box':
+        if shape.kind is ShapeKind.BOX:
             return c.createCollisionShape(pb.GEOM_BOX, halfExtents=[x / 2.0 for x in shape.size],
                                           collisionFramePosition=pos, collisionFrameOrientation=orn)
-        if shape.kind == 'cylinder':
+        if shape.kind is ShapeKind.CYLINDER:
             return c.createCollisionShape(pb.GEOM_CYLINDER, radius=shape.radius, height=shape.length,
                                           collisionFramePosition=pos, collisionFrameOrientation=orn)
-        if shape.kind == 'sphere':
+        if shape.kind is ShapeKind.SPHERE:
             return c.createCollisionShape(pb.GEOM_SPHERE, radius=shape.radius, collisionFramePosition=pos)
-        if shape.kind == 'plane':
+        if shape.kind is ShapeKind.PLANE:
             return c.createCollisionShape(pb.GEOM_PLANE, planeNormal=list(shape.normal or (0, 0, 1)),
                                           collisionFramePosition=pos)
         return None
 
     @staticmethod
     def _drawable(shape):
-        return shape.kind in ('box', 'cylinder', 'sphere', 'plane', 'mesh')
+        return shape.kind in tuple(ShapeKind)
 
     def _visual_shapes(self, visuals):
         """One visual shape index for a link's visuals (sdf_model.Visual), -1 for none."""
@@ -304,13 +316,13 @@ class PhysicsWorld(object):
     @staticmethod
     def _visual_geometry(shape):
         """createVisualShape's geometry arguments for a geometry.Shape (a plane: a thin box)."""
-        if shape.kind == 'box':
+        if shape.kind is ShapeKind.BOX:
             return dict(shapeType=pb.GEOM_BOX, halfExtents=[x / 2.0 for x in shape.size])
-        if shape.kind == 'cylinder':
+        if shape.kind is ShapeKind.CYLINDER:
             return dict(shapeType=pb.GEOM_CYLINDER, radius=shape.radius, length=shape.length)
-        if shape.kind == 'sphere':
+        if shape.kind is ShapeKind.SPHERE:
             return dict(shapeType=pb.GEOM_SPHERE, radius=shape.radius)
-        if shape.kind == 'mesh':
+        if shape.kind is ShapeKind.MESH:
             return dict(shapeType=pb.GEOM_MESH, fileName=shape.filename, meshScale=list(shape.scale))
         size = shape.size or (100.0, 100.0)
         return dict(shapeType=pb.GEOM_BOX, halfExtents=[size[0] / 2.0, size[1] / 2.0, 0.0005])
@@ -342,7 +354,7 @@ class PhysicsWorld(object):
             except pb.error as err:
                 raise PhysicsError("PyBullet could not load the URDF of '%s': %s" % (name, err))
         # urdf_xml has its meshes resolved: a copy needs no package path
-        body = Body(self.client, name, body_id, False, BodySource('urdf', urdf_model, urdf_xml))
+        body = Body(self.client, name, body_id, False, BodySource(BodyKind.URDF, urdf_model, urdf_xml))
         for link, index in body.link_index.items():
             # PyBullet's default link damping (0.04) has no counterpart in Gazebo: a free wheel would slow down.
             friction = min(link_friction(urdf_model, link), self.ground_mu)
@@ -365,7 +377,7 @@ class PhysicsWorld(object):
     def add_copy(self, name, source):
         """Builds here a copy of another client's body from its Body.source (a window's or a render
         worker's copy of the simulated world); returns the new Body."""
-        if source.kind == 'sdf':
+        if source.kind is BodyKind.SDF:
             return self.add_sdf_model(source.model)
         return self.spawn_urdf(name, source.model, source.urdf_xml)
 

@@ -22,7 +22,7 @@ import pybullet as pb
 MODE_NAMES = {pb.DIRECT: 'DIRECT', pb.GUI: 'GUI'}
 
 
-class PybulletClient(object):
+class PybulletClient:
     def __init__(self, mode=pb.DIRECT, options=''):
         """Connects a new client (`mode` pybullet.DIRECT or pybullet.GUI; `options` PyBullet's
         connect options). Raises pybullet.error when PyBullet cannot start it (GUI: no display)."""

@@ -40,7 +40,7 @@ def sources(world):
     return {name: (body_key(body), body.source) for name, body in world.bodies.items()}
 
 
-class WorldCopy(object):
+class WorldCopy:
     def __init__(self, world):
         """`world`: the physics.PhysicsWorld holding the copy (its own client)."""
         self.world = world

@@ -14,7 +14,7 @@ the old time came round again).
 from racebot_sim_bridge.engine.sim_time import NS, to_ns
 
 
-class _Clock(object):
+class _Clock:
     def __init__(self, rate, start):
         self.period = 1.0 / rate if rate > 0 else 0.0
         self.last = to_ns(start)

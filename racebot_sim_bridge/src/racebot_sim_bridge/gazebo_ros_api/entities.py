@@ -12,7 +12,7 @@ zeroed) so that the link lands on the pose asked. set_model_state zeroes joint v
 Gazebo's Model::SetLinearVel / SetAngularVel give every link the same velocity.
 """
 from racebot_sim_bridge.gazebo_ros_api import frames
-from racebot_sim_bridge.engine.physics import Pose
+from racebot_sim_bridge.engine.physics import BodyKind, Pose
 from racebot_sim_bridge.kinematics.rotations import as_transform, inverse
 
 
@@ -20,7 +20,7 @@ def _cross(a, b):
     return (a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0])
 
 
-class WorldEntities(object):
+class WorldEntities:
     def __init__(self, world):
         """world: physics.PhysicsWorld."""
         self.world = world
@@ -68,7 +68,7 @@ class WorldEntities(object):
     def set_model_state(self, body, pose, twist):
         """Puts the model frame at `pose` (world) and gives every link `twist`."""
         offset = self._root_link_in_model(body)
-        if body.kind != 'sdf':
+        if body.kind is not BodyKind.SDF:
             self._place_articulated(body, pose if offset is None else frames.in_world(pose, offset), twist)
             return
         old = self.model_state(body)[0]
@@ -92,7 +92,7 @@ class WorldEntities(object):
         # (taken at the link's frame origin, which is close to its centre of mass)
         arm = tuple(b - a for a, b in zip(pose[0], body.com_pose_for_frame(*new_root).position))
         linear = tuple(v + w for v, w in zip(twist[0], _cross(twist[1], arm)))
-        if body.kind != 'sdf':
+        if body.kind is not BodyKind.SDF:
             self._place_articulated(body, new_root, (linear, twist[1]))
         else:  # an SDF model's first link: its body alone
             self.world.set_base_state(body.id, new_root[0], new_root[1], linear, twist[1])
@@ -109,7 +109,7 @@ class WorldEntities(object):
     @staticmethod
     def _root_link_in_model(body):
         """The root link's (an SDF model's first link's) pose in the model frame; None for the identity."""
-        if body.kind != 'sdf':
+        if body.kind is not BodyKind.SDF:
             return body.model_offset
         first = next(iter(body.link_index))
         return as_transform(body.source.model.link(first).pose)

@@ -44,7 +44,7 @@ def job_over(job, t):
     return job.duration >= 0 and t > job.start + job.duration
 
 
-class ForceSchedule(object):
+class ForceSchedule:
     """Wrench jobs (target: (model, link), value: (force, torque)) and effort jobs (target: (model,
     joint), value: effort), in the order they came. Not thread-safe: the caller holds its lock."""
 
@@ -123,7 +123,7 @@ def truncate_effort(effort, velocity, effort_limit, velocity_limit):
     return effort
 
 
-class GazeboForces(object):
+class GazeboForces:
     """The four force services under `ns`, and the simulator hook that applies the jobs."""
 
     def __init__(self, rospy, sim, ns):

@@ -20,7 +20,7 @@ PUBLISH_PERIOD = 0.2  # wall seconds: Gazebo advertises /gazebo/performance_metr
 NO_FPS = -1.0  # gazebo_ros's value for a sensor without frames
 
 
-class MetricsWindow(object):
+class MetricsWindow:
     """Rates between two samples. sample(sim, wall, sensors) with sensors [(name, measurements so far,
     is camera)] returns None (no sim time passed: nothing to say) or (real-time factor,
     [(name, sim Hz, wall Hz, fps)])."""
@@ -55,7 +55,7 @@ class MetricsWindow(object):
         return rtf, [(name,) + self._rates[name] for name in sorted(self._rates)]
 
 
-class PerformanceMetricsPublisher(object):
+class PerformanceMetricsPublisher:
     """`ns`/performance_metrics from the world's sensors (a SensorManager), in a thread of its own."""
 
     def __init__(self, rospy, sim, sensor_manager, ns, clock=walltime.perf_counter):

@@ -59,7 +59,7 @@ def changed(config, world):
     return [name for name, _path, kind in FIELDS if kind(config[name]) != world[name]]
 
 
-class PhysicsReconfigure(object):
+class PhysicsReconfigure:
     """The server, on `physics` (an object with get_physics_properties, set_physics_properties and a
     physics_listeners list: racebot_sim_bridge's GazeboProperties)."""
 

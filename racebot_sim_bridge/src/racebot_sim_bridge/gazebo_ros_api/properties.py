@@ -26,6 +26,7 @@ import dataclasses
 import math
 import threading
 
+from racebot_sim_bridge.engine.physics import BodyKind
 from racebot_sim_bridge.gazebo_ros_api import frames
 from racebot_sim_bridge.gazebo_ros_api.forces import link_address
 from racebot_sim_bridge.gazebo_ros_api.entities import WorldEntities
@@ -72,7 +73,7 @@ def urdf_geom_names(model, link):
     return names
 
 
-class GazeboProperties(object):
+class GazeboProperties:
     """The property services under `ns`, and the step hook that cancels gravity where it is off."""
 
     # ODE joint parameters that PyBullet has no counterpart for.
@@ -124,7 +125,7 @@ class GazeboProperties(object):
                 return res
             res.body_names = WorldEntities.link_names(body)
             kind, spec = body.source.kind, body.source.model
-            if kind == 'urdf':
+            if kind is BodyKind.URDF:
                 res.geom_names = [g for link in res.body_names for g in urdf_geom_names(spec, link)]
                 # Gazebo's joints: every URDF joint not lumped away (its child stays a link of its own)
                 res.joint_names = [j.name for j in spec.joints.values() if spec.lumped_link(j.child) == j.child]
@@ -219,7 +220,7 @@ class GazeboProperties(object):
                 return res
             d = self.sim.world.link_dynamics(*link_address(body, link))
             res.gravity_mode = (body.name, link) not in self.no_gravity
-            spec = body.source.model.link(link) if body.static and body.source.kind == 'sdf' else None
+            spec = body.source.model.link(link) if body.static and body.source.kind is BodyKind.SDF else None
         if spec is not None:  # PyBullet holds a static body with mass 0; Gazebo reports the SDF's inertial
             res.mass = spec.mass
             if spec.inertia is not None:

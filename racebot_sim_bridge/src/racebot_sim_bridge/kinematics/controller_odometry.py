@@ -9,7 +9,7 @@ from collections import deque
 MIN_INTEGRATION_DT = 0.0001  # upstream: "Interval too small to integrate with"
 
 
-class Odometry(object):
+class Odometry:
     """Odometry::update / updateOpenLoop: the pose integrated exactly (Runge-Kutta 2 when the turn is
     below 1e-6 rad), linear and angular velocity the mean of the last `window` estimates."""
 
@@ -74,7 +74,7 @@ class Odometry(object):
         self.y += -r * (math.cos(self.heading) - math.cos(old))
 
 
-class SpeedLimiter(object):
+class SpeedLimiter:
     """SpeedLimiter::limit: jerk, then acceleration, then velocity limits on a command `v`, given the
     last two commands v0, v1 and the period dt. Limits are off unless their has_* flag is set."""
 

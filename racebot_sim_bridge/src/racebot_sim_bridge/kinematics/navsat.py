@@ -53,7 +53,7 @@ class GeoReference:
         return (c * x + s * y, -s * x + c * y, z)
 
 
-class ErrorModel(object):
+class ErrorModel:
     """hector's SensorModel3 on a 3-vector. Each parameter is a 3-tuple; rng: a random.Random."""
 
     def __init__(self, rng, offset=(0.0,) * 3, drift=(0.0,) * 3, drift_frequency=(1.0 / 3600.0,) * 3,

@@ -1,13 +1,13 @@
 """What every controller shares: ros_control's Controller life cycle over an injected I/O, the
 init error, and the single-joint command controllers' `command` topic with its limits."""
 import math
+from enum import Enum
 
 from std_msgs.msg import Float64
 from control_msgs.msg import JointControllerState
 
 from racebot_sim_bridge.ros_control import hardware_interface as hardware
-from racebot_sim_bridge.ros_control.hardware_interface import (EFFORT, POSITION, STATE, VELOCITY,  # noqa: F401 (re-exported)
-                                                               shortest_angular_distance,
+from racebot_sim_bridge.ros_control.hardware_interface import (shortest_angular_distance,  # noqa: F401 (re-exported)
                                                                shortest_angular_distance_with_limits)
 from racebot_sim_bridge.ros_control.pid import Pid
 
@@ -22,7 +22,7 @@ class ControllerInitError(ValueError):
     """init() of a controller failed; the message names the parameter or joint at fault."""
 
 
-class Controller(object):
+class Controller:
     type_name = None
     interface = None  # the hardware interface it claims resources from
 
@@ -125,13 +125,23 @@ class Controller(object):
             raise ControllerInitError(str(err))
 
 
+class Setpoint(str, Enum):
+    """What a single-joint controller's command sets (the limit that applies to it)."""
+    POSITION = 'position'
+    VELOCITY = 'velocity'
+    EFFORT = 'effort'
+
+    def __str__(self):
+        return self.value
+
+
 class CommandController(Controller):
     """A single-joint controller with a std_msgs/Float64 `command` topic. Non-finite commands are
     ignored and commands beyond the joint's URDF limit clamped, each with a throttled warning."""
-    setpoint = None  # what the command sets: 'position', 'velocity' or 'effort'
+    setpoint = None  # what the command sets: a Setpoint
 
     def __init__(self, name, ns, params, hw, io):
-        super(CommandController, self).__init__(name, ns, params, hw, io)
+        super().__init__(name, ns, params, hw, io)
         self.joint = self._joint_param()
         self.command = 0.0
         self._init_extra()  # everything that can fail comes before the subscription
@@ -167,16 +177,16 @@ class CommandController(Controller):
         position is clamped here, as ros_control's joint_limits_interface clamps what reaches the
         joint; an effort is kept and saturated by the hardware (hardware.JointHandle.limited_command)."""
         j = self.joint
-        if self.setpoint == 'velocity' and j.max_velocity is not None:
+        if self.setpoint is Setpoint.VELOCITY and j.max_velocity is not None:
             lo, hi, text = -j.max_velocity, j.max_velocity, '+-%g' % j.max_velocity
-        elif self.setpoint == 'effort' and j.max_effort is not None:
+        elif self.setpoint is Setpoint.EFFORT and j.max_effort is not None:
             lo, hi, text = -j.max_effort, j.max_effort, '+-%g' % j.max_effort
-        elif self.setpoint == 'position' and j.has_position_limits:
+        elif self.setpoint is Setpoint.POSITION and j.has_position_limits:
             lo, hi, text = j.lower, j.upper, '[%g, %g]' % (j.lower, j.upper)
         else:
             return value, None, value
         reaches = min(max(value, lo), hi)
-        kept = value if self.setpoint == 'effort' else reaches
+        kept = value if self.setpoint is Setpoint.EFFORT else reaches
         if lo - LIMIT_WARN_TOLERANCE <= value <= hi + LIMIT_WARN_TOLERANCE:
             return kept, None, reaches
         return kept, text, reaches

@@ -5,7 +5,7 @@ import math
 from racebot_sim_bridge.engine.sim_time import ros_time
 
 
-class CommandObserver(object):
+class CommandObserver:
     """What a command controller tells an observer of its command path (the I/O object's
     `command_trace`): `command_taken` on the subscriber's thread once a command is in force
     (`received` as published, `kept` after clamping; ignored non-finite commands are not told), and
@@ -56,7 +56,7 @@ class CommandTrace(CommandObserver):
         self._file.close()
 
 
-class RosIO(object):
+class RosIO:
     """Publishers and subscribers through rospy (the simulator's real I/O)."""
     command_trace = None  # a CommandObserver (CommandTrace) of the command path: measurements only
 
@@ -93,7 +93,7 @@ class RosIO(object):
             self.rospy.logwarn(message)
 
 
-class _Unregisters(object):
+class _Unregisters:
     """A service or action server that goes away with unregister(), as a topic does (Controller.shutdown)."""
 
     def __init__(self, target, method):

@@ -25,7 +25,7 @@ STRICT = 2
 Entry = collections.namedtuple('Entry', 'controller type_name')
 
 
-class SwitchRequest(object):
+class SwitchRequest:
     """An accepted switch_controller call, waiting for the update loop (ros_control's realtime side)."""
 
     def __init__(self, start, stop, start_asap, timeout):
@@ -44,7 +44,7 @@ class SwitchRequest(object):
         self.finish(False)
 
 
-class ControllerManager(object):
+class ControllerManager:
     def __init__(self, ns, hw, get_params, io, log, types=None):
         """get_params(name) -> the dict under <ns>/<name>, or None; log has error/warn/info."""
         self.ns = '/' + ns.strip('/') if ns.strip('/') else ''
@@ -353,7 +353,7 @@ class ControllerManager(object):
             self._running = []
 
 
-class ControllerManagerServices(object):
+class ControllerManagerServices:
     """The six controller_manager services of one ControllerManager, served with rospy. As in
     ros_control, one call is served at a time (its services lock): a switch_controller waiting for
     the simulation to update holds the others back."""

@@ -53,7 +53,7 @@ class HardwareError(ValueError):
     """A controller asked for a joint or an interface this robot does not offer."""
 
 
-class JointHandle(object):
+class JointHandle:
     """State of one joint and its command, as the controllers see it.
 
     When built (CMakeLists.txt), hardware.pxd compiles this class with typed fields: read() and
@@ -165,7 +165,7 @@ def limited_efforts(handles):
     return efforts
 
 
-class RobotHW(object):
+class RobotHW:
     """The joints of one robot, from its URDF and transmissions (urdf_model.RobotModel)."""
 
     def __init__(self, model, hardware_joints):

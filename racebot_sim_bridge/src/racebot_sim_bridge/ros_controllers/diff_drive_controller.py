@@ -24,7 +24,7 @@ class OdometryDriveController(Controller):
     odometry (`_read_odometry`) and turns the limited command into joint commands (`_command`)."""
 
     def __init__(self, name, ns, params, hw, io):
-        super(OdometryDriveController, self).__init__(name, ns, params, hw, io)
+        super().__init__(name, ns, params, hw, io)
         publish_rate = self._number('publish_rate', 50.0, positive=True)
         self.publish_period = 1.0 / publish_rate
         self.open_loop = self._flag('open_loop', False)

@@ -1,7 +1,7 @@
 """effort_controllers: JointEffortController (forward), JointVelocityController and
 JointPositionController (PID on the error, effort out)."""
 from racebot_sim_bridge.ros_control.hardware_interface import EFFORT, position_error
-from racebot_sim_bridge.ros_control.controller_interface import STATE_PUBLISH_EVERY, PidCommandController
+from racebot_sim_bridge.ros_control.controller_interface import STATE_PUBLISH_EVERY, PidCommandController, Setpoint
 from racebot_sim_bridge.ros_controllers.forward_command_controller import (ForwardCommandController,
                                                                            ForwardJointGroupCommandController)
 
@@ -9,14 +9,14 @@ from racebot_sim_bridge.ros_controllers.forward_command_controller import (Forwa
 class EffortForwardController(ForwardCommandController):
     type_name = 'effort_controllers/JointEffortController'
     interface = EFFORT
-    setpoint = 'effort'
+    setpoint = Setpoint.EFFORT
 
 
 class JointVelocityController(PidCommandController):
     """effort_controllers/JointVelocityController: effort = PID(command - velocity)."""
     type_name = 'effort_controllers/JointVelocityController'
     interface = EFFORT
-    setpoint = 'velocity'
+    setpoint = Setpoint.VELOCITY
 
     def starting(self, time):
         self.command = 0.0
@@ -40,7 +40,7 @@ class JointPositionController(PidCommandController):
     clamped to the joint's URDF limits; holds the current position when started."""
     type_name = 'effort_controllers/JointPositionController'
     interface = EFFORT
-    setpoint = 'position'
+    setpoint = Setpoint.POSITION
 
     def clamp(self, position):
         return self.joint.clamped_position(position)

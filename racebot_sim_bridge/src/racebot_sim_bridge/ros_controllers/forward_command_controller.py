@@ -32,7 +32,7 @@ class ForwardJointGroupCommandController(Controller):
     enforceJointLimits does)."""
 
     def __init__(self, name, ns, params, hw, io):
-        super(ForwardJointGroupCommandController, self).__init__(name, ns, params, hw, io)
+        super().__init__(name, ns, params, hw, io)
         names = self.params.get('joints')
         if not isinstance(names, list) or not all(isinstance(n, str) for n in names):
             raise ControllerInitError("Failed to getParam 'joints' (namespace: %s): set '%s/joints' to a list of the "

@@ -34,7 +34,7 @@ class GripperActionController(Controller):
     interface = None
 
     def __init__(self, name, ns, params, hw, io):
-        super(GripperActionController, self).__init__(name, ns, params, hw, io)
+        super().__init__(name, ns, params, hw, io)
         joint = self.params.get('joint')
         if not isinstance(joint, str) or not joint:
             raise ControllerInitError("Could not find joint name on param server (namespace: %s): set '%s/joint' to "

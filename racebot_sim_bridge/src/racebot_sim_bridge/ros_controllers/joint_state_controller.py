@@ -13,7 +13,7 @@ class JointStateController(Controller):
     interface = STATE
 
     def __init__(self, name, ns, params, hw, io):
-        super(JointStateController, self).__init__(name, ns, params, hw, io)
+        super().__init__(name, ns, params, hw, io)
         rate = self.params.get('publish_rate')
         if isinstance(rate, bool) or not isinstance(rate, (int, float)) or not math.isfinite(rate) or rate <= 0:
             raise ControllerInitError("Parameter 'publish_rate' not set or not a positive number (namespace: %s); "

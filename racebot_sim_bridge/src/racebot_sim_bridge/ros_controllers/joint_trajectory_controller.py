@@ -41,7 +41,7 @@ class JointTrajectoryController(Controller):
     interface = None
 
     def __init__(self, name, ns, params, hw, io):
-        super(JointTrajectoryController, self).__init__(name, ns, params, hw, io)
+        super().__init__(name, ns, params, hw, io)
         names = self.params.get('joints')
         if not isinstance(names, list) or not names or not all(isinstance(n, str) for n in names):
             raise ControllerInitError("Could not find joint name array parameter 'joints' (namespace: %s): set "

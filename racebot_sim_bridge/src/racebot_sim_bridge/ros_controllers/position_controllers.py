@@ -1,5 +1,6 @@
 """position_controllers: JointPositionController (forward)."""
 from racebot_sim_bridge.ros_control.hardware_interface import POSITION
+from racebot_sim_bridge.ros_control.controller_interface import Setpoint
 from racebot_sim_bridge.ros_controllers.forward_command_controller import (ForwardCommandController,
                                                                            ForwardJointGroupCommandController)
 
@@ -7,7 +8,7 @@ from racebot_sim_bridge.ros_controllers.forward_command_controller import (Forwa
 class PositionForwardController(ForwardCommandController):
     type_name = 'position_controllers/JointPositionController'
     interface = POSITION
-    setpoint = 'position'
+    setpoint = Setpoint.POSITION
 
 
 

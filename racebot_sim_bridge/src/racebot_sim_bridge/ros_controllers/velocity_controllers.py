@@ -1,6 +1,7 @@
 """velocity_controllers: JointVelocityController (forward) and JointPositionController (PID on
 position, a velocity out)."""
 from racebot_sim_bridge.ros_control.hardware_interface import VELOCITY
+from racebot_sim_bridge.ros_control.controller_interface import Setpoint
 from racebot_sim_bridge.ros_controllers.effort_controllers import JointPositionController
 from racebot_sim_bridge.ros_controllers.forward_command_controller import (ForwardCommandController,
                                                                            ForwardJointGroupCommandController)
@@ -9,7 +10,7 @@ from racebot_sim_bridge.ros_controllers.forward_command_controller import (Forwa
 class VelocityForwardController(ForwardCommandController):
     type_name = 'velocity_controllers/JointVelocityController'
     interface = VELOCITY
-    setpoint = 'velocity'
+    setpoint = Setpoint.VELOCITY
 
 
 class VelocityJointPositionController(JointPositionController):

@@ -23,7 +23,7 @@ OPTICAL_FROM_SENSOR = np.array([[0.0, -1.0, 0.0],
                                 [1.0, 0.0, 0.0]])
 
 
-class PinholeCamera(object):
+class PinholeCamera:
     def __init__(self, width, height, hfov, near, far):
         if width < 1 or height < 1:
             raise ValueError('image size must be at least 1 x 1, got %r x %r' % (width, height))

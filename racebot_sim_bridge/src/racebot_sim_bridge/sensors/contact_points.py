@@ -15,10 +15,11 @@ import pybullet as pb
 
 from racebot_sim_bridge.sensors.contact import (CollisionKind, ContactPoint, friction_reversed, nearest_shape,
                                                 sdf_collision_shapes, urdf_collision_shapes)
+from racebot_sim_bridge.engine.physics import BodyKind
 from racebot_sim_bridge.kinematics.rotations import rotate_back
 
 
-class CollisionNames(object):
+class CollisionNames:
     """Gazebo's full collision name (model::link::collision) of a PyBullet (body id, link index)
     and a point on it, over a physics.PhysicsWorld's bodies; shapes per link computed once."""
 
@@ -32,7 +33,7 @@ class CollisionNames(object):
         if found is not None:
             return found
         for body in list(self.world.bodies.values()):
-            if body.kind == 'sdf':
+            if body.kind is BodyKind.SDF:
                 model = body.source.model
                 ids = [(next(iter(body.link_index)), body.id)] + list(body.extra_bodies)
                 for link_name, bid in ids:
@@ -95,7 +96,7 @@ def collision_kind(client, body_id, link_index):
     return CollisionKind((body_id, link_index), len(shapes) > 1, concave)
 
 
-class CollisionKinds(object):
+class CollisionKinds:
     """collision_kind per (body, link), read once; forget() when bodies change."""
 
     def __init__(self, client):

@@ -23,7 +23,7 @@ def quaternion_to_matrix(q):
     return np.array(matrix(q))
 
 
-class ImuMeasurement(object):
+class ImuMeasurement:
     __slots__ = ('orientation', 'angular_velocity', 'linear_acceleration')
 
     def __init__(self, orientation, angular_velocity, linear_acceleration):
@@ -32,7 +32,7 @@ class ImuMeasurement(object):
         self.linear_acceleration = np.asarray(linear_acceleration, dtype=np.float64)
 
 
-class ImuKinematics(object):
+class ImuKinematics:
     def __init__(self, gravity, reference=None):
         """`gravity`: the world's gravity vector, e.g. (0, 0, -9.8); `reference`: None for the world
         as orientation reference (REP 145), or the quaternion orientations are reported relative to."""

@@ -12,7 +12,7 @@ import pybullet as pb
 from racebot_sim_bridge.kinematics.rotations import compose
 
 
-class SensorMount(object):
+class SensorMount:
     def __init__(self, world, body, model, reference, sensor_pose=(0.0, 0.0, 0.0, 0.0, 0.0, 0.0)):
         """`body`: physics.Body of the robot; `model`: its urdf_model.RobotModel; `reference`: the
         link named by <gazebo reference>; `sensor_pose`: the sensor's <pose> (x y z r p y) in it.

@@ -35,7 +35,7 @@ def make_noise(kind, mean, stddev, enabled=True, rng=None):
     return GaussianNoise(mean, stddev, rng)
 
 
-class GaussianNoise(object):
+class GaussianNoise:
     """Adds independent N(mean, stddev) samples to every value."""
 
     def __init__(self, mean, stddev, rng=None):
@@ -48,7 +48,7 @@ class GaussianNoise(object):
         return values + self.rng.normal(self.mean, self.stddev, values.shape)
 
 
-class ImageNoise(object):
+class ImageNoise:
     """Gaussian noise on 8-bit images: N(mean, stddev) in units of full scale (1.0 = 255)."""
 
     def __init__(self, mean, stddev, size, rng=None):
@@ -77,7 +77,7 @@ class ImageNoise(object):
         return noisy.clip(0, 255).astype(np.uint8).reshape(np.shape(image))
 
 
-class AxisNoise(object):
+class AxisNoise:
     """Gazebo's GaussianNoiseModel on each axis of a vector (an IMU's rates or accelerations): per axis a
     bias drawn once, N(bias_mean, bias_stddev) with its sign flipped half the time, as Gazebo draws it at
     load, plus N(mean, stddev) on every sample. `axes`: per axis (mean, stddev, bias_mean, bias_stddev)."""

@@ -18,7 +18,7 @@ import math
 import numpy as np
 
 
-class ScanGeometry(object):
+class ScanGeometry:
     """Beam directions (in the sensor frame: x forward, y left, z up) and range post-processing."""
 
     def __init__(self, ray):

@@ -169,7 +169,7 @@ def load_renderer(world, choice='auto'):
     return EGL, '%s: %s' % (RENDERER_NAMES[EGL], driver)
 
 
-class CameraFrames(object):
+class CameraFrames:
     """Makes one camera's frames: render, the analytically drawn ground planes (SceneColours),
     depth along the optical axis in metres (`far` where nothing is) and the image noise."""
 

@@ -39,7 +39,7 @@ def llvmpipe_threads(cpus):
     return str(0 if cpus <= 2 else cpus - 1)
 
 
-class FrameBuffers(object):
+class FrameBuffers:
     """One camera's frame buffers, shared with the worker: `count` slots of rgb + depth."""
 
     def __init__(self, width, height, count=2):
@@ -79,7 +79,7 @@ class FrameBuffers(object):
             pass
 
 
-class InFlight(object):
+class InFlight:
     """How many of one camera's frames the worker holds (sent, not answered yet), at most `limit`.
     Taken on the physics thread and given back on the reader thread, so under a lock: a bare
     `count += 1` / `count -= 1` from two threads loses updates (the camera then stalls for good or
@@ -110,7 +110,7 @@ def view_slot(path, offset, width, height):
     return rgb, depth
 
 
-class RenderWorker(object):
+class RenderWorker:
     """The simulator's side of the worker. `submit` from the physics thread; callbacks run on the
     reader thread.
 

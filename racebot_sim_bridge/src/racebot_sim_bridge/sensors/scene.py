@@ -8,11 +8,12 @@ for the TinyRenderer it is drawn analytically (see SceneColours).
 import numpy as np
 import pybullet as pb
 
+from racebot_sim_bridge.engine.physics import BodyKind
 from racebot_sim_bridge.kinematics import rotations
 from racebot_sim_bridge.sensors.render import TINY, render
 
 
-class GroundPlane(object):
+class GroundPlane:
     """An infinite plane the cameras draw themselves (see SceneColours)."""
 
     def __init__(self, body_key, point, normal, rgb):
@@ -22,7 +23,7 @@ class GroundPlane(object):
         self.rgb = np.asarray(rgb, dtype=np.uint8)
 
 
-class SceneColours(object):
+class SceneColours:
     """Colours the bodies of SDF models as their visuals say (the first visual with a colour).
 
     Planes: a ground plane covers half of a camera's image, and rasterising it costs half of an
@@ -53,7 +54,7 @@ class SceneColours(object):
             key = (name, body.id)
             if key in self.done:
                 continue
-            model = body.source.model if body.source.kind == 'sdf' else by_name.get(name)
+            model = body.source.model if body.source.kind is BodyKind.SDF else by_name.get(name)
             if model is not None:
                 self.colour_model(model, body)
             self.done.add(key)

@@ -16,7 +16,7 @@ import threading
 TIME_EPS = 1e-9
 
 
-class UpdateSchedule(object):
+class UpdateSchedule:
     def __init__(self, rate, start=0.0):
         """`rate` Hz of sim time (0 or less: every world update); first update due at `start`."""
         self.period = 1.0 / rate if rate and rate > 0 and math.isfinite(rate) else 0.0
@@ -42,7 +42,7 @@ class UpdateSchedule(object):
             self.next = time + self.period
 
 
-class RateMeter(object):
+class RateMeter:
     """Counts events between `snapshot` calls; rates over sim time and wall time.
 
     Thread-safe: a camera ticks on the render worker's reader thread, other sensors tick and skip
@@ -82,7 +82,7 @@ class RateMeter(object):
         return (count - count0) / dsim, (count - count0) / dwall, skipped - skipped0
 
 
-class RenderBudget(object):
+class RenderBudget:
     """Shared by all rendering sensors. Fair: when credit is available, a sensor whose frames
     were skipped longest ago goes first (the others skip until it has rendered), so a 30 Hz and
     a 20 Hz camera both get frames instead of the faster one taking them all."""
@@ -125,7 +125,7 @@ class RenderBudget(object):
             self.credit -= seconds
 
 
-class FrameThrottle(object):
+class FrameThrottle:
     """A gazebo_ros plugin's own updateRate on top of its sensor's updates: an update is passed on
     when at least 1 / rate of sim time has gone by since the last one passed, else dropped whole
     (a 20 Hz sensor under a 15 Hz plugin rate publishes every other update: 10 Hz), as

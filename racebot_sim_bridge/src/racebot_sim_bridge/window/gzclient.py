@@ -124,7 +124,7 @@ def _interrupt(*_):
     raise KeyboardInterrupt
 
 
-class Gzclient(object):
+class Gzclient:
     def __init__(self, rospy):
         self.rospy = rospy
         namespace = rospy.get_param('~gazebo_namespace', 'gazebo')

@@ -28,6 +28,7 @@ import threading
 import time
 from multiprocessing.connection import Connection
 
+from racebot_sim_bridge.engine.physics import BodyKind
 from racebot_sim_bridge.engine.world_copy import snapshot, sources
 
 SYNC_PERIOD = 1.0 / 30  # wall seconds between window updates
@@ -38,10 +39,10 @@ SOCKET_NAME = 'gzclient.sock'
 
 def follow_target(world):
     """The body the window's camera follows: the first robot spawned (URDF), as racebot's window did."""
-    return next((name for name, body in world.bodies.items() if body.kind == 'urdf'), None)
+    return next((name for name, body in world.bodies.items() if body.kind is BodyKind.URDF), None)
 
 
-class WindowLink(object):
+class WindowLink:
     """One attached window, seen from the physics thread. Updates are written by a thread of its own:
     a first update holding many bodies may be larger than the socket's buffer, and a window that
     does not read (stopped in a debugger, frozen) must not hold up the physics thread."""
@@ -179,7 +180,7 @@ class WindowLink(object):
         return False
 
 
-class AttachedWindows(object):
+class AttachedWindows:
     """The windows attached to one world, and the socket they attach through (see the module doc)."""
 
     def __init__(self, world, log):

@@ -41,7 +41,7 @@ def moved(last, entry, tol=1e-4):
     return any(abs(a - b) >= tol for a, b in zip(last[2], entry[2]))
 
 
-class Window(object):
+class Window:
     def __init__(self):
         self.world = PhysicsWorld(gui=True)  # PhysicsError if PyBullet cannot open it
         self.copy = WorldCopy(self.world)

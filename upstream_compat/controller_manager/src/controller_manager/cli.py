@@ -6,7 +6,6 @@ Services are found relative to the namespace (ROS_NAMESPACE=/racebot or ``__ns:=
 Unlike ros_control's script, the exit status is 1 when an operation failed (2 for bad usage).
 """
 
-from __future__ import print_function
 
 import sys
 

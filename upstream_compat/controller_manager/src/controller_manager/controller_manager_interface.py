@@ -6,7 +6,6 @@ names are relative (``controller_manager/...``): they resolve in the caller's na
 (ROS_NAMESPACE, ``__ns:=``, or the node's namespace), or under ``namespace`` when given.
 """
 
-from __future__ import print_function
 
 import rospy
 from controller_manager_msgs.srv import (

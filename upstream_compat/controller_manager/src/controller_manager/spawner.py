@@ -94,7 +94,7 @@ def service_names(namespace=None):
     return tuple(prefix + 'controller_manager/' + suffix for suffix in SERVICE_SUFFIXES)
 
 
-class Spawner(object):
+class Spawner:
     """One spawner run. ROS modules are imported here, not at module level."""
 
     def __init__(self, options):

@@ -142,7 +142,7 @@ def quaternion_from_euler(roll, pitch, yaw):
     return rpy_to_quaternion(roll, pitch, yaw)
 
 
-class SpawnModelNode(object):
+class SpawnModelNode:
     """One run of spawn_model: `run()` returns the exit code."""
 
     def __init__(self, args, rospy):
@@ -215,7 +215,7 @@ class SpawnModelNode(object):
             try:
                 with open(args.file) as f:
                     text = f.read()
-            except (IOError, UnicodeDecodeError) as err:
+            except (OSError, UnicodeDecodeError) as err:
                 rospy.logerr('Error reading file {}: {}'.format(args.file, err))
                 return None
             if text == '':
