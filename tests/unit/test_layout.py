@@ -5,10 +5,12 @@
 - No import cycle among racebot_sim_bridge's modules, nor among tools/bench's.
 - description/ reads URDF and SDF without rospy and PyBullet, itself and through what it imports.
 - No folder in racebot_sim_bridge is named like the real gazebo_ros or controller_manager packages.
+- Every public function and method of description/ and engine/ annotates its parameters and its return.
 
-Which imports count: every `import` statement of a module, at module level and inside functions alike. A
-function-level import runs later, so it cannot fail at start-up, but the two modules still lean on each
-other and a reader must untangle them just the same. None is exempt: counting them all finds no cycle in
+Which imports count: every `import` statement of a module, at module level, inside functions and under
+`if TYPE_CHECKING:` (imports for annotations only) alike. A function-level import runs later, so it cannot
+fail at start-up (and one for annotations never runs), but the two modules still lean on each other and a
+reader must untangle them just the same. None is exempt: counting them all finds no cycle in
 racebot_sim_bridge, so none of its function-level imports (they defer optional or heavy dependencies:
 dynamic_reconfigure, the sensor devices, the viewer process) is there to break one; a future lazy import
 meant to break a cycle should rather move the shared piece. Importing `a.b.c` also runs the packages `a` and `a.b`: that
@@ -25,6 +27,7 @@ BENCH = REPO / 'tools' / 'bench'
 MAX_LINES = 700
 NO_DESCRIPTION_IMPORTS = ('rospy', 'pybullet')
 SHADOWED = ('gazebo_ros', 'controller_manager')
+ANNOTATED = ('description', 'engine')
 
 
 def _modules(root, prefix):
@@ -183,6 +186,46 @@ def test_no_folder_shadows_upstream_packages():
                          % (' and '.join(SHADOWED), '\n'.join(shadows)))
 
 
+def _public_functions(tree):
+    """(qualified name, def node, is a method) of the public functions of a module: module-level ones and the
+    methods of its classes (nested classes too), each name not starting with '_' (and the class names
+    along the way neither); `__init__` counts, the other dunder methods do not."""
+    def walk(body, prefix, in_class):
+        for node in body:
+            if isinstance(node, (ast.FunctionDef, ast.AsyncFunctionDef)):
+                if not node.name.startswith('_') or (in_class and node.name == '__init__'):
+                    yield prefix + node.name, node, in_class
+            elif isinstance(node, ast.ClassDef) and not node.name.startswith('_'):
+                yield from walk(node.body, prefix + node.name + '.', True)
+    return walk(tree.body, '', False)
+
+
+def _missing_annotations(path):
+    """['name(line): what is missing'] for the public functions of the module at `path`."""
+    missing = []
+    for name, node, is_method in _public_functions(ast.parse(path.read_text(), str(path))):
+        args = node.args
+        params = args.posonlyargs + args.args
+        static = any(isinstance(d, ast.Name) and d.id == 'staticmethod' for d in node.decorator_list)
+        if is_method and not static and params:
+            params = params[1:]  # self or cls
+        params = params + args.kwonlyargs + [a for a in (args.vararg, args.kwarg) if a]
+        unannotated = [p.arg for p in params if p.annotation is None]
+        gaps = (['parameters ' + ', '.join(unannotated)] if unannotated else []) + \
+            (['return'] if node.returns is None else [])
+        if gaps:
+            missing.append('%s (line %d): %s' % (name, node.lineno, ' and '.join(gaps)))
+    return missing
+
+
+def test_public_functions_of_description_and_engine_are_annotated():
+    """Parameters (but self and cls) and return alike, so a reader sees what goes in and out."""
+    package = PACKAGE_SRC / 'racebot_sim_bridge'
+    bad = ['%s: %s' % (path.relative_to(REPO), gap) for folder in ANNOTATED
+           for path in sorted((package / folder).rglob('*.py')) for gap in _missing_annotations(path)]
+    assert not bad, 'public functions without type annotations:\n' + '\n'.join(bad)
+
+
 # -- the checks themselves, on made-up trees -------------------------------------------------------------
 
 
@@ -212,3 +255,18 @@ def test_a_sibling_import_through_the_own_package_is_no_cycle(tmp_path):
     modules = _tree(tmp_path, {'pkg/__init__.py': 'from pkg import a\n', 'pkg/a.py': 'from pkg import b\n',
                                'pkg/b.py': 'import pkg.c\n', 'pkg/c.py': ''})
     assert _cycle_report(modules) == []
+
+
+def test_a_missing_annotation_is_named(tmp_path):
+    path = tmp_path / 'm.py'
+    path.write_text('def f(a: int, *, b) -> int:\n    pass\n'
+                    'def _g(x):\n    pass\n'
+                    'class C:\n'
+                    '    def __init__(self, x: int):\n        pass\n'
+                    '    def __eq__(self, other):\n        pass\n'
+                    '    @staticmethod\n    def s(v) -> None:\n        pass\n'
+                    '    @classmethod\n    def c(cls) -> None:\n        pass\n'
+                    '    def _p(self, y):\n        pass\n'
+                    'class _Hidden:\n    def m(self, z):\n        pass\n')
+    assert _missing_annotations(path) == ['f (line 1): parameters b', 'C.__init__ (line 6): return',
+                                          'C.s (line 11): parameters v']

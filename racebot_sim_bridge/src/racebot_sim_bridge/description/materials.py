@@ -5,8 +5,13 @@ and SDF visuals in <material><script><name>Gazebo/Red</name></script>. Each maps
 diffuse colour (what a lit surface mostly shows); textured and glowing/transparent effects become
 their base colour. Names not listed here keep the visual's own colour (with a warning).
 """
+from __future__ import annotations
 
-__all__ = ['GAZEBO_MATERIALS', 'gazebo_material_rgba']
+from typing import Tuple
+
+__all__ = ['GAZEBO_MATERIALS', 'gazebo_material_rgba', 'Rgba']
+
+Rgba = Tuple[float, float, float, float]  # red, green, blue, alpha in [0, 1]
 
 GAZEBO_MATERIALS = {
     'Gazebo/Grey': (0.7, 0.7, 0.7, 1.0),
@@ -54,6 +59,6 @@ GAZEBO_MATERIALS = {
 }
 
 
-def gazebo_material_rgba(name):
+def gazebo_material_rgba(name: str | None) -> Rgba | None:
     """The colour of a Gazebo material script name (surrounding blanks ignored), or None."""
     return GAZEBO_MATERIALS.get((name or '').strip())

@@ -14,12 +14,17 @@ Limits (MeshError beyond them): MAX_FILE_BYTES of file, MAX_TRIANGLES in all par
 The cache is $RACEBOT_MESH_CACHE, else $ROS_HOME/racebot_mesh_cache (~/.ros/...), keyed by
 the file's content, so an edited mesh is converted again.
 """
+from __future__ import annotations
+
 import hashlib
 import json
 import os
 import tempfile
+from collections.abc import Mapping
 
 import numpy as np
+
+from racebot_sim_bridge.description.materials import Rgba
 
 __all__ = ['MeshError', 'MAX_FILE_BYTES', 'MAX_TRIANGLES', 'FORMATS', 'ConvertedMesh', 'cache_dir',
            'convert', 'read_parts']
@@ -47,7 +52,7 @@ class ConvertedMesh(tuple):
     triangles = property(lambda self: self[2])
 
 
-def cache_dir(environ=None):
+def cache_dir(environ: Mapping[str, str] | None = None) -> str:
     environ = os.environ if environ is None else environ
     folder = environ.get('RACEBOT_MESH_CACHE')
     if not folder:
@@ -73,7 +78,7 @@ def _check_file(path):
     return ext
 
 
-def read_parts(path):
+def read_parts(path: str) -> tuple[list[tuple[np.ndarray, np.ndarray]], Rgba | None]:
     """([(vertices N x 3 float, faces M x 3 int)], rgba or None) of a mesh file, in its own frame
     (a .dae's node transforms applied). MeshError for anything unusable."""
     ext = _check_file(path)
@@ -145,7 +150,7 @@ def _single_colour(meshes):
     return colours.pop() if len(colours) == 1 else None
 
 
-def convert(path):
+def convert(path: str) -> ConvertedMesh:
     """The ConvertedMesh of a mesh file, converting it once into the cache (a file already in
     the cache is returned as it is)."""
     path = os.path.abspath(path)

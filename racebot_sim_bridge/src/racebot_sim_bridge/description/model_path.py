@@ -11,8 +11,15 @@ No rospy, no pybullet. Resolution follows Gazebo classic with gazebo_ros:
 
 A URI that cannot be found raises ResolveError naming the URI and every place searched.
 """
+from __future__ import annotations
+
 import os
 import xml.etree.ElementTree as ET
+from collections.abc import Mapping
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    import rospkg
 
 __all__ = ['ResolveError', 'resolve_uri', 'model_path', 'find_model', 'model_sdf_file', 'package_dir']
 
@@ -36,7 +43,7 @@ def _rospack():
     return rospack
 
 
-def package_dir(name, rospack=None):
+def package_dir(name: str, rospack: rospkg.RosPack | None = None) -> str | None:
     """The folder of ROS package `name`, or None."""
     import rospkg
     try:
@@ -61,7 +68,7 @@ def _exported_model_paths(rospack):
     return paths
 
 
-def model_path(environ=None, rospack=None):
+def model_path(environ: Mapping[str, str] | None = None, rospack: rospkg.RosPack | None = None) -> list[str]:
     """The folders model:// names are looked for in, in Gazebo's order."""
     environ = os.environ if environ is None else environ
     paths = [p for p in environ.get('GAZEBO_MODEL_PATH', '').split(os.pathsep) if p]
@@ -80,7 +87,7 @@ def model_path(environ=None, rospack=None):
     return result
 
 
-def find_model(name, search=None):
+def find_model(name: str, search: list[str] | None = None) -> tuple[str | None, list[str]]:
     """(path, [folders searched]) for model://name; the path is None when not found.
 
     As Gazebo's SystemPaths::FindFileURI: the whole of `name` (``some_pkg/models/track`` too, as
@@ -94,7 +101,7 @@ def find_model(name, search=None):
     return None, search
 
 
-def model_sdf_file(model_dir):
+def model_sdf_file(model_dir: str) -> str:
     """The SDF file of a model folder: model.config's <sdf> entry with the highest version
     (as Gazebo picks), else model.sdf. ResolveError when there is none."""
     config = os.path.join(model_dir, 'model.config')
@@ -128,7 +135,7 @@ def _version(text):
         return (0,)
 
 
-def resolve_uri(uri, base_dir=None, search=None):
+def resolve_uri(uri: str | None, base_dir: str | None = None, search: list[str] | None = None) -> str:
     """The absolute path of an existing file named by `uri`; ResolveError when not found.
 
     `search`: the model path (default: model_path()), only consulted for model:// URIs."""

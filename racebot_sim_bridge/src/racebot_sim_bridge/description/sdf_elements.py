@@ -5,15 +5,18 @@ element's values; the world reader (sdf_reader._WorldReader) adds the world's st
 be used raises Unusable, caught where the element holding it is skipped with one warning; the checks are
 xml_values' (as the URDF reader's are), the wording this format's.
 """
+from __future__ import annotations
 
 import math
 import os
+import xml.etree.ElementTree as ET
 from typing import NamedTuple
 
 from racebot_sim_bridge.description import meshes, model_path, xml_values
 from racebot_sim_bridge.description.geometry import Shape
-from racebot_sim_bridge.description.materials import gazebo_material_rgba
+from racebot_sim_bridge.description.materials import Rgba, gazebo_material_rgba
 from racebot_sim_bridge.description.sdf_model import ZERO_POSE
+from racebot_sim_bridge.kinematics.rotations import XyzRpy
 
 __all__ = ['Unusable', 'ElementReader', 'floats', 'child_float', 'child_bool', 'quote']
 
@@ -32,7 +35,7 @@ class Unusable(Exception):
     }
 
     @classmethod
-    def of(cls, bad, what):
+    def of(cls, bad: xml_values.BadValue, what: str) -> Unusable:
         """The Unusable of an xml_values.BadValue found in `what`."""
         return cls(cls._WORDING[bad.problem] % {'what': what, 'text': (bad.text or '').strip(), 'count': bad.count})
 
@@ -70,26 +73,26 @@ def _read_value(read, text, what, *args):
         raise Unusable.of(bad, what) from None
 
 
-def floats(text, count, what):
+def floats(text: str | None, count: int, what: str) -> tuple[float, ...]:
     """``count`` finite floats from whitespace-separated ``text``, else ``Unusable``."""
     return _read_value(xml_values.numbers, text, what, count)
 
 
-def child_float(elem, tag, default, what):
+def child_float(elem: ET.Element, tag: str, default: float | None, what: str) -> float | None:
     child = elem.find(tag)
     if child is None:
         return default
     return floats(child.text, 1, what)[0]
 
 
-def child_bool(elem, tag, default, what):
+def child_bool(elem: ET.Element, tag: str, default: bool, what: str) -> bool:
     child = elem.find(tag)
     if child is None:
         return default
     return _read_value(xml_values.boolean, child.text, what)
 
 
-def quote(name):
+def quote(name: str) -> str:
     return "'%s'" % name
 
 
@@ -97,7 +100,7 @@ class ElementReader:
     """Reads the values of SDF elements, warning (into ``warnings``) about what it cannot use. ``source``
     names the document; ``search`` is the model path for model:// URIs (default: looked up on first use)."""
 
-    def __init__(self, source, search=None):
+    def __init__(self, source: str, search: list[str] | None = None) -> None:
         self.source = source
         self.warnings = []
         self._search = search  # the model path, looked up on first use (it lists ROS packages)
@@ -106,22 +109,22 @@ class ElementReader:
         self._meshes = {}  # (uri, base_dir) -> _MeshFile: each mesh read and warned about once
 
     @property
-    def search(self):
+    def search(self) -> list[str]:
         if self._search is None:
             self._search = model_path.model_path()
         return self._search
 
-    def warn(self, where, message):
+    def warn(self, where: str, message: str) -> None:
         self.warnings.append('%s: %s' % (where, message) if where else message)
 
-    def skipped(self, where, problem):
+    def skipped(self, where: str, problem: str | Exception) -> None:
         """Warns that the element at `where` is skipped because of `problem`; returns None, its value."""
         self.warn(where, '%s; skipped' % problem)
         return None
 
     # -- small pieces -----------------------------------------------------------------
 
-    def pose(self, elem, where):
+    def pose(self, elem: ET.Element, where: str) -> XyzRpy:
         """The <pose> child of ``elem`` as a 6-tuple (zeros when absent)."""
         child = elem.find('pose')
         if child is None:
@@ -134,7 +137,7 @@ class ElementReader:
             return ZERO_POSE
         return floats(child.text, 6, 'pose')
 
-    def shape(self, geometry, where):
+    def shape(self, geometry: ET.Element | None, where: str) -> _Geometry | None:
         """The _Geometry of a <geometry>, or None when it cannot be simulated: warned about here, once
         (a mesh that failed for an earlier element is not warned about again)."""
         if geometry is None:
@@ -156,7 +159,7 @@ class ElementReader:
         except Unusable as err:
             return self.skipped(where, err)
 
-    def primitive(self, elem):
+    def primitive(self, elem: ET.Element) -> Shape:
         """The Shape of a <box>, <cylinder>, <sphere> or <plane>; Unusable naming a value that is not usable."""
         kind = elem.tag
         if kind == 'box':
@@ -183,7 +186,7 @@ class ElementReader:
         self._positive(size, 'plane size')
         return Shape('plane', size=size, normal=tuple(c / norm for c in normal))
 
-    def mesh(self, elem, where):
+    def mesh(self, elem: ET.Element, where: str) -> _Geometry | None:
         """The _Geometry of a <mesh>, its file resolved and converted (meshes.convert); None when the
         file cannot be used: warned about (naming the URI and where it was looked for) the first
         time only. Unusable for an unusable value (no URI, a bad scale)."""
@@ -221,7 +224,7 @@ class ElementReader:
                            % (what, ' '.join('%g' % v for v in values)))
 
     @staticmethod
-    def rgba(material):
+    def rgba(material: ET.Element | None) -> Rgba | None:
         if material is None:
             return None
         for tag in ('diffuse', 'ambient'):

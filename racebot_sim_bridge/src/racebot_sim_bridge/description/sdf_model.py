@@ -8,11 +8,12 @@ World needs no search path again.
 Poses are 6-tuples ``(x, y, z, roll, pitch, yaw)`` as SDF writes them; the maths on them (and their
 conventions) is rotations.py's.
 """
+from __future__ import annotations
 
 from dataclasses import dataclass, field
 
 from racebot_sim_bridge.description.geometry import Shape
-from racebot_sim_bridge.kinematics.rotations import compose
+from racebot_sim_bridge.kinematics.rotations import Transform, compose
 
 __all__ = ['World', 'Physics', 'Light', 'Model', 'Link', 'Joint', 'Collision', 'Visual', 'ZERO_POSE', 'UNLIMITED']
 
@@ -104,15 +105,15 @@ class Model:
     plugins: list = field(default_factory=list)  # each <plugin> element as written (XML text)
 
     @property
-    def is_robot(self):
+    def is_robot(self) -> bool:
         """Joints, plugins or sensors: what only the URDF path (sdf_urdf.py) simulates."""
         return bool(self.joints or self.plugins or any(link.sensors for link in self.links))
 
-    def link(self, name):
+    def link(self, name: str) -> Link:
         """The link called ``name``; KeyError naming the model's links otherwise."""
         return _named(self.links, name, 'model %r' % self.name, 'link')
 
-    def world_pose_of(self, link, element=None):
+    def world_pose_of(self, link: Link | str, element: Collision | Visual | None = None) -> Transform:
         """World pose ``(xyz, quaternion xyzw)`` of a link, or of a collision or visual of
         it when ``element`` is given.  ``link`` is a Link or a link name."""
         if isinstance(link, str):
@@ -147,6 +148,6 @@ class World:
     warnings: list = field(default_factory=list)
     source: str = '<string>'
 
-    def model(self, name):
+    def model(self, name: str) -> Model:
         """The model called ``name``; KeyError naming the world's models otherwise."""
         return _named(self.models, name, 'world %r' % self.name, 'model')

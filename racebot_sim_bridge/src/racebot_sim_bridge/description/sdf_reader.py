@@ -23,9 +23,11 @@ unusable (non-numeric, non-finite, zero or negative sizes) and models or meshes 
 found (the warning names the URI and every place searched) or read.  Only a missing file, text
 that is not XML and a document without ``<world>`` raise ``WorldError``.
 """
+from __future__ import annotations
 
 import os
 import xml.etree.ElementTree as ET
+from collections.abc import Sequence
 from typing import NamedTuple
 
 from racebot_sim_bridge.description import model_path
@@ -34,7 +36,7 @@ from racebot_sim_bridge.description.materials import GAZEBO_MATERIALS
 from racebot_sim_bridge.description.sdf_elements import ElementReader, Unusable, child_bool, child_float, floats, quote
 from racebot_sim_bridge.description.sdf_model import (UNLIMITED, ZERO_POSE, Collision, Joint, Light, Link, Model,
                                                       Physics, Visual, World)
-from racebot_sim_bridge.kinematics.rotations import as_xyz_rpy, compose, inverse
+from racebot_sim_bridge.kinematics.rotations import XyzRpy, as_xyz_rpy, compose, inverse
 
 __all__ = ['WorldError', 'parse_world', 'load_world', 'sun_light', 'EMPTY_WORLD_SDF']
 
@@ -56,7 +58,7 @@ class WorldError(ValueError):
     """The world cannot be read at all (missing file, not XML, no <world>)."""
 
 
-def sun_light(name='sun', pose=None):
+def sun_light(name: str = 'sun', pose: XyzRpy | None = None) -> Light:
     """Gazebo's model://sun: one directional light (its model.sdf's values)."""
     return Light(name, 'directional', True, pose or (0.0, 0.0, 10.0, 0.0, 0.0, 0.0), (0.8, 0.8, 0.8, 1.0),
                  (0.2, 0.2, 0.2, 1.0), (1000.0, 0.9, 0.01, 0.001), (-0.5, 0.1, -0.9))
@@ -534,7 +536,8 @@ class _WorldReader(ElementReader):
         return world
 
 
-def parse_world(xml_text: str | bytes | ET.Element, source: str = '<string>', search: list | None = None) -> World:
+def parse_world(xml_text: str | bytes | ET.Element, source: str = '<string>',
+                search: list[str] | None = None) -> World:
     """Parse SDF world text (str or bytes, or its root element already parsed) into a World.  ``source`` names it
     in messages (and, when it is a file, relative mesh URIs are relative to its folder); ``search``: the model
     path for model:// URIs (default: model_path.model_path())."""
@@ -551,7 +554,7 @@ def parse_world(xml_text: str | bytes | ET.Element, source: str = '<string>', se
     return _WorldReader(source, search).world(root)
 
 
-def load_world(path, search_path=()) -> World:
+def load_world(path: str | os.PathLike, search_path: Sequence[str] = ()) -> World:
     """Read the world file at ``path``.
 
     A relative path that does not exist is looked for under each directory of

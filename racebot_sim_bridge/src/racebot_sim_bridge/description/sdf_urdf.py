@@ -21,12 +21,14 @@ link's frame as the services report it is then the joint's (docs/COMING_FROM_GAZ
 
 The links must form one tree under the joints, as URDF needs: ConversionError says which do not.
 """
+from __future__ import annotations
 
 import math
 import xml.etree.ElementTree as ET
 from typing import NamedTuple
 
 from racebot_sim_bridge.description.geometry import ShapeKind
+from racebot_sim_bridge.description.sdf_model import Model
 from racebot_sim_bridge.kinematics.rotations import (as_transform, compose, inverse, quaternion_to_rpy, rotate,
                                                      rotate_back)
 
@@ -46,7 +48,7 @@ class Conversion(NamedTuple):
     warnings: list
 
     @property
-    def urdf(self):
+    def urdf(self) -> str:
         """The URDF document as text."""
         return ET.tostring(self.root, encoding='unicode')
 
@@ -151,7 +153,7 @@ def _limits(joint):
     return kind, attrs
 
 
-def model_urdf(model):
+def model_urdf(model: Model) -> Conversion:
     """The Conversion of an sdf_model.Model; ConversionError when its links do not form one tree."""
     if not model.links:
         raise ConversionError("model '%s' has no link" % model.name)

@@ -4,6 +4,8 @@ Pure Python: no rospy, no pybullet. gazebo_ros_api_plugin (noetic) tells the for
 document's root element (<robot>: URDF; <sdf> or <gazebo>: SDF) and, when the request names a
 robot_namespace, gives every <plugin> that has no <robotNamespace> of its own one with that namespace.
 """
+from __future__ import annotations
+
 import re
 import xml.etree.ElementTree as ET
 
@@ -45,7 +47,7 @@ def add_robot_namespace(xml: str | ET.Element, namespace: str) -> str | ET.Eleme
     return root if root is xml else ET.tostring(root, encoding='unicode')
 
 
-def referenced_packages(xml):
+def referenced_packages(xml: str) -> list[str]:
     """The package names of the document's package:// URIs, in order, as spawn_urdf_model finds
     them: comments left out, the name being the text up to the next '/'. A package:// with no '/'
     after it ends the search (gazebo_ros logs 'Malformed package name?' and stops there too)."""

@@ -11,15 +11,23 @@ No rospy, no pybullet. resolve_assets() gives the URDF (text, or its parsed tree
 The RobotModel's Geometry entries are updated to match. The result names only absolute files, so
 a copy of the robot in another process needs no ROS package path; resolving it again changes nothing.
 """
+from __future__ import annotations
+
 import xml.etree.ElementTree as ET
+from collections.abc import Callable
+from typing import TYPE_CHECKING
 
 from racebot_sim_bridge.description import meshes, model_path
 from racebot_sim_bridge.description.materials import gazebo_material_rgba
 
+if TYPE_CHECKING:
+    from racebot_sim_bridge.description.urdf_model import RobotModel
+
 __all__ = ['resolve_assets']
 
 
-def resolve_assets(urdf: str | ET.Element, urdf_model, warn=None) -> str | ET.Element:
+def resolve_assets(urdf: str | ET.Element, urdf_model: RobotModel,
+                   warn: Callable[[str], None] | None = None) -> str | ET.Element:
     """Meshes resolved and colours inline; warn(message) for what was left out. `urdf`: the URDF text, whose
     resolved text is returned, or its root element (as parsed once per spawn), changed in place and returned."""
     warn = warn or (lambda message: None)

@@ -9,14 +9,22 @@ PyBullet's URDF_MERGE_FIXED_LINKS merges every fixed joint and cannot keep one, 
 lumps here instead, with urdf_model's rule (``RobotModel.lumped_link``), and lets PyBullet load
 what is left: a kept fixed joint becomes one of PyBullet's fixed links, rigid in its multibody.
 """
+from __future__ import annotations
+
+import xml.etree.ElementTree as ET
+from typing import TYPE_CHECKING
+
 import numpy as np
 
 from racebot_sim_bridge.kinematics.rotations import compose, matrix, quaternion_to_rpy
 
+if TYPE_CHECKING:
+    from racebot_sim_bridge.description.urdf_model import RobotModel
+
 __all__ = ['lump_fixed_links']
 
 
-def lump_fixed_links(robot, model):
+def lump_fixed_links(robot: ET.Element, model: RobotModel) -> None:
     """Merges in place, in the <robot> element `robot` of urdf_model.RobotModel `model`, every link
     Gazebo lumps into the link it is lumped into: collisions and visuals moved with their origins
     composed, inertials combined (mass, centre of mass, inertia tensor about it), the joints below

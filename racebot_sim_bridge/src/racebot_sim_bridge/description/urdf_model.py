@@ -9,13 +9,16 @@ applies DefaultRobotHWSim's rules to the transmissions (one joint and one hardwa
 Anything wrong raises ``UrdfError`` saying what is wrong and what to do. Things the simulator can live with
 are listed in ``RobotModel.warnings`` instead.
 """
+from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass, field
+from typing import TypeVar
 
 from racebot_sim_bridge.description import xml_values
 from racebot_sim_bridge.description.geometry import Shape
 from racebot_sim_bridge.gazebo_plugins import library_key
-from racebot_sim_bridge.kinematics.rotations import compose
+from racebot_sim_bridge.kinematics.rotations import Transform, compose
 
 __all__ = [
     'UrdfError', 'RobotModel', 'Link', 'Inertial', 'Geometry', 'Joint', 'Limit', 'Dynamics',
@@ -27,6 +30,8 @@ JOINT_TYPES = ('revolute', 'continuous', 'prismatic', 'fixed', 'floating', 'plan
 # The two <gazebo reference> switches that keep a fixed joint and its child link (sdformat: on the JOINT's
 # reference; urdf_reader keeps them as booleans).
 KEEP_FIXED_JOINT = ('preserveFixedJoint', 'disableFixedJointLumping')
+
+_Value = TypeVar('_Value')  # what one of xml_values' readers gives
 
 
 class UrdfError(ValueError):
@@ -42,12 +47,12 @@ class UrdfError(ValueError):
     }
 
     @classmethod
-    def of(cls, bad, what):
+    def of(cls, bad: xml_values.BadValue, what: str) -> UrdfError:
         """The UrdfError of an xml_values.BadValue found in `what`."""
         return cls(cls._WORDING[bad.problem] % {'what': what, 'text': bad.text, 'count': bad.count})
 
 
-def read_value(read, text, what, *args):
+def read_value(read: Callable[..., _Value], text: str | None, what: str, *args: int) -> _Value:
     """read(text, *args), one of xml_values' readers; its BadValue raised as the UrdfError about `what`."""
     try:
         return read(text, *args)
@@ -55,7 +60,7 @@ def read_value(read, text, what, *args):
         raise UrdfError.of(bad, what) from None
 
 
-def number(text, what):
+def number(text: str | None, what: str) -> float:
     """A finite number from URDF text; UrdfError naming `what` otherwise."""
     return read_value(xml_values.number, text, what)
 
@@ -144,17 +149,17 @@ class GazeboPlugin:
     reference: str = None
 
     @property
-    def robot_namespace(self):
+    def robot_namespace(self) -> str | None:
         """``robotNamespace`` as written (may be ''), or None when absent: gazebo_ros_control
         then uses the model name."""
         return self.params.get('robotNamespace')
 
     @property
-    def robot_param(self):
+    def robot_param(self) -> str:
         return self.params.get('robotParam') or 'robot_description'
 
     @property
-    def control_period(self):
+    def control_period(self) -> float | None:
         """``controlPeriod`` in seconds, or None (then: the physics step)."""
         text = self.params.get('controlPeriod')
         if text is None or text == '':
@@ -167,7 +172,7 @@ class GazeboPlugin:
         return value
 
     @property
-    def is_ros_control(self):
+    def is_ros_control(self) -> bool:
         """True for gazebo_ros_control's plugin, however the filename is spelt."""
         return library_key(self.filename) == 'gazebo_ros_control'
 
@@ -244,15 +249,15 @@ class RobotModel:
     materials: dict = field(default_factory=dict)
     warnings: list = field(default_factory=list)
 
-    def child_joints(self, link):
+    def child_joints(self, link: str) -> list[Joint]:
         """Joints whose parent is ``link``, in document order."""
         return [j for j in self.joints.values() if j.parent == link]
 
-    def children(self, link):
+    def children(self, link: str) -> list[str]:
         """Names of the links attached below ``link``, in document order."""
         return [j.child for j in self.child_joints(link)]
 
-    def parent_joint(self, link):
+    def parent_joint(self, link: str) -> Joint | None:
         """The joint whose child is ``link``; None for the root link."""
         return next((j for j in self.joints.values() if j.child == link), None)
 
@@ -260,7 +265,7 @@ class RobotModel:
         ref = self.gazebo_refs.get(joint.name, {})
         return any(ref.get(key) is True for key in KEEP_FIXED_JOINT)
 
-    def fixed_parent_chain(self, link):
+    def fixed_parent_chain(self, link: str) -> list[Joint]:
         """The fixed joints from ``link`` up to the link Gazebo merges it into.
 
         Gazebo lumps a link hanging on fixed joints into the nearest ancestor that is the root
@@ -277,12 +282,12 @@ class RobotModel:
             joint = self.parent_joint(joint.parent)
         return chain
 
-    def lumped_link(self, link):
+    def lumped_link(self, link: str) -> str:
         """The link that ``link`` is merged into (``link`` itself when it is not merged)."""
         chain = self.fixed_parent_chain(link)
         return chain[-1].parent if chain else link
 
-    def pose_in_lumped_link(self, link):
+    def pose_in_lumped_link(self, link: str) -> Transform:
         """``(xyz, quaternion xyzw)`` of ``link``'s frame in its lumped link's frame."""
         transform = ((0.0, 0.0, 0.0), (0.0, 0.0, 0.0, 1.0))
         for joint in reversed(self.fixed_parent_chain(link)):

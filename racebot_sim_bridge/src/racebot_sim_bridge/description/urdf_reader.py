@@ -9,6 +9,7 @@ the SDF reader's are) and worded by UrdfError.
 Anything wrong raises ``UrdfError`` saying what is wrong and what to do. Things the simulator can live with
 are listed in ``RobotModel.warnings`` instead.
 """
+from __future__ import annotations
 
 import math
 import xml.etree.ElementTree as ET

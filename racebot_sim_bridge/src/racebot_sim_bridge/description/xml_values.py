@@ -4,6 +4,8 @@ A value that fails raises BadValue naming the Problem and the text; each reader 
 own way (urdf_model.UrdfError.of: the URDF is refused; sdf_elements: the SDF element is skipped with a
 warning), so the rules are written once and the messages stay each format's.
 """
+from __future__ import annotations
+
 import math
 from enum import Enum
 
@@ -22,7 +24,7 @@ class BadValue(ValueError):
     """`text` (the word or text at fault, as given) is unusable for `problem`; `count`: the number of values
     expected (Problem.COUNT)."""
 
-    def __init__(self, problem: Problem, text, count: int = None):
+    def __init__(self, problem: Problem, text: str | None, count: int | None = None) -> None:
         super().__init__('%s: %r' % (problem.value, text))
         self.problem, self.text, self.count = problem, text, count
 
@@ -35,7 +37,7 @@ def _convert(kind, problem: Problem, text):
         raise BadValue(problem, text) from None
 
 
-def number(text) -> float:
+def number(text: str | None) -> float:
     """A finite float."""
     value = _convert(float, Problem.NUMBER, text)
     if not math.isfinite(value):
@@ -43,7 +45,7 @@ def number(text) -> float:
     return value
 
 
-def words(text, count: int) -> list:
+def words(text: str | None, count: int) -> list[str]:
     """The `count` whitespace-separated words of `text` (None reads as empty)."""
     parts = (text or '').split()
     if len(parts) != count:
@@ -51,7 +53,7 @@ def words(text, count: int) -> list:
     return parts
 
 
-def numbers(text, count: int) -> tuple:
+def numbers(text: str | None, count: int) -> tuple[float, ...]:
     """`count` finite floats from whitespace-separated `text`. Checked as a whole: the count, then that every
     word is a number, then that every number is finite; BadValue's text is then the whole `text`."""
     parts = words(text, count)
@@ -64,11 +66,11 @@ def numbers(text, count: int) -> tuple:
     return values
 
 
-def integer(text) -> int:
+def integer(text: str | None) -> int:
     return _convert(int, Problem.INTEGER, text)
 
 
-def boolean(text) -> bool:
+def boolean(text: str | None) -> bool:
     """'true' or '1' (any case, spaces around) is True, 'false' or '0' False."""
     value = (text or '').strip().lower()
     if value in ('true', '1'):

@@ -6,18 +6,23 @@ multiprocessing fork of a process with rospy's threads, nor a spawn that would r
 script), talking over one end of a socket pair. It dies with the simulator however the simulator
 dies (PR_SET_PDEATHSIG), and leaves Ctrl-C to the simulator, which stops it.
 """
+from __future__ import annotations
+
 import ctypes
 import os
 import signal
 import socket
 import subprocess
 import sys
+import threading
+from collections.abc import Mapping, Sequence
 from multiprocessing.connection import Connection
 
 PACKAGE_ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 
 
-def start(module, env=None, args=(), connection=None):
+def start(module: str, env: Mapping[str, str] | None = None, args: Sequence[str] = (),
+          connection: socket.socket | None = None) -> tuple[subprocess.Popen, Connection | None]:
     """Starts `python -m <module> FD [args]` -> (subprocess.Popen, Connection to it). `env`: variables
     to add to this process's environment. Its stdout is discarded (PyBullet's plugins chatter there);
     stderr is ours. `connection`: a connected socket (gzclient's to the world server) to hand over as
@@ -47,7 +52,8 @@ def start(module, env=None, args=(), connection=None):
     return process, (Connection(parent.detach()) if parent is not None else None)
 
 
-def ask_to_stop(process, conn, wait=2.0, lock=None):
+def ask_to_stop(process: subprocess.Popen | None, conn: Connection | None, wait: float = 2.0,
+                lock: threading.Lock | None = None) -> None:
     """Sends the helper ('stop',) (under `lock` when other threads send too) and gives it `wait` s
     to exit; a helper already gone is no error. Follow with stop()."""
     if conn is None or process is None:
@@ -63,7 +69,7 @@ def ask_to_stop(process, conn, wait=2.0, lock=None):
         pass
 
 
-def stop(process, conn, wait=5.0):
+def stop(process: subprocess.Popen | None, conn: Connection | None, wait: float = 5.0) -> None:
     """Closes the connection and ends the process: SIGTERM, then SIGKILL after `wait` s."""
     if conn is not None:
         try:
@@ -79,7 +85,7 @@ def stop(process, conn, wait=5.0):
             process.wait()
 
 
-def die_with_parent():
+def die_with_parent() -> None:
     """SIGTERM to this process when the thread that started it ends (PR_SET_PDEATHSIG). Also usable
     as subprocess's preexec_fn (in a parent without threads)."""
     try:
@@ -89,7 +95,7 @@ def die_with_parent():
         pass
 
 
-def helper_main(fd):
+def helper_main(fd: int) -> Connection:
     """In the helper, first thing: the Connection to the simulator from its FD; dies with the
     simulator (SIGTERM when the thread that started it ends), ignores Ctrl-C, exits on SIGTERM."""
     die_with_parent()

@@ -23,20 +23,28 @@ mesh, as Gazebo does); a dynamic body (every URDF link) with one convex hull per
 Colours are given when a body is built (visual shapes with their rgba; URDF colours written into the
 URDF before loadURDF), so any copy built from `Body.source` (the viewer's) looks the same.
 """
+from __future__ import annotations
+
 import math
 import os
 import tempfile
 import xml.etree.ElementTree as ET
 from collections import namedtuple
+from collections.abc import Callable, Iterable, Sequence
 from dataclasses import dataclass
 from enum import Enum
+from typing import TYPE_CHECKING
 
 import pybullet as pb
 
 from racebot_sim_bridge.description import urdf_assets, urdf_lumping
 from racebot_sim_bridge.description.geometry import ShapeKind
 from racebot_sim_bridge.engine.pybullet_client import PybulletClient
-from racebot_sim_bridge.kinematics.rotations import as_transform
+from racebot_sim_bridge.kinematics.rotations import Quat, Vec3, as_transform
+
+if TYPE_CHECKING:
+    from racebot_sim_bridge.description.sdf_model import Model, World
+    from racebot_sim_bridge.description.urdf_model import RobotModel
 
 # Mass and inertia given to links that declare no <inertial> (Gazebo drops such links' mass).
 NEGLIGIBLE_MASS = 1e-4
@@ -85,7 +93,8 @@ class Body:
     `model_offset`: for an SDF robot spawned as a URDF (sdf_urdf.py), its root link's pose in the SDF model
     frame, (xyz, quaternion), when not the identity; else None (a URDF's model frame is its root link's)."""
 
-    def __init__(self, client, name, body_id, static, source, extra_bodies=()):
+    def __init__(self, client: PybulletClient, name: str, body_id: int, static: bool, source: BodySource,
+                 extra_bodies: Iterable[tuple[str, int]] = ()) -> None:
         self.client = client
         self.name = name
         self.id = body_id
@@ -112,28 +121,28 @@ class Body:
             self.joints[name_j] = JointInfo(j, name_j, JOINT_TYPES.get(info[2], 'unknown'), info[8], info[9],
                                             info[10], info[11], link)
 
-    def pose(self):
+    def pose(self) -> Pose:
         """The base's centre-of-mass pose (what PyBullet's base calls take and give)."""
         pos, orn = self.client.getBasePositionAndOrientation(self.id)
         return Pose(tuple(pos), tuple(orn))
 
-    def frame_pose(self):
+    def frame_pose(self) -> Pose:
         """The pose of the root link's frame, as Gazebo reports a model's pose."""
         pos, orn = self.pose()
         inv_pos, inv_orn = pb.invertTransform(self._inertial[0], self._inertial[1])
         p, o = pb.multiplyTransforms(pos, orn, inv_pos, inv_orn)
         return Pose(tuple(p), tuple(o))
 
-    def com_pose_for_frame(self, position, orientation):
+    def com_pose_for_frame(self, position: Vec3, orientation: Quat) -> Pose:
         """The centre-of-mass pose that puts the root link's frame at (position, orientation)."""
         p, o = pb.multiplyTransforms(position, orientation, self._inertial[0], self._inertial[1])
         return Pose(tuple(p), tuple(o))
 
-    def twist(self):
+    def twist(self) -> Twist:
         lin, ang = self.client.getBaseVelocity(self.id)
         return Twist(tuple(lin), tuple(ang))
 
-    def link_names(self):
+    def link_names(self) -> list[str]:
         return list(self.link_index)
 
 
@@ -142,7 +151,8 @@ class PhysicsWorld:
     PyBullet's own window (needs a display). `visuals=False` builds no visual shapes (no meshes to
     draw, no colours): for a client that only steps physics and casts rays while another client draws."""
 
-    def __init__(self, step_size=0.001, gravity=(0.0, 0.0, -9.8), gui=False, visuals=True):
+    def __init__(self, step_size: float = 0.001, gravity: Vec3 = (0.0, 0.0, -9.8), gui: bool = False,
+                 visuals: bool = True) -> None:
         if not (step_size > 0 and math.isfinite(step_size)):
             raise PhysicsError('physics step size must be a positive number of seconds, got %r' % (step_size,))
         self.gui = gui
@@ -163,7 +173,7 @@ class PhysicsWorld:
         self.ground_mu = 1.0
 
     # -- world --------------------------------------------------------------------------------
-    def load_world(self, world, warn=None):
+    def load_world(self, world: World, warn: Callable[[str], None] | None = None) -> list[str]:
         """Creates every model of a parsed sdf_model.World but its robots (Model.is_robot, spawned through
         the URDF path by the Simulator); returns the names created. With `warn`,
         a model that cannot be built (no link with usable geometry left) is skipped and warn(message)
@@ -182,7 +192,7 @@ class PhysicsWorld:
             created.append(model.name)
         return created
 
-    def add_sdf_model(self, model):
+    def add_sdf_model(self, model: Model) -> Body:
         """One PyBullet body per SDF link (joints between SDF links are not supported)."""
         if model.name in self.bodies:
             raise PhysicsError("a model named '%s' already exists" % model.name)
@@ -328,8 +338,8 @@ class PhysicsWorld:
         return dict(shapeType=pb.GEOM_BOX, halfExtents=[size[0] / 2.0, size[1] / 2.0, 0.0005])
 
     # -- robots ---------------------------------------------------------------------------------
-    def spawn_urdf(self, name: str, urdf_model, urdf: str | ET.Element, position=(0, 0, 0), orientation=(0, 0, 0, 1),
-                   warn=None) -> Body:
+    def spawn_urdf(self, name: str, urdf_model: RobotModel, urdf: str | ET.Element, position: Vec3 = (0, 0, 0),
+                   orientation: Quat = (0, 0, 0, 1), warn: Callable[[str], None] | None = None) -> Body:
         """Spawns a parsed URDF (urdf_model.RobotModel) under `name`; returns its Body. `urdf`: the URDF
         text, or its root element as already parsed (rewritten here in place: meshes resolved, then
         what PyBullet reads). Its meshes are resolved and converted first (urdf_assets); warn(message)
@@ -374,14 +384,14 @@ class PhysicsWorld:
         self.bodies[name] = body
         return body
 
-    def add_copy(self, name, source):
+    def add_copy(self, name: str, source: BodySource) -> Body:
         """Builds here a copy of another client's body from its Body.source (a window's or a render
         worker's copy of the simulated world); returns the new Body."""
         if source.kind is BodyKind.SDF:
             return self.add_sdf_model(source.model)
         return self.spawn_urdf(name, source.model, source.urdf_xml)
 
-    def remove(self, name):
+    def remove(self, name: str) -> None:
         body = self.bodies.pop(name)
         self.client.removeBody(body.id)
         for _, extra in body.extra_bodies:
@@ -390,36 +400,40 @@ class PhysicsWorld:
         self.laser_retro = {k: v for k, v in self.laser_retro.items() if k[0] not in gone}
 
     # -- state ----------------------------------------------------------------------------------
-    def joint_states(self, body, indices):
+    def joint_states(self, body: Body, indices: Sequence[int]) -> list[JointState]:
         states = self.client.getJointStates(body.id, indices)
         return [JointState(s[0], s[1]) for s in states]
 
-    def joint_states_raw(self, body, indices):
+    def joint_states_raw(self, body: Body,
+                         indices: Sequence[int]) -> list[tuple[float, float, tuple[float, ...], float]]:
         """PyBullet's own tuples (position, velocity, reaction forces, applied torque) of the joints:
         the update loop's read, without building a JointState per joint."""
         return self.client.getJointStates(body.id, indices)
 
-    def apply_efforts(self, body, indices, efforts):
+    def apply_efforts(self, body: Body, indices: Sequence[int], efforts: Sequence[float]) -> None:
         """Torques (or forces) for one step: PyBullet clears them after every stepSimulation."""
         self.client.setJointMotorControlArray(body.id, indices, pb.TORQUE_CONTROL, forces=efforts)
 
-    def drive_velocities(self, body, indices, velocities, max_forces):
+    def drive_velocities(self, body: Body, indices: Sequence[int], velocities: Sequence[float],
+                         max_forces: Sequence[float]) -> None:
         self.client.setJointMotorControlArray(body.id, indices, pb.VELOCITY_CONTROL, targetVelocities=velocities,
                                               forces=max_forces)
 
-    def drive_positions(self, body, indices, positions, max_forces):
+    def drive_positions(self, body: Body, indices: Sequence[int], positions: Sequence[float],
+                        max_forces: Sequence[float]) -> None:
         self.client.setJointMotorControlArray(body.id, indices, pb.POSITION_CONTROL, targetPositions=positions,
                                               forces=max_forces)
 
-    def set_joint_position(self, body, joint_name, position, velocity=0.0):
+    def set_joint_position(self, body: Body, joint_name: str, position: float, velocity: float = 0.0) -> None:
         joint = body.joints[joint_name]
         self.client.resetJointState(body.id, joint.index, position, velocity)
 
-    def set_pose(self, body, position, orientation, linear=(0, 0, 0), angular=(0, 0, 0)):
+    def set_pose(self, body: Body, position: Vec3, orientation: Quat, linear: Vec3 = (0, 0, 0),
+                 angular: Vec3 = (0, 0, 0)) -> None:
         self.client.resetBasePositionAndOrientation(body.id, position, orientation)
         self.client.resetBaseVelocity(body.id, linear, angular)
 
-    def link_state(self, body, link):
+    def link_state(self, body: Body, link: str) -> tuple[Pose, Twist]:
         """World pose and twist of a link (the base's for index -1)."""
         index = body.link_index[link]
         if index < 0:
@@ -427,44 +441,45 @@ class PhysicsWorld:
         s = self.client.getLinkState(body.id, index, computeLinkVelocity=1, computeForwardKinematics=1)
         return Pose(tuple(s[4]), tuple(s[5])), Twist(tuple(s[6]), tuple(s[7]))
 
-    def base_state(self, body_id):
+    def base_state(self, body_id: int) -> tuple[Pose, Twist]:
         """World pose and twist of one PyBullet body's base, by id (an SDF model's extra link body)."""
         pos, orn = self.client.getBasePositionAndOrientation(body_id)
         lin, ang = self.client.getBaseVelocity(body_id)
         return Pose(tuple(pos), tuple(orn)), Twist(tuple(lin), tuple(ang))
 
-    def set_base_state(self, body_id, position, orientation, linear=(0, 0, 0), angular=(0, 0, 0)):
+    def set_base_state(self, body_id: int, position: Vec3, orientation: Quat, linear: Vec3 = (0, 0, 0),
+                       angular: Vec3 = (0, 0, 0)) -> None:
         """Puts one PyBullet body's base (by id) at a pose with a twist."""
         self.client.resetBasePositionAndOrientation(body_id, position, orientation)
         self.client.resetBaseVelocity(body_id, linear, angular)
 
-    def set_base_velocity(self, body_id, linear, angular):
+    def set_base_velocity(self, body_id: int, linear: Vec3, angular: Vec3) -> None:
         """A base's world linear (at its centre of mass) and angular velocity, its pose left as it is."""
         self.client.resetBaseVelocity(body_id, list(linear), list(angular))
 
-    def apply_joint_effort(self, body, joint_name, effort):
+    def apply_joint_effort(self, body: Body, joint_name: str, effort: float) -> None:
         joint = body.joints[joint_name]
         self.client.setJointMotorControl2(body.id, joint.index, pb.TORQUE_CONTROL, force=effort)
 
     # -- dynamics and external forces (gazebo_ros's properties and force services) ----------------
     # A link is addressed (PyBullet body id, link index): an SDF model's extra link is a body of its own.
-    def link_dynamics(self, body_id, index):
+    def link_dynamics(self, body_id: int, index: int) -> LinkDynamics:
         """LinkDynamics of a link: mass, inertia diagonal, inertial frame in the link frame."""
         d = self.client.getDynamicsInfo(body_id, index)
         return LinkDynamics(d[0], tuple(d[2]), tuple(d[3]), tuple(d[4]))
 
-    def set_link_mass(self, body_id, index, mass, inertia_diagonal):
+    def set_link_mass(self, body_id: int, index: int, mass: float, inertia_diagonal: Vec3) -> None:
         # Two calls: PyBullet recomputes the inertia from the collision shapes when the mass changes.
         self.client.changeDynamics(body_id, index, mass=mass)
         self.client.changeDynamics(body_id, index, localInertiaDiagonal=list(inertia_diagonal))
 
-    def com_position(self, body_id, index):
+    def com_position(self, body_id: int, index: int) -> Vec3:
         """World position of a link's centre of mass."""
         if index < 0:
             return tuple(self.client.getBasePositionAndOrientation(body_id)[0])
         return tuple(self.client.getLinkState(body_id, index, computeForwardKinematics=1)[0])
 
-    def apply_wrench(self, body_id, index, force, torque):
+    def apply_wrench(self, body_id: int, index: int, force: Vec3, torque: Vec3) -> None:
         """A world-frame force at the link's centre of mass and a world-frame torque, for one step."""
         if any(force):
             at = self.com_position(body_id, index)
@@ -472,7 +487,8 @@ class PhysicsWorld:
         if any(torque):
             self.client.applyExternalTorque(body_id, index, list(torque), pb.WORLD_FRAME)
 
-    def set_joint_dynamics(self, body, joint_name, damping=None, lower=None, upper=None):
+    def set_joint_dynamics(self, body: Body, joint_name: str, damping: float | None = None,
+                           lower: float | None = None, upper: float | None = None) -> None:
         """A joint's viscous damping and position limits (None: unchanged)."""
         joint = body.joints[joint_name]
         if damping is not None:
@@ -483,22 +499,22 @@ class PhysicsWorld:
             body.joints[joint_name] = joint._replace(lower=joint.lower if lower is None else lower,
                                                      upper=joint.upper if upper is None else upper)
 
-    def set_gravity(self, gravity):
+    def set_gravity(self, gravity: Vec3) -> None:
         self.gravity = tuple(gravity)
         self.client.setGravity(*self.gravity)
 
-    def set_step_size(self, step_size):
+    def set_step_size(self, step_size: float) -> None:
         self.step_size = step_size
         self.client.setTimeStep(step_size)
 
-    def set_solver(self, **params):
+    def set_solver(self, **params: float) -> None:
         """Constraint solver parameters by PyBullet's names (numSolverIterations, erp, globalCFM)."""
         self.client.setPhysicsEngineParameter(**params)
 
-    def step(self):
+    def step(self) -> None:
         self.client.stepSimulation()
 
-    def reset_to_spawn(self, body):
+    def reset_to_spawn(self, body: Body) -> None:
         pos, orn = body.spawn_pose
         self.set_pose(body, pos, orn)
         for link, extra in body.extra_bodies:  # an SDF model's other links, as spawned
@@ -507,14 +523,15 @@ class PhysicsWorld:
         for joint in body.joints.values():
             self.client.resetJointState(body.id, joint.index, body.initial_joint_positions.get(joint.name, 0.0), 0.0)
 
-    def follow_with_camera(self, body, distance=1.5, yaw_offset=0.0, pitch=-30.0):
+    def follow_with_camera(self, body: Body, distance: float = 1.5, yaw_offset: float = 0.0,
+                           pitch: float = -30.0) -> None:
         if not self.gui:
             return
         pos, orn = body.pose()
         yaw = math.degrees(pb.getEulerFromQuaternion(orn)[2]) - 90.0 + yaw_offset
         self.client.resetDebugVisualizerCamera(distance, yaw, pitch, pos)
 
-    def close(self):
+    def close(self) -> None:
         self.client.close()
 
 
@@ -527,14 +544,14 @@ def _rgba(visual):
     return list(visual.rgba) if visual.rgba else [0.7, 0.7, 0.7, 1.0]  # Gazebo's default grey
 
 
-def joint_friction(urdf_model, joint_name):
+def joint_friction(urdf_model: RobotModel, joint_name: str) -> float:
     """The URDF <dynamics friction> of a joint (N*m or N), 0 without one."""
     joint = urdf_model.joints.get(joint_name)
     dynamics = getattr(joint, 'dynamics', None)
     return max(0.0, dynamics.friction) if dynamics is not None else 0.0
 
 
-def link_laser_retro(urdf_model, link):
+def link_laser_retro(urdf_model: RobotModel, link: str) -> float:
     """<laserRetro> of a (merged) PyBullet link: the first the URDF links merged into it give (Gazebo keeps it per
     collision; a ray here knows only the link it hit), 0 if none."""
     for name, spec in urdf_model.links.items():
@@ -546,7 +563,7 @@ def link_laser_retro(urdf_model, link):
     return 0.0
 
 
-def link_friction(urdf_model, link):
+def link_friction(urdf_model: RobotModel, link: str) -> float:
     """mu of a (merged) PyBullet link: the smaller of mu1/mu2 of the URDF links merged into it that
     carry collision geometry (Gazebo keeps friction per collision; Bullet has one per link), 1 if none says."""
     mus = []
@@ -560,7 +577,7 @@ def link_friction(urdf_model, link):
     return min(mus) if mus else 1.0
 
 
-def prepare_urdf_for_bullet(root: ET.Element, urdf_model, visuals: bool = True) -> str:
+def prepare_urdf_for_bullet(root: ET.Element, urdf_model: RobotModel, visuals: bool = True) -> str:
     """The URDF text PyBullet should read, rewritten from its root element (changed in place): links
     lumped as Gazebo lumps them; negligible inertia for links that declare none; <gazebo>, <transmission>
     and sensor blocks dropped; the visuals dropped unless `visuals`; an <axis> without xyz given urdfdom's

@@ -15,6 +15,8 @@ of the instance, so later calls cost what a direct call with the keyword costs (
 noise, ~1.5 us per getBasePositionAndOrientation either way). Constants, pybullet.error and the
 pure maths (multiplyTransforms, ...) are read from the pybullet module itself.
 """
+from __future__ import annotations
+
 import functools
 
 import pybullet as pb
@@ -23,7 +25,7 @@ MODE_NAMES = {pb.DIRECT: 'DIRECT', pb.GUI: 'GUI'}
 
 
 class PybulletClient:
-    def __init__(self, mode=pb.DIRECT, options=''):
+    def __init__(self, mode: int = pb.DIRECT, options: str = '') -> None:
         """Connects a new client (`mode` pybullet.DIRECT or pybullet.GUI; `options` PyBullet's
         connect options). Raises pybullet.error when PyBullet cannot start it (GUI: no display)."""
         self.mode = mode
@@ -47,10 +49,10 @@ class PybulletClient:
                         '(world.client.getLinkState(body, link), not pybullet.getLinkState(..., physicsClientId=...))')
 
     @property
-    def connected(self):
+    def connected(self) -> bool:
         return self.id >= 0
 
-    def close(self):
+    def close(self) -> None:
         """Disconnects (once; later calls do nothing). Functions asked for afterwards raise
         pybullet.error ('Not connected to physics server'); do not keep bound ones past close()."""
         if self.id < 0:

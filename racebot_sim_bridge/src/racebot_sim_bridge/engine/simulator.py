@@ -6,12 +6,28 @@ runs. One `step()` is one world update, in gazebo_ros_control's order: for each 
 read its joints, update its controller manager when a control period has elapsed, write the (limited)
 efforts; then step the physics. All mutation happens under `lock`, which service threads take.
 """
+from __future__ import annotations
+
 import threading
 import xml.etree.ElementTree as ET
+from collections.abc import Callable
+from typing import TYPE_CHECKING, Any
 
 from racebot_sim_bridge.engine import physics
 from racebot_sim_bridge.description import sdf_urdf, urdf_model, urdf_reader
-from racebot_sim_bridge.kinematics.rotations import compose
+from racebot_sim_bridge.kinematics.rotations import Quat, Vec3, compose
+
+if TYPE_CHECKING:
+    from typing import Protocol
+
+    from racebot_sim_bridge.description.sdf_model import Model, World
+
+    class Log(Protocol):
+        """What the simulator and its plugins log through (world_server.RospyLog: rospy's logerr & co);
+        for annotations only, nothing checks it at run time."""
+        def error(self, message: str) -> None: ...
+        def warn(self, message: str) -> None: ...
+        def info(self, message: str) -> None: ...
 
 
 class SpawnError(ValueError):
@@ -25,7 +41,7 @@ class Robot:
     is the loop that drives its joints, set by the plugin that does (gazebo_ros_control's, when the
     URDF declares it), else None; step() runs it."""
 
-    def __init__(self, name, body, model, spawn_namespace=''):
+    def __init__(self, name: str, body: physics.Body, model: urdf_model.RobotModel, spawn_namespace: str = '') -> None:
         self.name = name
         self.body = body
         self.model = model
@@ -34,7 +50,7 @@ class Robot:
 
 
 class Simulator:
-    def __init__(self, world_spec, io, log, get_params):
+    def __init__(self, world_spec: World, io: Any, log: Log, get_params: Callable[[str], Any]) -> None:
         """world_spec: sdf_model.World; io: controllers.RosIO-like; get_params(path) -> value or None."""
         self.spec = world_spec  # what the world file says: read, never written (live state is below)
         self.io = io
@@ -70,7 +86,7 @@ class Simulator:
         self.after_step = []
         self.before_physics = []
 
-    def set_step_hook(self, hooks, hook, wanted):
+    def set_step_hook(self, hooks: str, hook: Callable[[float], None], wanted: bool) -> None:
         """Puts `hook` into (or takes it out of) the step hook list named `hooks` ('before_physics' or
         'after_step'): a component whose work comes and goes (plugins, sensors) is called only while it
         has some, as every hook costs each of the thousands of steps a second. The list is replaced, not
@@ -82,8 +98,8 @@ class Simulator:
             setattr(self, hooks, [h for h in current if h != hook])
 
     # -- spawning -------------------------------------------------------------------------------
-    def spawn_urdf(self, name: str, urdf: str | ET.Element, robot_namespace: str = '', position=(0, 0, 0),
-                   orientation=(0, 0, 0, 1), model: urdf_model.RobotModel | None = None) -> Robot:
+    def spawn_urdf(self, name: str, urdf: str | ET.Element, robot_namespace: str = '', position: Vec3 = (0, 0, 0),
+                   orientation: Quat = (0, 0, 0, 1), model: urdf_model.RobotModel | None = None) -> Robot:
         """Spawns a URDF; returns the Robot. Raises SpawnError with gazebo_ros's status wording.
 
         urdf: the URDF text, or its root element already parsed (the spawn's own: it is rewritten for
@@ -123,7 +139,7 @@ class Simulator:
                 hook(robot)
             return robot
 
-    def spawn_sdf_robot(self, model, robot_namespace=''):
+    def spawn_sdf_robot(self, model: Model, robot_namespace: str = '') -> Robot:
         """Spawns an SDF model with joints, plugins or sensors (sdf_model.Model.is_robot) through the URDF
         path (sdf_urdf.py), at its <pose>; returns the Robot. SpawnError when it cannot be."""
         try:
@@ -138,7 +154,7 @@ class Simulator:
             robot.body.model_offset = conversion.root_pose
         return robot
 
-    def spawn_world_robots(self):
+    def spawn_world_robots(self) -> list[Robot]:
         """Spawns the world file's robots (models with joints, plugins or sensors), once the plugin and
         sensor managers listen to on_spawn; returns the Robots. One that cannot be spawned is warned about
         and left out."""
@@ -151,7 +167,7 @@ class Simulator:
                     self.log.warn('world: %s; the world loads without it' % err)
         return robots
 
-    def delete_model(self, name):
+    def delete_model(self, name: str) -> None:
         with self.lock:
             if name not in self.world.bodies:
                 raise KeyError(name)
@@ -169,7 +185,7 @@ class Simulator:
         self._controls = [r.control for r in self.robots.values() if r.control is not None]
 
     # -- time ---------------------------------------------------------------------------------
-    def set_paused(self, paused):
+    def set_paused(self, paused: bool) -> None:
         """pause_physics / unpause_physics. Taken under the step lock, as Gazebo's World::SetPaused takes
         the lock its World::Step holds: once a pause has returned, the update under way is done and
         step_unless_paused starts no other, so a request made after the pause (a controller switch,
@@ -177,7 +193,7 @@ class Simulator:
         with self.lock:
             self.paused = paused
 
-    def step_unless_paused(self):
+    def step_unless_paused(self) -> bool:
         """step() unless paused, the flag read under the lock that step holds; whether it stepped."""
         with self.lock:
             if self.paused:
@@ -185,7 +201,7 @@ class Simulator:
             self.step()
             return True
 
-    def step(self):
+    def step(self) -> None:
         """One world update (physics step), each robot's control loop (read, controller manager update
         when its control period has elapsed, write) before it, inline: it runs thousands of times a second."""
         with self.lock:
@@ -211,14 +227,14 @@ class Simulator:
         s0, t0 = self._epoch
         return t0 + (steps - s0) * self.step_size
 
-    def set_step_size(self, step_size):
+    def set_step_size(self, step_size: float) -> None:
         """A new physics step (set_physics_properties); time goes on from where it is."""
         with self.lock:
             self._epoch = (self.steps, self.time)
             self.step_size = step_size
             self.world.set_step_size(step_size)
 
-    def reset_simulation(self):
+    def reset_simulation(self) -> None:
         """reset_world, and time back to 0."""
         with self.lock:
             self.reset_world()
@@ -226,7 +242,7 @@ class Simulator:
             self.time = 0.0
             self._epoch = (0, 0.0)
 
-    def reset_world(self):
+    def reset_world(self) -> None:
         """Poses, velocities and joints back to the start; time goes on. ros_control is left as it
         was, as gazebo_ros_control leaves it: controllers keep running with their commands and
         state, joint readings go on unwrapping from where they were, and only the plugin's last
@@ -242,13 +258,13 @@ class Simulator:
                 hook()
 
     # -- queries ------------------------------------------------------------------------------
-    def model_names(self):
+    def model_names(self) -> list[str]:
         return list(self.world.bodies)
 
-    def body(self, name):
+    def body(self, name: str) -> physics.Body | None:
         return self.world.bodies.get(name)
 
-    def close(self):
+    def close(self) -> None:
         with self.lock:
             for c in self._controls:
                 c.close()

@@ -8,12 +8,25 @@ copy too.
   the sim time a frame is stamped with (a few microseconds a body);
 - WorldCopy.sync(bodies) / .pose(snapshot): keeps the copy's bodies and poses equal to them.
 """
+from __future__ import annotations
+
 import itertools
+from collections.abc import Collection, Mapping
+from typing import TYPE_CHECKING, Dict, List, Tuple
+
+from racebot_sim_bridge.kinematics.rotations import Transform
+
+if TYPE_CHECKING:
+    from racebot_sim_bridge.engine.physics import Body, BodySource, PhysicsWorld
 
 _SERIALS = itertools.count()
 
+BodyKey = Tuple[str, int]  # (model name, serial): see body_key
+# {name: (key, [(position, orientation) of the base and each extra body], (joint positions))}
+Snapshot = Dict[str, Tuple[BodyKey, List[Transform], Tuple[float, ...]]]
 
-def body_key(body):
+
+def body_key(body: Body) -> BodyKey:
     """Identifies a body across a delete and respawn under the same name (PyBullet may even give
     the new body the old id): a serial number kept on the Body (its copy_key) the first time it is
     asked for."""
@@ -22,7 +35,7 @@ def body_key(body):
     return body.copy_key
 
 
-def snapshot(world):
+def snapshot(world: PhysicsWorld) -> Snapshot:
     """{name: (key, [(position, orientation) of the base and each extra body], (joint positions))}."""
     client = world.client
     shot = {}
@@ -35,18 +48,18 @@ def snapshot(world):
     return shot
 
 
-def sources(world):
+def sources(world: PhysicsWorld) -> dict[str, tuple[BodyKey, BodySource]]:
     """{name: (key, Body.source)} of every body."""
     return {name: (body_key(body), body.source) for name, body in world.bodies.items()}
 
 
 class WorldCopy:
-    def __init__(self, world):
+    def __init__(self, world: PhysicsWorld) -> None:
         """`world`: the physics.PhysicsWorld holding the copy (its own client)."""
         self.world = world
         self.keys = {}  # name -> key of the simulated body the copy stands for
 
-    def sync(self, bodies):
+    def sync(self, bodies: Mapping[str, tuple[BodyKey, BodySource]]) -> None:
         """Adds the bodies of `bodies` ({name: (key, source)}) not in the copy yet and rebuilds those
         whose key changed. Bodies absent from it are not touched (see `prune`)."""
         for name, (key, source) in bodies.items():
@@ -58,13 +71,13 @@ class WorldCopy:
             self.world.add_copy(name, source)
             self.keys[name] = key
 
-    def prune(self, names):
+    def prune(self, names: Collection[str]) -> None:
         """Removes every body whose name is not in `names`."""
         for name in [n for n in self.world.bodies if n not in names]:
             self.world.remove(name)
             self.keys.pop(name, None)
 
-    def pose(self, shot):
+    def pose(self, shot: Snapshot) -> None:
         """Puts every copied body where `shot` (snapshot()) says."""
         client = self.world.client
         for name, (key, poses, positions) in shot.items():

@@ -11,8 +11,16 @@ Conventions (those of SDF, URDF, ROS and PyBullet alike):
   taken too.
 """
 import math
+from typing import Tuple, Union
 
 IDENTITY = (0.0, 0.0, 0.0, 1.0)
+
+# The shapes of these values, for type annotations (typing's forms: they are evaluated on Python 3.8).
+Vec3 = Tuple[float, float, float]
+Quat = Tuple[float, float, float, float]  # x, y, z, w
+Transform = Tuple[Vec3, Quat]  # (xyz, quaternion): a child frame's pose in its parent
+XyzRpy = Tuple[float, float, float, float, float, float]  # (x, y, z, roll, pitch, yaw): an SDF <pose>, a URDF <origin>
+AnyPose = Union[Transform, XyzRpy]  # what as_transform and compose take
 
 
 def rpy_to_quaternion(roll, pitch, yaw):
