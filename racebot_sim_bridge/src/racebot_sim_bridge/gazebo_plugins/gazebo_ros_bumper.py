@@ -3,19 +3,16 @@ collision names, contact groups and wrenches: ../sensors/contact.py; PyBullet's 
 """
 from gazebo_msgs.msg import ContactsState
 
-from racebot_sim_bridge.gazebo_plugins.sensor_plugin import Sensor
+from racebot_sim_bridge.gazebo_plugins.sensor_plugin import Sensor, SensorKind
 from racebot_sim_bridge.sensors import messages as msgs
 from racebot_sim_bridge.sensors.contact import contact_collision_after_lumping, group_contacts, urdf_collision_shapes
 from racebot_sim_bridge.sensors.contact_points import CollisionKinds, CollisionNames, link_com, read_contacts
 
 
-class BumperSensor(Sensor):
+class BumperSensor(Sensor, libraries=('libgazebo_ros_bumper.so',), sensor_types=('contact',),
+                   kind=SensorKind.BUMPER, main_topic='bumper'):
     """gazebo_ros_bumper: the contacts of the sensor's <contact><collision>s as
     gazebo_msgs/ContactsState, every sensor update (an empty list when nothing touches)."""
-    libraries = ('libgazebo_ros_bumper.so',)
-    sensor_types = ('contact',)
-    kind = 'bumper'
-    main_topic = 'bumper'
 
     def __init__(self, manager, robot, spec, config):
         super().__init__(manager, robot, spec, config)

@@ -10,7 +10,7 @@ import time as walltime
 from sensor_msgs.msg import CameraInfo, Image
 from sensor_msgs.srv import SetCameraInfo
 
-from racebot_sim_bridge.gazebo_plugins.sensor_plugin import Sensor
+from racebot_sim_bridge.gazebo_plugins.sensor_plugin import Sensor, SensorKind
 from racebot_sim_bridge.sensors import messages as msgs
 from racebot_sim_bridge.sensors.camera import PinholeCamera
 from racebot_sim_bridge.sensors.imu_reading import quaternion_to_matrix
@@ -32,12 +32,9 @@ def _serialized(msg):
     return buf.getvalue()
 
 
-class CameraSensor(Sensor):
+class CameraSensor(Sensor, libraries=('libgazebo_ros_camera.so',), sensor_types=('camera',),
+                   kind=SensorKind.CAMERA, main_topic='image'):
     """gazebo_ros_camera: image + camera_info."""
-    libraries = ('libgazebo_ros_camera.so',)
-    sensor_types = ('camera',)
-    kind = 'camera'
-    main_topic = 'image'
 
     def __init__(self, manager, robot, spec, config):
         super().__init__(manager, robot, spec, config)

@@ -5,21 +5,18 @@ plugin, is gazebo_ros_imu.py.)
 import numpy as np
 from sensor_msgs.msg import Imu
 
-from racebot_sim_bridge.gazebo_plugins.sensor_plugin import Sensor
+from racebot_sim_bridge.gazebo_plugins.sensor_plugin import Sensor, SensorKind
 from racebot_sim_bridge.kinematics.rotations import quaternion_multiply, rpy_to_quaternion
 from racebot_sim_bridge.sensors import messages as msgs
 from racebot_sim_bridge.sensors.imu_reading import ImuKinematics
 from racebot_sim_bridge.sensors.noise import AxisNoise, make_noise
 
 
-class ImuSensor(Sensor):
+class ImuSensor(Sensor, libraries=('libgazebo_ros_imu_sensor.so',), sensor_types=('imu',),
+                kind=SensorKind.IMU, main_topic='imu'):
     """gazebo_ros_imu_sensor on Gazebo's ImuSensor: per-axis noise with bias (<imu><angular_velocity><x>...),
     the plugin's gaussianNoise on every field, rpyOffset, initialOrientationAsReference, and the acceleration
     over the physics step that ends at each update (the velocity is recorded one step before: wake_time)."""
-    libraries = ('libgazebo_ros_imu_sensor.so',)
-    sensor_types = ('imu',)
-    kind = 'imu'
-    main_topic = 'imu'
 
     def __init__(self, manager, robot, spec, config):
         super().__init__(manager, robot, spec, config)

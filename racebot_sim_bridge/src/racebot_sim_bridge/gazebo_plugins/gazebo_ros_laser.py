@@ -4,7 +4,7 @@ noise as Gazebo reports them (../sensors/ray.py, noise.py), intensities from the
 """
 from sensor_msgs.msg import LaserScan
 
-from racebot_sim_bridge.gazebo_plugins.sensor_plugin import Sensor
+from racebot_sim_bridge.gazebo_plugins.sensor_plugin import Sensor, SensorKind
 from racebot_sim_bridge.sensors import messages as msgs
 from racebot_sim_bridge.sensors.imu_reading import quaternion_to_matrix
 from racebot_sim_bridge.sensors.noise import make_noise
@@ -12,12 +12,9 @@ from racebot_sim_bridge.sensors.ray import ScanGeometry
 from racebot_sim_bridge.sensors.raycast import cast_rays
 
 
-class LaserSensor(Sensor):
+class LaserSensor(Sensor, libraries=('libgazebo_ros_laser.so', 'libgazebo_ros_gpu_laser.so'),
+                  sensor_types=('ray', 'gpu_ray'), kind=SensorKind.LASER, main_topic='scan'):
     """gazebo_ros_laser and gazebo_ros_gpu_laser: sensor_msgs/LaserScan of the ray sensor's beams."""
-    libraries = ('libgazebo_ros_laser.so', 'libgazebo_ros_gpu_laser.so')
-    sensor_types = ('ray', 'gpu_ray')
-    kind = 'laser'
-    main_topic = 'scan'
 
     def __init__(self, manager, robot, spec, config):
         super().__init__(manager, robot, spec, config)

@@ -3,13 +3,12 @@ a gazebo_ros_camera under <cameraName>/left or <cameraName>/right (../sensors/co
 right camera's baseline).
 """
 from racebot_sim_bridge.gazebo_plugins.gazebo_ros_camera import CameraSensor
+from racebot_sim_bridge.gazebo_plugins.sensor_plugin import SensorKind
 
 
-class MultiCameraSensor(CameraSensor):
+class MultiCameraSensor(CameraSensor, libraries=('libgazebo_ros_multicamera.so',), sensor_types=('multicamera',),
+                        kind=SensorKind.MULTICAMERA):
     """One camera of a multicamera sensor: a CameraSensor of its own, with its own pose and topics."""
-    libraries = ('libgazebo_ros_multicamera.so',)
-    sensor_types = ('multicamera',)
-    kind = 'multicamera'
 
     @classmethod
     def create(cls, manager, robot, spec, config):

@@ -4,17 +4,16 @@ sensor's rgb image, depth image, point cloud and their camera_infos, on the came
 from sensor_msgs.msg import CameraInfo, Image, PointCloud2
 
 from racebot_sim_bridge.gazebo_plugins.gazebo_ros_camera import CameraSensor
+from racebot_sim_bridge.gazebo_plugins.sensor_plugin import SensorKind
 from racebot_sim_bridge.sensors import messages as msgs
 from racebot_sim_bridge.sensors.camera import mask_depth
 
 
-class DepthCameraSensor(CameraSensor):
+class DepthCameraSensor(CameraSensor,
+                        libraries=('libgazebo_ros_openni_kinect.so', 'libgazebo_ros_depth_camera.so'),
+                        sensor_types=('depth',), kind=SensorKind.DEPTH, main_topic='depth'):
     """gazebo_ros_openni_kinect: rgb image, depth image (32FC1 m), point cloud, two camera_infos.
     Depth is worked out only while its depth image or point cloud has a subscriber."""
-    libraries = ('libgazebo_ros_openni_kinect.so', 'libgazebo_ros_depth_camera.so')
-    sensor_types = ('depth',)
-    kind = 'depth'
-    main_topic = 'depth'
 
     def __init__(self, manager, robot, spec, config):
         super().__init__(manager, robot, spec, config)

@@ -3,7 +3,7 @@
 """
 from sensor_msgs.msg import Range
 
-from racebot_sim_bridge.gazebo_plugins.sensor_plugin import Sensor
+from racebot_sim_bridge.gazebo_plugins.sensor_plugin import Sensor, SensorKind
 from racebot_sim_bridge.sensors import messages as msgs
 from racebot_sim_bridge.sensors.imu_reading import quaternion_to_matrix
 from racebot_sim_bridge.sensors.noise import make_noise
@@ -13,12 +13,10 @@ from racebot_sim_bridge.sensors.raycast import cast_rays
 from racebot_sim_bridge.sensors.schedule import FrameThrottle
 
 
-class RangeSensor(Sensor):
+# a gpu_ray is refused: gazebo_ros_range needs a RaySensor (gzthrow upstream)
+class RangeSensor(Sensor, libraries=('libgazebo_ros_range.so',), sensor_types=('ray',),
+                  kind=SensorKind.RANGE, main_topic='range'):
     """gazebo_ros_range: the ray sensor's shortest ray as sensor_msgs/Range (range_reading.py)."""
-    libraries = ('libgazebo_ros_range.so',)
-    sensor_types = ('ray',)  # it needs a RaySensor: a gpu_ray is refused (gzthrow upstream)
-    kind = 'range'
-    main_topic = 'range'
 
     def __init__(self, manager, robot, spec, config):
         super().__init__(manager, robot, spec, config)

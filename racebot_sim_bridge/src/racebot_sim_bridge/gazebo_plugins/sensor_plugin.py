@@ -8,19 +8,46 @@ physics thread after every physics step, under Simulator.lock: the schedule says
 (../sensors/schedule.py); if anybody listens, update() measures with the pipeline stages in ../sensors/ and
 publishes messages stamped with the sim time of the measurement. close() when the robot goes.
 """
+from enum import Enum
+
 from racebot_sim_bridge.engine.sim_time import ros_time
 from racebot_sim_bridge.gazebo_plugins import PluginKind
 from racebot_sim_bridge.sensors.mount import SensorMount
 from racebot_sim_bridge.sensors.schedule import RateMeter, UpdateSchedule
 
 
+class SensorKind(str, Enum):
+    """What config.py reads a sensor plugin's parameters as, and the log calls it. A str ('laser' == LASER)."""
+    LASER = 'laser'
+    CAMERA = 'camera'
+    MULTICAMERA = 'multicamera'
+    DEPTH = 'depth'
+    IMU = 'imu'
+    RANGE = 'range'
+    BUMPER = 'bumper'
+
+    def __str__(self):
+        return self.value
+
+
 class Sensor:
-    """One simulated sensor: its schedule, mount, publishers and rate meter."""
+    """One simulated sensor: its schedule, mount, publishers and rate meter.
+
+    A plugin class declares in its class line what registry.py and config.py read of it:
+    `class RangeSensor(Sensor, libraries=('libgazebo_ros_range.so',), sensor_types=('ray',), kind=..., main_topic=...)`.
+    """
     libraries = ()     # upstream's library names it answers, e.g. ('libgazebo_ros_range.so',): registry.py
     plugin_kind = PluginKind.SENSOR
     sensor_types = ()  # the <sensor type>s it works in; in another, config.py refuses it (upstream's Load throws)
-    kind = None        # what config.py reads its parameters as and the log calls it: laser, camera, depth, imu, ...
+    kind = None        # a SensorKind
     main_topic = None  # the role whose rate is reported
+
+    def __init_subclass__(cls, libraries=None, sensor_types=None, kind=None, main_topic=None, **kwargs):
+        super().__init_subclass__(**kwargs)
+        declared = {'libraries': libraries, 'sensor_types': sensor_types, 'kind': kind, 'main_topic': main_topic}
+        for name, value in declared.items():
+            if value is not None:  # not declared: inherited (a multicamera's main topic is the camera's)
+                setattr(cls, name, value)
 
     @classmethod
     def create(cls, manager, robot, spec, config):
