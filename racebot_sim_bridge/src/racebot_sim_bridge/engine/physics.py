@@ -599,5 +599,19 @@ def prepare_urdf_for_bullet(root: ET.Element, urdf_model: RobotModel, visuals: b
         if not visuals:
             for el in link.findall('visual'):
                 link.remove(el)
-    ET.indent(root)  # PyBullet's URDF reader fails on some very long lines (a one-line document)
+    _indent(root)  # PyBullet's URDF reader fails on some very long lines (a one-line document)
     return ET.tostring(root, encoding='unicode')
+
+
+def _indent(elem: ET.Element, level: int = 0) -> None:
+    """One element per line, as ET.indent (Python 3.9+) writes it; Ubuntu 20.04's Noetic runs Python 3.8."""
+    pad = '\n' + '  ' * level
+    children = list(elem)
+    if children:
+        if not (elem.text or '').strip():
+            elem.text = pad + '  '
+        for child in children:
+            _indent(child, level + 1)
+            if not (child.tail or '').strip():
+                child.tail = pad + '  '
+        children[-1].tail = pad if not (children[-1].tail or '').strip() else children[-1].tail
