@@ -219,7 +219,10 @@ def test_gazebo_ros_control_plugin_defaults():
 
 def test_ray_sensor(model):
     (sensor,) = model.sensors
-    assert (sensor.name, sensor.type, sensor.reference) == ('hokuyo', 'ray', 'lidar')
+    # lidar is lumped into base_link, that into base_footprint: the sensor is Gazebo's on base_footprint, its
+    # pose the two joints' (sdf_reduction; test_sdf_reduction has the rules)
+    assert (sensor.name, sensor.type, sensor.reference) == ('hokuyo', 'ray', 'base_footprint')
+    assert sensor.pose == (0.09, 0.0, 0.152, 0.0, 0.0, 1.5708)
     assert sensor.update_rate == 40.0 and sensor.visualize is False
     ray = sensor.ray
     assert ray.samples == 1081 and ray.resolution == 1.0

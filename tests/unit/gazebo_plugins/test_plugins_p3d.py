@@ -163,13 +163,19 @@ def test_refusals_with_the_reason(tmp_path, urdf, tags, reason):
         w.close()
 
 
-def test_a_link_gazebo_lumps_away_is_refused_naming_the_link_it_went_into(tmp_path, urdf):
+def test_a_link_gazebo_lumps_away_is_read_as_its_parent_with_the_joint_as_offset(tmp_path, urdf):
+    # as sdformat rewrites it: bodyName base_link, xyzOffset J * 0 = the joint's 0 0 0.5 (added to the position)
     lumped = urdf.replace('</robot>', '<link name="imu_link"/><joint name="imu_joint" type="fixed">'
-                          '<parent link="base_link"/><child link="imu_link"/></joint></robot>')
-    w, robot = spawn(tmp_path, with_p3d(lumped, bodyName='imu_link'))
+                          '<parent link="base_link"/><child link="imu_link"/><origin xyz="0 0 0.5"/></joint></robot>')
+    w, robot = spawn(tmp_path, with_p3d(lumped, bodyName='imu_link'))  # its xyzOffset 0 0 0: composed with J
     try:
-        errors = w.errors('p3d_base_controller')
-        assert len(errors) == 1 and "merges this link into 'base_link'" in errors[0]
+        assert w.errors('p3d_base_controller') == []
+        pub = w.fake.publishers[TOPIC]
+        pub.connections = 1
+        w.run(0.02)
+        msg = pub.messages[-1]
+        assert msg.child_frame_id == 'base_link'
+        assert msg.pose.pose.position.z == pytest.approx(robot.body.frame_pose().position[2] + 0.5, abs=0.01)
     finally:
         w.close()
 

@@ -14,7 +14,7 @@ from racebot_sim_bridge.gazebo_plugins.registry import REGISTRY
 from racebot_sim_bridge.sensors.config import SensorConfigError, resolve_frame, sensor_config, tf_resolve
 from racebot_sim_bridge.sensors.contact_points import read_contacts
 from racebot_sim_bridge.sensors.contact import (CollisionKind, ContactPoint, NamedShape,
-                                                contact_collision_after_lumping, friction_reversed, group_contacts,
+                                                friction_reversed, group_contacts,
                                                 nearest_shape, surface_distance, urdf_collision_shapes)
 from racebot_sim_bridge.sensors.range_reading import INFRARED, ULTRASOUND, radiation_type, range_reading, ray_lengths
 from racebot_sim_bridge.sensors.schedule import FrameThrottle
@@ -139,13 +139,12 @@ def test_collision_names_as_sdformat_gives_them(model):
         'b_fixed_joint_lump__c_collision_3']
 
 
-def test_a_lumped_links_own_collision_name_is_rewritten_as_sdformat_does(model):
-    # the sensor's link is lumped into base_link: its default name becomes one no collision has
-    assert contact_collision_after_lumping(model, 'bumper_link', 'bumper_link_collision') == \
-        'base_link_collision_bumper_link'
-    lumped = 'base_link_fixed_joint_lump__bumper_link_collision_1'
-    assert contact_collision_after_lumping(model, 'bumper_link', lumped) == lumped
-    assert contact_collision_after_lumping(model, 'base_link', 'base_link_collision') == 'base_link_collision'
+def test_a_lumped_links_own_collision_name_is_the_one_sdformat_writes(model):
+    # the bumper sensor sits on bumper_link, lumped into base_link; it names the lumped collision in full,
+    # which sdformat leaves as written (test_sdf_reduction has the renaming rule)
+    (bumper,) = [s for s in model.sensors if s.name == 'bumper']
+    assert bumper.reference == 'base_link'
+    assert bumper.contact_collisions == ['base_link_fixed_joint_lump__bumper_link_collision_1']
 
 
 def test_bumper_parameters_and_defaults():
@@ -274,8 +273,9 @@ def test_stereo_pair_topics_poses_and_baseline(model):
     left, right = parts['left'], parts['right']
     assert left[1].topics == {'image': '/stereo/left/image_raw', 'info': '/stereo/left/camera_info'}
     assert right[1].topics == {'image': '/stereo/right/image_raw', 'info': '/stereo/right/camera_info'}
-    assert left[0].pose == pytest.approx((0.0, 0.035, 0.0, 0.0, 0.0, 0.0))
-    assert right[0].pose == pytest.approx((0.0, -0.035, 0.0, 0.0, 0.0, 0.0))
+    # each <camera><pose> on the sensor's, which sdformat moved from stereo_link to base_link (joint 0.15 0 0.2)
+    assert left[0].pose == pytest.approx((0.15, 0.035, 0.2, 0.0, 0.0, 0.0))
+    assert right[0].pose == pytest.approx((0.15, -0.035, 0.2, 0.0, 0.0, 0.0))
     assert left[1].frame_id == right[1].frame_id == 'stereo_link'  # upstream: one frameName for both
     assert (left[1].params['baseline'], right[1].params['baseline']) == (0.0, 0.07)
     cam = PinholeCamera(64, 48, 1.0, 0.05, 20.0)

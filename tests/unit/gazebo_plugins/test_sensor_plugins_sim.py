@@ -184,6 +184,7 @@ def test_a_bumper_naming_its_lumped_links_own_collision_reports_nothing_with_a_w
         warned = [msg for level, msg in fake.logs if level == 'warn' and "sensor 'bumper'" in msg]
         assert len(warned) == 1
         assert "'base_link_collision_bumper_link'" in warned[0] and repr(lumped) in warned[0]
+        assert "'bumper_link_collision' (which sdformat rewrites to" in warned[0]  # the name as written, too
         listen(fake, '/bumper')
         push_into_the_box(sim, robot)
         messages = fake.publishers['/bumper'].messages

@@ -14,13 +14,14 @@ def configs(racebot_xml):
 
 def test_lidar(configs):
     c = configs['laser']
-    assert (c.name, c.reference, c.frame_id, c.rate) == ('hokuyo_sensor', 'lidar', 'lidar', 40.0)
+    # every sensor link of the racebot hangs on fixed joints: Gazebo mounts the sensors on base_footprint
+    assert (c.name, c.reference, c.frame_id, c.rate) == ('hokuyo_sensor', 'base_footprint', 'lidar', 40.0)
     assert c.topics == {'scan': '/scan'}
 
 
 def test_camera(configs):
     c = configs['camera']
-    assert (c.reference, c.frame_id, c.rate) == ('camera', 'camera', 30.0)  # plugin updateRate 0: the sensor's
+    assert (c.reference, c.frame_id, c.rate) == ('base_footprint', 'camera', 30.0)  # plugin updateRate 0: the sensor's
     assert c.topics == {'image': '/rrbot/camera1/image_raw', 'info': '/rrbot/camera1/camera_info'}
     assert c.params['baseline'] == pytest.approx(0.07)
     assert c.params['distortion'] == [0.0] * 5
@@ -28,7 +29,7 @@ def test_camera(configs):
 
 def test_depth_camera(configs):
     c = configs['depth']
-    assert (c.reference, c.frame_id, c.rate) == ('real_sense', 'realsense_depth', 20.0)
+    assert (c.reference, c.frame_id, c.rate) == ('base_footprint', 'realsense_depth', 20.0)
     assert c.topics == {'image': '/real_sense/rgb/image_raw', 'info': '/real_sense/rgb/camera_info',
                         'depth': '/real_sense/depth/image_raw', 'depth_info': '/real_sense/depth/camera_info',
                         'points': '/real_sense/depth/points'}
@@ -38,7 +39,7 @@ def test_depth_camera(configs):
 
 def test_imu(configs):
     c = configs['imu']
-    assert (c.reference, c.frame_id, c.rate) == ('imu', 'imu', 100.0)
+    assert (c.reference, c.frame_id, c.rate) == ('base_footprint', 'imu', 100.0)
     assert c.topics == {'imu': '/imu'}
     assert c.params['gaussian_noise'] == 0.0 and c.params['rpy_offset'] == (0.0, 0.0, 0.0)
 

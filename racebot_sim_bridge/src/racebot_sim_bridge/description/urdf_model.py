@@ -3,7 +3,8 @@
 Pure Python: no rospy, no pybullet. urdf_reader.parse_urdf builds a RobotModel from URDF text, checking what
 urdfdom checks, and reads the Gazebo extensions gazebo_ros uses (``<gazebo reference=...>`` properties and
 sensors, ``<gazebo><plugin>`` blocks, ``<transmission>`` elements as ros_control's transmission parser reads
-them). The RobotModel answers where Gazebo lumps a link on fixed joints. gazebo_ros_control/robot_hw_sim.py
+them). The RobotModel answers where Gazebo lumps a link on fixed joints; sdf_reduction rewrites its extensions as
+sdformat does when it lumps one (parse_urdf applies it). gazebo_ros_control/robot_hw_sim.py
 applies DefaultRobotHWSim's rules to the transmissions (one joint and one hardware interface each).
 
 Anything wrong raises ``UrdfError`` saying what is wrong and what to do. Things the simulator can live with
@@ -11,6 +12,7 @@ are listed in ``RobotModel.warnings`` instead.
 """
 from __future__ import annotations
 
+import xml.etree.ElementTree as ET
 from collections.abc import Callable
 from dataclasses import dataclass, field
 from typing import TypeVar
@@ -22,7 +24,7 @@ from racebot_sim_bridge.kinematics.rotations import Transform, compose
 
 __all__ = [
     'UrdfError', 'RobotModel', 'Link', 'Inertial', 'Geometry', 'Joint', 'Limit', 'Dynamics',
-    'Transmission', 'GazeboPlugin', 'SensorSpec', 'RaySpec', 'CameraSpec', 'ImuSpec',
+    'Transmission', 'GazeboPlugin', 'GazeboElement', 'Rewrite', 'SensorSpec', 'RaySpec', 'CameraSpec', 'ImuSpec',
     'normalise_interface', 'JOINT_TYPES', 'KEEP_FIXED_JOINT',
 ]
 
@@ -140,13 +142,24 @@ class Transmission:
 
 
 @dataclass
+class Rewrite:
+    """One change sdformat's fixed-joint reduction made to an extension (sdf_reduction): ``element`` (a plugin
+    parameter, 'reference', 'pose', 'contact/collision', ...) went from ``written`` (None: absent) to ``now``."""
+    element: str
+    written: str
+    now: str
+
+
+@dataclass
 class GazeboPlugin:
     """A <plugin>: ``params`` maps each child tag to its text (the first one wins).
-    ``reference`` is the link of the enclosing <gazebo reference>, or None."""
+    ``reference`` is the link of the enclosing <gazebo reference> (the link it was lumped into, if it was), or
+    None. ``rewrites``: what sdformat's fixed-joint reduction changed (sdf_reduction)."""
     name: str
     filename: str
     params: dict = field(default_factory=dict)
     reference: str = None
+    rewrites: list = field(default_factory=list)
 
     @property
     def robot_namespace(self) -> str | None:
@@ -220,7 +233,20 @@ class ImuSpec:
 
 
 @dataclass
+class GazeboElement:
+    """An SDF element of a <gazebo> block that sdformat copies into the model or link and whose link names or
+    pose its fixed-joint reduction rewrites (<light>, <projector>, <gripper>, <joint>); kept as written, for
+    sdf_reduction. ``reference`` as GazeboPlugin's."""
+    reference: str
+    element: ET.Element
+    rewrites: list = field(default_factory=list)
+
+
+@dataclass
 class SensorSpec:
+    """A <sensor> of a <gazebo reference> block. ``reference``: the link Gazebo mounts it on (the block's link,
+    or the link sdformat lumped that into, with ``pose`` then composed into that link: sdf_reduction);
+    ``rewrites`` says what the reduction changed."""
     name: str
     type: str
     reference: str
@@ -234,6 +260,7 @@ class SensorSpec:
     plugins: list = field(default_factory=list)
     cameras: list = field(default_factory=list)             # every <camera> (a multicamera has several)
     contact_collisions: list = field(default_factory=list)  # <contact><collision> names (contact sensors)
+    rewrites: list = field(default_factory=list)
 
 
 @dataclass
@@ -243,8 +270,9 @@ class RobotModel:
     joints: dict = field(default_factory=dict)
     transmissions: list = field(default_factory=list)
     plugins: list = field(default_factory=list)
-    gazebo_refs: dict = field(default_factory=dict)
+    gazebo_refs: dict = field(default_factory=dict)  # <gazebo reference> properties, under the name written
     sensors: list = field(default_factory=list)
+    gazebo_elements: list = field(default_factory=list)  # [GazeboElement]
     root_link: str = None
     materials: dict = field(default_factory=dict)
     warnings: list = field(default_factory=list)
@@ -261,9 +289,11 @@ class RobotModel:
         """The joint whose child is ``link``; None for the root link."""
         return next((j for j in self.joints.values() if j.child == link), None)
 
-    def _keeps_fixed_joint(self, joint):
+    def fixed_joint_reduced(self, joint: Joint) -> bool:
+        """sdformat's FixedJointShouldBeReduced: a fixed joint whose <gazebo reference> sets neither
+        preserveFixedJoint nor disableFixedJointLumping."""
         ref = self.gazebo_refs.get(joint.name, {})
-        return any(ref.get(key) is True for key in KEEP_FIXED_JOINT)
+        return joint.type == 'fixed' and not any(ref.get(key) is True for key in KEEP_FIXED_JOINT)
 
     def fixed_parent_chain(self, link: str) -> list[Joint]:
         """The fixed joints from ``link`` up to the link Gazebo merges it into.
@@ -277,7 +307,7 @@ class RobotModel:
             raise KeyError('robot %r has no link %r' % (self.name, link))
         chain = []
         joint = self.parent_joint(link)
-        while joint is not None and joint.type == 'fixed' and not self._keeps_fixed_joint(joint):
+        while joint is not None and self.fixed_joint_reduced(joint):
             chain.append(joint)
             joint = self.parent_joint(joint.parent)
         return chain

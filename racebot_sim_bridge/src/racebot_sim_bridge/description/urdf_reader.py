@@ -4,7 +4,8 @@ Pure Python: no rospy, no pybullet. It checks what urdfdom checks (unique names,
 links, one root, limits on revolute and prismatic joints, numeric attributes) and reads the Gazebo extensions
 gazebo_ros uses: ``<gazebo reference=...>`` properties and sensors, ``<gazebo><plugin>`` blocks, and
 ``<transmission>`` elements as ros_control's transmission parser does. Values are checked by xml_values (as
-the SDF reader's are) and worded by UrdfError.
+the SDF reader's are) and worded by UrdfError. Last, sdf_reduction rewrites the extensions that name links Gazebo
+lumps on fixed joints, as sdformat does, so every reader of the model sees Gazebo's names.
 
 Anything wrong raises ``UrdfError`` saying what is wrong and what to do. Things the simulator can live with
 are listed in ``RobotModel.warnings`` instead.
@@ -14,11 +15,11 @@ from __future__ import annotations
 import math
 import xml.etree.ElementTree as ET
 
-from racebot_sim_bridge.description import xml_values
+from racebot_sim_bridge.description import sdf_reduction, xml_values
 from racebot_sim_bridge.description.geometry import ShapeKind
 from racebot_sim_bridge.description.urdf_model import (
-    JOINT_TYPES, KEEP_FIXED_JOINT, CameraSpec, Dynamics, GazeboPlugin, Geometry, ImuSpec, Inertial, Joint, Limit, Link,
-    RaySpec, RobotModel, SensorSpec, Transmission, UrdfError, normalise_interface, read_value)
+    JOINT_TYPES, KEEP_FIXED_JOINT, CameraSpec, Dynamics, GazeboElement, GazeboPlugin, Geometry, ImuSpec, Inertial,
+    Joint, Limit, Link, RaySpec, RobotModel, SensorSpec, Transmission, UrdfError, normalise_interface, read_value)
 from racebot_sim_bridge.description.urdf_model import number as _number
 
 __all__ = ['parse_urdf', 'urdf_root']
@@ -56,6 +57,9 @@ EXTENSION_VALUES = frozenset((
 EXTENSION_FLAGS = frozenset((
     'static', 'turnGravityOff', 'selfCollide', 'provideFeedback', 'cfmDamping', 'implicitSpringDamper',
     'disableFixedJointLumping', 'preserveFixedJoint'))
+# The SDF elements of a <gazebo> block whose link names or pose sdformat rewrites when it lumps a link
+# (sdf_reduction); kept as written in RobotModel.gazebo_elements.
+REDUCED_ELEMENTS = frozenset(('light', 'projector', 'gripper', 'joint'))
 
 
 def _extension_text(elem):
@@ -149,6 +153,7 @@ class _UrdfReader:
         if len(plugins) > 1:
             self.warn('%d gazebo_ros_control plugins are declared; only the first (%r) is used'
                       % (len(plugins), plugins[0].name))
+        sdf_reduction.reduce_extensions(self.model)
         return self.model
 
     # -- links ------------------------------------------------------------------------
@@ -372,6 +377,8 @@ class _UrdfReader:
                 elif child.tag == 'sensor':
                     self.warn("<gazebo> sensor '%s' has no reference link; add "
                               '<gazebo reference="link_name">; skipped' % child.get('name'))
+                elif child.tag in REDUCED_ELEMENTS:
+                    self.model.gazebo_elements.append(GazeboElement(None, child))
             return
         what = "<gazebo reference='%s'>" % reference
         if reference not in self.model.links and reference not in self.model.joints:
@@ -384,6 +391,8 @@ class _UrdfReader:
                 self.model.sensors.append(self.sensor(child, reference))
             elif child.tag == 'plugin':
                 self.model.plugins.append(self.plugin(child, what, reference))
+            elif child.tag in REDUCED_ELEMENTS:
+                self.model.gazebo_elements.append(GazeboElement(reference, child))
             elif len(child) == 0:
                 text = _extension_text(child)
                 if child.tag in EXTENSION_FLAGS:

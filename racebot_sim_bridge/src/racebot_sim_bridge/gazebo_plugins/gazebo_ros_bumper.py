@@ -5,7 +5,7 @@ from gazebo_msgs.msg import ContactsState
 
 from racebot_sim_bridge.gazebo_plugins.sensor_plugin import Sensor, SensorKind
 from racebot_sim_bridge.sensors import messages as msgs
-from racebot_sim_bridge.sensors.contact import contact_collision_after_lumping, group_contacts, urdf_collision_shapes
+from racebot_sim_bridge.sensors.contact import group_contacts, urdf_collision_shapes
 from racebot_sim_bridge.sensors.contact_points import CollisionKinds, CollisionNames, link_com, read_contacts
 
 
@@ -21,15 +21,15 @@ class BumperSensor(Sensor, libraries=('libgazebo_ros_bumper.so',), sensor_types=
         self.link = self.mount.link
         self.shapes = urdf_collision_shapes(robot.model, self.link)
         known = [shape.name for shape in self.shapes]
-        self.wanted = set()
-        for written in config.params['collisions']:
-            name = contact_collision_after_lumping(robot.model, spec.reference, written)
-            self.wanted.add(name)
+        self.wanted = set(config.params['collisions'])  # as sdformat left them (description/sdf_reduction)
+        written = {r.now: r.written for r in spec.rewrites if r.element == 'contact/collision'}
+        for name in config.params['collisions']:
             if name not in known:  # Gazebo's bumper would report nothing, silently: say why once
                 config.warnings.append(
                     "sensor '%s': <contact><collision> %r%s names no collision of link %r, so the bumper reports "
                     'no contact, as in Gazebo; Gazebo names its collisions %s'
-                    % (spec.name, written, '' if name == written else ' (which sdformat rewrites to %r)' % name,
+                    % (spec.name, written.get(name, name),
+                       ' (which sdformat rewrites to %r, its link being lumped)' % name if name in written else '',
                        self.link, ', '.join(repr(k) for k in known) or '(it has none)'))
         self.names = CollisionNames(self.sim.world)
         self.kinds = CollisionKinds(self.sim.world.client)

@@ -1,7 +1,9 @@
 """libgazebo_ros_imu.so (gazebo_plugins noetic-devel): the MODEL plugin's sensor_msgs/Imu of a link
 (the `imu` sensor's libgazebo_ros_imu_sensor.so is sensors/'s).
 
-Parameters: bodyName (required: a link of the model; one Gazebo lumps into its parent is none),
+Parameters: bodyName (required: a link of the model; one Gazebo lumps into its parent through a fixed joint
+arrives as that parent, with xyzOffset and rpyOffset composed with the joint, and so does such a frameName,
+as sdformat rewrites them: description/sdf_reduction),
 topicName /default_imu (empty: nothing is advertised), serviceName /default_imu (std_srvs/Empty,
 answers at once: "always calibrated in sim"), gaussianNoise 0 (a standard deviation), xyzOffset 0 0 0
 (read and, as upstream, used for nothing the message carries), rpyOffset 0 0 0, updateRate 0 (every

@@ -12,8 +12,9 @@ gaussianNoise 0, updateRate 0 (every world update), robotNamespace. Upstream's o
 - gaussianNoise (a standard deviation) is added to each twist component only, its square on the
   diagonal of both covariances; header.frame_id is frameName under tf_prefix, child_frame_id bodyName;
   the stamp is the sim time; nothing is computed while nobody subscribes.
-Refused: a missing bodyName or topicName, a bodyName or frameName that is no link of the model (a
-link Gazebo lumps into its parent through a fixed joint is none).
+Refused: a missing bodyName or topicName, a bodyName or frameName that is no link of the model. One naming
+a link Gazebo lumps into its parent through a fixed joint arrives as that parent, with xyzOffset and
+rpyOffset composed with the joint, as sdformat rewrites it (description/sdf_reduction).
 """
 import random
 

@@ -127,6 +127,10 @@ class ModelPlugin:
         self.world = ctx.sim.world
         self.params = PluginParams(spec, self.warn)
         self._topics = []
+        if spec.rewrites:  # Gazebo says nothing of it; a user who wrote imu_link and reads base_link hears why
+            self.info("as Gazebo 11 loads it, sdformat's fixed-joint lumping rewrote %s" % ', '.join(
+                '<%s> %s -> %s' % (element, '(none)' if written is None else written, now)
+                for element, (written, now) in _rewritten(spec.rewrites).items()))
 
     # -- life cycle (physics thread, under Simulator.lock) ------------------------------------
     def before_physics(self, time):
@@ -160,8 +164,10 @@ class ModelPlugin:
 
     def link_param(self, tag, what, default=None, name=None):
         """The link <tag> names (``name`` when given, else the parameter, else ``default``): a link the
-        physics has. PluginError when it is missing and there is no default, when Gazebo merges it into its
-        parent (a fixed joint: the hint names that parent), or when the model has no such link."""
+        physics has. A <bodyName> or <frameName> naming a link Gazebo lumps comes here already rewritten to
+        the link it went into (description/sdf_reduction, as sdformat). PluginError when it is missing and
+        there is no default, when the physics merged it all the same (another tag, or a link fixed to a root
+        named world, which sdformat keeps: the hint names where it went), or when the model has no such link."""
         if name is None:
             name = self.params.string(tag, default)
         if name is None:
@@ -224,6 +230,14 @@ class ModelPlugin:
             raise PluginError("<%s>%s</%s> is not a link of the robot (its links: %s)"
                               % (tag, name, tag, ', '.join(sorted(self.robot.model.links))))
         return name
+
+
+def _rewritten(rewrites):
+    """{element: (as first written, as last rewritten)} of a list of urdf_model.Rewrite, in order."""
+    changes = {}
+    for r in rewrites:
+        changes[r.element] = (changes.get(r.element, (r.written,))[0], r.now)
+    return changes
 
 
 class _ServiceHandle:

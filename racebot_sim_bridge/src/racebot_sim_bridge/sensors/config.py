@@ -44,7 +44,7 @@ class SensorConfigError(ValueError):
 class SensorConfig:
     name: str
     kind: str                       # the sensor class's kind: laser, camera, depth, imu, range, ...
-    reference: str                  # the URDF link the <gazebo reference> names
+    reference: str                  # the link Gazebo mounts it on (SensorSpec.reference: after lumping)
     frame_id: str
     rate: float                     # Hz of sim time; 0 = every world update
     topics: dict = field(default_factory=dict)   # role -> absolute topic name

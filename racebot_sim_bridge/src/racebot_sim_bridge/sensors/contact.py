@@ -8,9 +8,9 @@ Pure numpy: no rospy, no pybullet (contact_points.py reads PyBullet).
   children; a final name not starting with L gets the prefix L + '_fixed_joint_lump__'. So a
   bumper link lumped into base_link is 'base_link_fixed_joint_lump__bumper_collision_1'. The
   sensor's <contact><collision> names one of these (the lumped link's own default name,
-  C_collision, is rewritten by sdformat to P_collision_C, which names nothing: Gazebo's bumper
-  then reports nothing; so does this one, with a warning); a contact names it in full,
-  model::link::collision.
+  C_collision, is rewritten by sdformat to P_collision_C, which names nothing: the reader does that,
+  description/sdf_reduction; Gazebo's bumper then reports nothing; so does this one, with a warning); a
+  contact names it in full, model::link::collision.
 - Which collision a contact point touches: PyBullet reports contacts per link, not per shape, so
   a point is given to the collision of its link whose surface it lies nearest to (boxes, spheres,
   cylinders exactly; a mesh by the distance to its origin).
@@ -54,17 +54,6 @@ def urdf_collision_shapes(model, link):
         shapes.append(NamedShape(full, geometry.kind, geometry.size, geometry.radius, geometry.length,
                                  tuple(pose[0]), tuple(pose[1])))
     return shapes
-
-
-def contact_collision_after_lumping(model, link, name):
-    """A contact sensor's <contact><collision> `name` as sdformat leaves it when the sensor's `link`
-    is lumped into its parent P: the link's own default name, link + '_collision', becomes
-    P + '_collision_' + link (ReduceSDFExtensionContactSensorFrameReplace), a name no collision
-    has; any other name stays. Once only: a further lumping finds the name changed already."""
-    joint = model.parent_joint(link)
-    if joint is None or model.lumped_link(link) == link or name != link + COLLISION_SUFFIX:
-        return name
-    return joint.parent + COLLISION_SUFFIX + '_' + link
 
 
 def _lumped_collisions(model, link):

@@ -1,10 +1,11 @@
 """Where a sensor is: its pose (and motion) on a spawned body.
 
 No rospy here. Calls run on the physics client; callers hold the simulator's lock.
-- SensorMount: a sensor's pose on a spawned body. Fixed-joint links are lumped into their parent
-  as Gazebo lumps them (urdf_lumping), so a sensor link such as `lidar` is no PyBullet link: the
-  mount is the link it was lumped into plus the fixed offset urdf_model computes, plus the sensor's
-  <pose>. A link kept by preserveFixedJoint is a PyBullet link of its own: the mount is that link.
+- SensorMount: a sensor's pose on a spawned body. A sensor written on a link Gazebo lumps into its parent
+  (a fixed joint) comes from the reader already moved to the link it was lumped into, its <pose> composed
+  (description/sdf_reduction, as sdformat). A link kept by preserveFixedJoint is a PyBullet link of its own:
+  the mount is that link. A link sdformat keeps but PyBullet merges (one fixed to a root named world) is
+  mounted on the link it is merged into, at the fixed offset urdf_model computes.
 """
 import numpy as np
 import pybullet as pb
@@ -14,8 +15,8 @@ from racebot_sim_bridge.kinematics.rotations import compose
 
 class SensorMount:
     def __init__(self, world, body, model, reference, sensor_pose=(0.0, 0.0, 0.0, 0.0, 0.0, 0.0)):
-        """`body`: physics.Body of the robot; `model`: its urdf_model.RobotModel; `reference`: the
-        link named by <gazebo reference>; `sensor_pose`: the sensor's <pose> (x y z r p y) in it.
+        """`body`: physics.Body of the robot; `model`: its urdf_model.RobotModel; `reference`: the sensor's
+        link (SensorSpec.reference, after sdformat's lumping); `sensor_pose`: its <pose> (x y z r p y) in it.
         Raises KeyError when the link it is merged into is not a PyBullet link of the body."""
         self.world = world
         self.body = body
