@@ -270,6 +270,30 @@ def test_joints_of_nested_models_find_their_links_as_gazebo_does():
     sdf_urdf.model_urdf(arm)
 
 
+def test_a_joint_deep_in_nested_models_finds_a_link_of_the_outer_model():
+    sphere = '<collision name="c"><geometry><sphere><radius>0.1</radius></sphere></geometry></collision>'
+    parsed = sdf_reader.parse_world(world(
+        '<model name="m"><link name="base">%(s)s</link><model name="a"><model name="b"><link name="tip">%(s)s</link>'
+        '<joint name="hold" type="fixed"><parent>base</parent><child>tip</child></joint></model></model></model>'
+        % {'s': sphere}))
+    (hold,) = parsed.model('m').joints
+    assert (hold.name, hold.parent, hold.child) == ('a::b::hold', 'base', 'a::b::tip')
+
+
+def test_a_saved_state_poses_a_nested_models_links_in_the_world():
+    sphere = '<collision name="c"><geometry><sphere><radius>0.1</radius></sphere></geometry></collision>'
+    parsed = sdf_reader.parse_world(world(
+        '<model name="m"><pose>1 0 0 0 0 0</pose><link name="base">%(s)s</link>'
+        '<model name="inner"><link name="l">%(s)s</link></model></model>'
+        '<state world_name="default"><model name="m"><pose>2 0 0 0 0 0</pose>'
+        '<model name="inner"><link name="l"><pose>3 4 5 0 0 0</pose></link></model></model></state>'
+        % {'s': sphere}))
+    assert parsed.warnings == []
+    m = parsed.model('m')
+    assert m.world_pose_of('inner::l')[0] == pytest.approx((3.0, 4.0, 5.0))
+    assert m.world_pose_of('base')[0] == pytest.approx((2.0, 0.0, 0.0))
+
+
 def test_a_plugin_of_a_nested_model_runs_with_the_outer_model_with_one_warning():
     parsed = sdf_reader.parse_world(world(
         '<model name="outer"><model name="inner"><link name="l"><collision name="c"><geometry><sphere>'

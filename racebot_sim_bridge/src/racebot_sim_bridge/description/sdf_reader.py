@@ -102,12 +102,15 @@ def _keep(items, item):
 class _Scope(NamedTuple):
     """A level of a model as its links are read: the outer model itself, or a nested <model> in it. `prefix`: the
     nested models' names down to it, each followed by '::' ('' for the outer model); `pose`: its frame in the outer
-    model's; `static`: a nested model's own <static> (None: the outer model's); `where`: for messages."""
+    model's; `static`: a nested model's own <static> (None: the outer model's); `where`: for messages;
+    `base_dir`: what relative mesh URIs in it are relative to; `around`: the prefixes of the models around it,
+    outermost first."""
     prefix: str = ''
     pose: tuple = ZERO_POSE
     static: bool = None
     where: str = ''
     base_dir: str = None
+    around: tuple = ()
 
 
 class _WorldReader(IncludeReader):
@@ -335,7 +338,8 @@ class _WorldReader(IncludeReader):
                 self.skipped(where, err)
                 continue
             self.read_level(model, child, _Scope(scope.prefix + name + '::', as_xyz_rpy(compose(scope.pose, pose)),
-                                                 static, where, child.get(BASE_DIR) or scope.base_dir), joints)
+                                                 static, where, child.get(BASE_DIR) or scope.base_dir,
+                                                 scope.around + (scope.prefix,)), joints)
 
     @staticmethod
     def scoped_link(model, names, name, scope):
@@ -344,13 +348,9 @@ class _WorldReader(IncludeReader):
         found nowhere is kept (scoped), for sdf_urdf to say which link is missing."""
         if name == 'world':
             return name
-        prefix = scope.prefix
-        while True:
+        for prefix in (scope.prefix,) + scope.around[::-1]:
             if prefix + name in names:
                 return prefix + name
-            if not prefix:
-                break
-            prefix = prefix[:prefix[:-2].rfind('::') + 2] if '::' in prefix[:-2] else ''
         if name.startswith(model.name + '::') and name[len(model.name) + 2:] in names:
             return name[len(model.name) + 2:]  # the link's scoped name, world-wide
         return scope.prefix + name
@@ -507,10 +507,13 @@ class _WorldReader(IncludeReader):
                 else:
                     model_pose = model.pose
                 link_poses = {}
-                for link_state in model_state.findall('link'):
-                    if link_state.find('pose') is not None:
-                        link_poses[link_state.get('name')] = self.pose(
-                            link_state, '%s link %s' % (where, quote(link_state.get('name'))))
+                levels = [('', model_state)]  # a nested model's links are inner::link (world poses, as the rest)
+                for prefix, level in levels:
+                    levels.extend((prefix + nested.get('name', '') + '::', nested) for nested in level.findall('model'))
+                    for link_state in level.findall('link'):
+                        if link_state.find('pose') is not None:
+                            name = prefix + link_state.get('name', '')
+                            link_poses[name] = self.pose(link_state, '%s link %s' % (where, quote(name)))
             except Unusable as err:
                 self.warn(where, '%s; the state is ignored for this model' % err)
                 continue
