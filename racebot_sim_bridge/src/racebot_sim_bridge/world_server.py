@@ -47,7 +47,7 @@ import time
 import rospy
 from rosgraph_msgs.msg import Clock
 
-from racebot_sim_bridge.description import sdf_reader
+from racebot_sim_bridge.description import model_path, sdf_reader
 from racebot_sim_bridge.ros_controllers import CommandTrace, RosIO
 from racebot_sim_bridge.gazebo_ros_api.services import GazeboServices
 from racebot_sim_bridge.gazebo_ros_api.performance_metrics import PerformanceMetricsPublisher
@@ -137,16 +137,19 @@ def parse_args(argv):
 
 
 def resolve_world(name):
-    """gzserver looks worlds up in GAZEBO_RESOURCE_PATH; we also look in our own package."""
+    """The world file gzserver loads for `name`: an absolute path as it is; a relative one as Gazebo's
+    SystemPaths::FindFile finds it (the working directory, then NAME, models/NAME, media/models/NAME under each
+    folder of GAZEBO_RESOURCE_PATH and of the packages' gazebo_media_path exports, which gazebo_ros_paths_plugin
+    adds), then in this package (its worlds/). Not found: `name`, for load_world to report."""
     if not name:
         name = 'worlds/empty.world'
     if os.path.isabs(name):
         return name
+    found, _ = model_path.find_file(name)
+    if found is not None and os.path.isfile(found):
+        return found
     here = os.path.dirname(os.path.abspath(__file__))
-    candidates = [os.path.abspath(name)]
-    for root in os.environ.get('GAZEBO_RESOURCE_PATH', '').split(':'):
-        if root:
-            candidates.append(os.path.join(root, name))
+    candidates = []
     try:
         import rospkg
         candidates.append(os.path.join(rospkg.RosPack().get_path('racebot_sim_bridge'), name))
@@ -161,7 +164,8 @@ def resolve_world(name):
 
 class WorldServer:
     def __init__(self, world_path, paused, gui):
-        spec = sdf_reader.load_world(world_path)
+        # the resource path: a name not found is reported with the folders it was looked for in
+        spec = sdf_reader.load_world(world_path, model_path.resource_path())
         for w in spec.warnings:
             rospy.logwarn('%s: %s' % (os.path.basename(world_path), w))
         if gui:

@@ -139,12 +139,14 @@ def test_unresolvable_uris_name_the_uri_and_every_place_searched(uri, needles):
         assert needle in str(err.value)
 
 
-def test_model_path_order_is_env_then_package_exports_then_home(isolated, monkeypatch):
+def test_model_path_order_is_home_then_env_then_package_exports(isolated, monkeypatch):
+    """Gazebo 11's SystemPaths puts ~/.gazebo/models first, GAZEBO_MODEL_PATH after it; gazebo_ros_paths_plugin
+    adds the packages' exports last (AddModelPaths)."""
     monkeypatch.setenv('GAZEBO_MODEL_PATH', '/first:/second')
     mesh_fixtures.write_package(str(isolated / 'pkgs'), 'exporting_pkg',
                                 '<gazebo_ros gazebo_model_path="${prefix}/models"/>')
-    assert model_path.model_path() == ['/first', '/second', str(isolated / 'pkgs' / 'exporting_pkg' / 'models'),
-                                       str(isolated / 'home' / '.gazebo' / 'models')]
+    assert model_path.model_path() == [str(isolated / 'home' / '.gazebo' / 'models'), '/first', '/second',
+                                       str(isolated / 'pkgs' / 'exporting_pkg' / 'models')]
 
 
 def test_model_config_picks_the_highest_sdf_version(tmp_path):

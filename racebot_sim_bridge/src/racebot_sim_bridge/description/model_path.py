@@ -1,13 +1,20 @@
-"""Where Gazebo and ROS find files: package://, file://, model:// URIs and plain paths.
+"""Where Gazebo and ROS find files: package://, file://, model:// URIs, plain paths and world files.
 
-No rospy, no pybullet. Resolution follows Gazebo classic with gazebo_ros:
+No rospy, no pybullet. Resolution follows Gazebo classic 11 with gazebo_ros (common/SystemPaths.cc,
+gazebo_ros_paths_plugin.cpp):
 - package://PKG/rel: the package's folder on the ROS package path (rospkg, as roslib does);
 - model://NAME/rel: NAME/rel under the first folder of the model path that holds it (the whole
-  path is tried under each folder, as Gazebo does); the model path is, in this order,
-  every entry of GAZEBO_MODEL_PATH, the `gazebo_model_path` exports of packages
-  (<export><gazebo_ros gazebo_model_path="${prefix}/models"/></export>, which gazebo_ros adds
-  to GAZEBO_MODEL_PATH), then ~/.gazebo/models (Gazebo's own download folder);
-- file:///abs/path and plain paths (relative ones relative to `base_dir`, e.g. a model's folder).
+  path is tried under each folder, as SystemPaths::FindFileURI does); the model path is, in this order,
+  ~/.gazebo/models (SystemPaths puts it first), every entry of GAZEBO_MODEL_PATH, then the
+  `gazebo_model_path` exports of packages (<export><gazebo_ros gazebo_model_path="${prefix}/models"/>
+  </export>, which gazebo_ros_paths_plugin adds after them);
+- the resource path (resource_path): every entry of GAZEBO_RESOURCE_PATH, then the `gazebo_media_path`
+  exports, as the paths plugin adds them; worlds (world_name:=worlds/x.world) and relative file:// URIs
+  are looked for in it by find_file, SystemPaths::FindFile's search: the working directory, then under
+  each folder NAME, models/NAME, media/models/NAME and Media/models/NAME;
+- file:///abs/path and absolute paths: the path, else the path under each model folder (SystemPaths
+  looks there for absolute paths that do not exist, for worlds saved on another machine);
+- plain relative paths: relative to `base_dir` (a model's folder, or the world file's), else as find_file.
 
 A URI that cannot be found raises ResolveError naming the URI and every place searched.
 """
@@ -21,7 +28,10 @@ from typing import TYPE_CHECKING
 if TYPE_CHECKING:
     import rospkg
 
-__all__ = ['ResolveError', 'resolve_uri', 'model_path', 'find_model', 'model_sdf_file', 'package_dir']
+from racebot_sim_bridge.description import xml_document
+
+__all__ = ['ResolveError', 'resolve_uri', 'model_path', 'resource_path', 'find_file', 'find_model', 'model_sdf_file',
+           'package_dir']
 
 
 class ResolveError(ValueError):
@@ -52,8 +62,10 @@ def package_dir(name: str, rospack: rospkg.RosPack | None = None) -> str | None:
         return None
 
 
-def _exported_model_paths(rospack):
-    """gazebo_model_path exports of every package on the ROS package path (gazebo_ros's rule)."""
+def _exported_paths(rospack, attribute):
+    """The `attribute` exports (gazebo_model_path, gazebo_media_path) of every package on the ROS package path,
+    as gazebo_ros_paths_plugin reads them: <export><gazebo_ros ATTRIBUTE="..."/></export>, ${prefix} the package's
+    folder, several folders separated by ':'."""
     paths = []
     for name in sorted(rospack.list()):
         try:
@@ -61,23 +73,23 @@ def _exported_model_paths(rospack):
         except Exception:  # a broken package.xml elsewhere must not stop model loading
             continue
         for export in manifest.exports:
-            value = export.get('gazebo_model_path') if export.tag == 'gazebo_ros' else None
+            value = export.get(attribute) if export.tag == 'gazebo_ros' else None
             if value:
                 prefix = rospack.get_path(name)
                 paths.extend(p.replace('${prefix}', prefix) for p in value.split(os.pathsep) if p)
     return paths
 
 
-def model_path(environ: Mapping[str, str] | None = None, rospack: rospkg.RosPack | None = None) -> list[str]:
-    """The folders model:// names are looked for in, in Gazebo's order."""
-    environ = os.environ if environ is None else environ
-    paths = [p for p in environ.get('GAZEBO_MODEL_PATH', '').split(os.pathsep) if p]
+def _with_exports(paths: list[str], attribute: str, rospack: rospkg.RosPack | None) -> list[str]:
+    """`paths`, then the packages' `attribute` exports (none when rospkg is not installed)."""
     try:
-        paths += _exported_model_paths(rospack or _rospack())
+        return paths + _exported_paths(rospack or _rospack(), attribute)
     except ImportError:
-        pass
-    home = environ.get('HOME') or os.path.expanduser('~')
-    paths.append(os.path.join(home, '.gazebo', 'models'))
+        return paths
+
+
+def _unique(paths):
+    """Absolute, each once, in order (SystemPaths::InsertUnique)."""
     seen, result = set(), []
     for p in paths:
         p = os.path.abspath(os.path.expanduser(p))
@@ -85,6 +97,43 @@ def model_path(environ: Mapping[str, str] | None = None, rospack: rospkg.RosPack
             seen.add(p)
             result.append(p)
     return result
+
+
+def _env_paths(environ: Mapping[str, str], variable: str) -> list[str]:
+    return [p for p in environ.get(variable, '').split(os.pathsep) if p]
+
+
+def model_path(environ: Mapping[str, str] | None = None, rospack: rospkg.RosPack | None = None) -> list[str]:
+    """The folders model:// names are looked for in, in Gazebo's order: ~/.gazebo/models, GAZEBO_MODEL_PATH,
+    the packages' gazebo_model_path exports."""
+    environ = os.environ if environ is None else environ
+    home = environ.get('HOME') or os.path.expanduser('~')
+    paths = [os.path.join(home, '.gazebo', 'models')] + _env_paths(environ, 'GAZEBO_MODEL_PATH')
+    return _unique(_with_exports(paths, 'gazebo_model_path', rospack))
+
+
+def resource_path(environ: Mapping[str, str] | None = None,
+                  rospack: rospkg.RosPack | None = None) -> list[str]:
+    """Gazebo's resource path (its "gazebo paths", where worlds/ and media/ are): GAZEBO_RESOURCE_PATH, then the
+    packages' gazebo_media_path exports, which gazebo_ros_paths_plugin adds to it."""
+    environ = os.environ if environ is None else environ
+    return _unique(_with_exports(_env_paths(environ, 'GAZEBO_RESOURCE_PATH'), 'gazebo_media_path', rospack))
+
+
+# SystemPaths' search path suffixes: NAME is also looked for under these in each resource folder.
+RESOURCE_SUFFIXES = ('', 'models', os.path.join('media', 'models'), os.path.join('Media', 'models'))
+
+
+def find_file(name: str, resources: list[str] | None = None,
+              cwd: str | None = None) -> tuple[str | None, list[str]]:
+    """(path, [places searched]) of a relative file or folder `name` as SystemPaths::FindFile finds it: in the
+    working directory, then NAME, models/NAME, media/models/NAME and Media/models/NAME under each folder of the
+    resource path in turn (`resources`, default resource_path()). The path is None when it is nowhere."""
+    candidates = [os.path.join(cwd or os.getcwd(), name)]
+    for folder in resource_path() if resources is None else resources:
+        candidates.extend(os.path.join(folder, suffix, name) for suffix in RESOURCE_SUFFIXES)
+    found = next((c for c in candidates if os.path.exists(c)), None)
+    return (os.path.abspath(found) if found else None), candidates
 
 
 def find_model(name: str, search: list[str] | None = None) -> tuple[str | None, list[str]]:
@@ -108,8 +157,8 @@ def model_sdf_file(model_dir: str) -> str:
     choices = []
     if os.path.isfile(config):
         try:
-            root = ET.parse(config).getroot()
-        except ET.ParseError as err:
+            root = xml_document.parse(config)
+        except (ET.ParseError, OSError, ValueError, LookupError) as err:
             raise ResolveError('%s is not valid XML (%s); fix it or give the model a model.sdf' % (config, err))
         for elem in root.findall('sdf'):
             text = (elem.text or '').strip()
@@ -135,10 +184,13 @@ def _version(text):
         return (0,)
 
 
-def resolve_uri(uri: str | None, base_dir: str | None = None, search: list[str] | None = None) -> str:
+def resolve_uri(uri: str | None, base_dir: str | None = None, search: list[str] | None = None,
+                resources: list[str] | None = None) -> str:
     """The absolute path of an existing file named by `uri`; ResolveError when not found.
 
-    `search`: the model path (default: model_path()), only consulted for model:// URIs."""
+    `search`: the model path (default: model_path()), consulted for model:// URIs and for absolute paths that do
+    not exist; `resources`: the resource path (default: resource_path()), for relative file:// URIs and relative
+    paths not found under `base_dir`. Both are looked up only when needed."""
     uri = (uri or '').strip()
     if not uri:
         raise ResolveError('an empty URI; give package://PKG/path, model://NAME/path, file:///path or a path')
@@ -156,15 +208,27 @@ def resolve_uri(uri: str | None, base_dir: str | None = None, search: list[str] 
         search = model_path() if search is None else search
         return _existing(uri, [os.path.join(folder, name, rel) for folder in search],
                          hint='add the folder holding %s/ to GAZEBO_MODEL_PATH' % name)
-    if uri.startswith('file://'):
-        return _existing(uri, [uri[len('file://'):]])
-    if '://' in uri:
+    if '://' in uri and not uri.startswith('file://'):
         raise ResolveError("%s: unknown URI scheme '%s'; use package://, model://, file:// or a path"
                            % (uri, uri.split('://')[0]))
-    path = os.path.expanduser(uri)
-    if not os.path.isabs(path):
-        path = os.path.join(base_dir or os.getcwd(), path)
-    return _existing(uri, [path])
+    path = uri[len('file://'):] if uri.startswith('file://') else os.path.expanduser(uri)
+    if os.path.isabs(path):
+        if os.path.isfile(path):
+            return os.path.abspath(path)
+        # SystemPaths::FindFile: an absolute path that does not exist is looked for under each model folder
+        search = model_path() if search is None else search
+        return _existing(uri, [path] + [os.path.join(folder, path.lstrip(os.sep)) for folder in search])
+    # file://REL is SystemPaths::FindFile(REL): the working directory, then the resource path. A plain relative
+    # path is first looked for relative to the model's (or the world file's) folder.
+    candidates = [os.path.join(base_dir, path)] if base_dir and not uri.startswith('file://') else []
+    if candidates and os.path.isfile(candidates[0]):
+        return os.path.abspath(candidates[0])
+    found, searched = find_file(path, resources)
+    if found is not None and os.path.isfile(found):
+        return found
+    return _existing(uri, candidates + searched, hint='a relative file:// URI is looked for in the working directory '
+                     'and the resource path (GAZEBO_RESOURCE_PATH, gazebo_media_path exports); write model://NAME/'
+                     '%s to find it in its model folder' % path if uri.startswith('file://') else None)
 
 
 def _existing(uri, candidates, hint=None):

@@ -59,7 +59,9 @@ class Visual:
 @dataclass
 class Link:
     """A link.  ``mass`` is SDF's default 1.0 when no <inertial> gives one; ``inertia`` is
-    ``(ixx, ixy, ixz, iyy, iyz, izz)`` about ``inertial_pose``, or None when not given."""
+    ``(ixx, ixy, ixz, iyy, iyz, izz)`` about ``inertial_pose``, or None when not given. A nested model's link
+    is named ``inner::link``, its ``pose`` in the outer model's frame, its ``static`` the nested model's own
+    (None: the model's, as for every link of the model itself)."""
     name: str
     pose: tuple = ZERO_POSE
     mass: float = 1.0
@@ -68,6 +70,11 @@ class Link:
     collisions: list = field(default_factory=list)
     visuals: list = field(default_factory=list)
     sensors: list = field(default_factory=list)  # each <sensor> element as written (XML text)
+    static: bool = None
+
+    def is_static(self, model: Model) -> bool:
+        """Whether the link holds still: its nested model's <static>, else `model`'s."""
+        return model.static if self.static is None else self.static
 
 
 # SDF's "no limit": <limit> defaults of lower/upper (+-1e16) and of effort/velocity (-1)

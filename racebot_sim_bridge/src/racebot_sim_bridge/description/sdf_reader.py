@@ -2,22 +2,30 @@
 
 Pure Python: no rospy, no pybullet.  ``physics.py`` turns the result into bodies. The values of each
 element (numbers, poses, shapes, meshes, colours) are read by sdf_elements.ElementReader, which the world
-reader here extends with the world's structure.
+reader here extends with the world's structure. Files are read as TinyXML reads them (xml_document: a blank
+line before ``<?xml ...?>`` is no error).
 
 What is understood: the world's physics block and gravity; models made of links with box,
 cylinder, sphere, plane and mesh geometry, their poses, masses, inertias, ODE friction (mu, mu2)
 and visual colours (explicit or Gazebo material script names); ``<include>`` of models from the
-Gazebo model path (model_path.py: GAZEBO_MODEL_PATH, packages' gazebo_model_path exports,
-~/.gazebo/models; model.config picks the SDF file) with the include's name, pose and static,
+Gazebo model path (model_path.py: ~/.gazebo/models, GAZEBO_MODEL_PATH, packages' gazebo_model_path
+exports; model.config picks the SDF file) with the include's name, pose, static and plugins,
 ``model://ground_plane`` and ``model://sun`` built in as Gazebo ships them; the first ``<state>``
 block's model and link poses, which Gazebo applies when it loads a saved world.  Mesh URIs
 (model://, package://, file://, paths) are resolved and the files converted while reading
 (sdf_elements, meshes.convert), so a parsed world names only absolute files and needs no search path again.
 
+Nested models are one Model, as Gazebo 11 has them for gazebo_ros (the outer model is the model; its nested
+links are outer::inner::link): an ``<include>`` inside a ``<model>`` is flattened into it as sdformat 9's
+parser does (its links, joints and nested models renamed NAME::old, references to them in joints and plugins
+too, posed at the include's pose); a ``<model>`` inside a ``<model>`` is read into it as Gazebo loads it (its
+links and joints named inner::old, posed through every level, static by its own ``<static>``), after the outer
+model's own links, so the first link is Gazebo's canonical one.
+
 A model's joints (revolute, prismatic, fixed), its ``<plugin>``s and its links' ``<sensor>``s are
 kept (plugins and sensors as the XML written): such a model is a robot, spawned through the URDF
 path (sdf_urdf.py).  Everything else that matters to the physics (heightmap and polyline
-geometry, world plugins, nested models, includes inside models, actors) is skipped with ONE entry in
+geometry, world plugins, actors) is skipped with ONE entry in
 ``World.warnings`` naming the element, where it is and why; so are elements whose values are
 unusable (non-numeric, non-finite, zero or negative sizes) and models or meshes that cannot be
 found (the warning names the URI and every place searched) or read.  Only a missing file, text
@@ -30,13 +38,14 @@ import xml.etree.ElementTree as ET
 from collections.abc import Sequence
 from typing import NamedTuple
 
-from racebot_sim_bridge.description import model_path
+from racebot_sim_bridge.description import model_path, xml_document
 from racebot_sim_bridge.description.geometry import Shape
 from racebot_sim_bridge.description.materials import GAZEBO_MATERIALS
-from racebot_sim_bridge.description.sdf_elements import ElementReader, Unusable, child_bool, child_float, floats, quote
+from racebot_sim_bridge.description.sdf_elements import Unusable, child_bool, child_float, floats, quote
+from racebot_sim_bridge.description.sdf_includes import BASE_DIR, IncludeReader
 from racebot_sim_bridge.description.sdf_model import (UNLIMITED, ZERO_POSE, Collision, Joint, Light, Link, Model,
                                                       Physics, Visual, World)
-from racebot_sim_bridge.kinematics.rotations import XyzRpy, as_xyz_rpy, compose, inverse
+from racebot_sim_bridge.kinematics.rotations import XyzRpy, as_transform, as_xyz_rpy, compose, inverse, rotate
 
 __all__ = ['WorldError', 'parse_world', 'load_world', 'sun_light', 'EMPTY_WORLD_SDF']
 
@@ -64,15 +73,6 @@ def sun_light(name: str = 'sun', pose: XyzRpy | None = None) -> Light:
                  (0.2, 0.2, 0.2, 1.0), (1000.0, 0.9, 0.01, 0.001), (-0.5, 0.1, -0.9))
 
 
-class _ModelFolder(NamedTuple):
-    """Where an <include>d model is: `path`, or None and `problem` (what is wrong, what to do).
-    `missing`: the model is on no folder of the model path; such includes are warned about once per
-    URI, all together, after the world is read."""
-    path: str = None
-    problem: str = None
-    missing: bool = False
-
-
 _WORLD_SILENT = {'physics', 'gravity', 'light', 'gui', 'scene', 'spherical_coordinates',
                  'magnetic_field', 'atmosphere', 'wind', 'audio', 'state', 'model', 'include'}
 _WORLD_UNSUPPORTED = {
@@ -83,8 +83,6 @@ _WORLD_UNSUPPORTED = {
     'frame': 'frames are not supported',
 }
 _MODEL_UNSUPPORTED = {
-    'model': 'nested models are not supported; move it to the world level',
-    'include': 'includes inside a model are not supported',
     'gripper': 'grippers are not supported',
 }
 _LINK_UNSUPPORTED = {
@@ -103,11 +101,21 @@ def _keep(items, item):
         items.append(item)
 
 
-class _WorldReader(ElementReader):
-    def __init__(self, source, search=None):
-        super().__init__(source, search)
-        self._missing_models = {}  # model:// URI -> [message, names of the includes skipped]
+class _Scope(NamedTuple):
+    """A level of a model as its links are read: the outer model itself, or a nested <model> in it. `prefix`: the
+    nested models' names down to it, each followed by '::' ('' for the outer model); `pose`: its frame in the outer
+    model's; `static`: a nested model's own <static> (None: the outer model's); `where`: for messages;
+    `base_dir`: what relative mesh URIs in it are relative to; `around`: the prefixes of the models around it,
+    outermost first."""
+    prefix: str = ''
+    pose: tuple = ZERO_POSE
+    static: bool = None
+    where: str = ''
+    base_dir: str = None
+    around: tuple = ()
 
+
+class _WorldReader(IncludeReader):
     def unsupported(self, where, child, reasons):
         """Warns that `child` is skipped for its tag's reason in `reasons`."""
         self.warn(where, '<%s> %s: %s; skipped' % (child.tag, quote(child.get('name', '')), reasons[child.tag]))
@@ -246,34 +254,32 @@ class _WorldReader(ElementReader):
         return joint
 
     def model(self, elem):
+        """A <model> of the world (or the model of a world-level <include>), as one Model: the <include>s in it
+        flattened into it as sdformat's parser does (expand_includes), its nested <model>s read into it as
+        Gazebo loads them (read_level): their links named inner::link, posed in the outer model's frame."""
         name = elem.get('name')
         if not name:
             self.warn('world', 'a <model> without a name; skipped')
             return None
         where = 'model %s' % quote(name)
+        self.expand_includes(elem, where)
         try:
+            # the first <static> in the model after the includes are flattened: sdformat keeps every one and
+            # Gazebo reads the first (an included model's own comes where its <include> stood)
             model = Model(name, pose=self.pose(elem, where),
                           static=child_bool(elem, 'static', False, 'static'))
         except Unusable as err:
             return self.skipped(where, err)
         warnings_before = len(self.warnings)
-        for child in elem:
-            if child.tag == 'link':
-                link = self.link(child, where, model.static)
-                if link is None:
-                    continue
-                if any(other.name == link.name for other in model.links):
-                    self.warn(where, 'a second link %s; skipped' % quote(link.name))
-                    continue
-                model.links.append(link)
-            elif child.tag == 'joint':
-                _keep(model.joints, self.joint(child, where))
-            elif child.tag == 'plugin':
-                model.plugins.append(ET.tostring(child, encoding='unicode'))
-            elif child.tag in _MODEL_UNSUPPORTED:
-                self.unsupported(where, child, _MODEL_UNSUPPORTED)
+        joints = []
+        self.read_level(model, elem, _Scope(where=where, base_dir=self.base_dir), joints)
+        names = {link.name for link in model.links}
+        for joint, scope in joints:
+            joint.parent, joint.child = (self.scoped_link(model, names, joint.parent, scope),
+                                         self.scoped_link(model, names, joint.child, scope))
+            model.joints.append(joint)
         if not model.links:
-            if elem.find('link') is not None and len(self.warnings) > warnings_before:
+            if any(elem.iter('link')) and len(self.warnings) > warnings_before:
                 # Its links were skipped with a warning each: say the model went with them.
                 self.warnings[-1] += ", and so model %s, which has no usable link left" % (
                     quote(name))
@@ -281,6 +287,75 @@ class _WorldReader(ElementReader):
                 self.warn(where, 'has no links; skipped')
             return None
         return model
+
+    def read_level(self, model, elem, scope, joints):
+        """Reads the links, joints and plugins of `elem` (the outer <model> or a nested one, as `scope` says) into
+        `model`, then its nested <model>s, depth first: Gazebo's order (Model::LoadLinks, then LoadModels), so the
+        first link of the list is Gazebo's canonical link. Joints go to `joints` with their scope, their links
+        found once all are read."""
+        nested = []
+        for child in elem:
+            if child.tag == 'link':
+                base_dir = child.get(BASE_DIR) or scope.base_dir
+                with self.relative_to(base_dir):
+                    link = self.link(child, scope.where, model.static if scope.static is None else scope.static)
+                if link is None:
+                    continue
+                if scope.prefix:
+                    link.name = scope.prefix + link.name
+                    link.pose = as_xyz_rpy(compose(scope.pose, link.pose))
+                    link.static = scope.static
+                if any(other.name == link.name for other in model.links):
+                    self.warn(scope.where, 'a second link %s; skipped' % quote(link.name))
+                    continue
+                model.links.append(link)
+            elif child.tag == 'joint':
+                joint = self.joint(child, scope.where)
+                if joint is not None:
+                    joint.name = scope.prefix + joint.name
+                    if joint.axis_in_model and scope.prefix:  # the nested model's frame, turned into the outer's
+                        joint.axis = rotate(as_transform(scope.pose)[1], joint.axis)
+                    joints.append((joint, scope))
+            elif child.tag == 'plugin':
+                if scope.prefix:
+                    self.warn(scope.where, '<plugin> %s runs with model %s: a nested model is part of its outer '
+                              'model here, its links and joints named %sNAME' % (
+                                  quote(child.get('name', '')), quote(model.name), scope.prefix))
+                model.plugins.append(ET.tostring(child, encoding='unicode'))
+            elif child.tag == 'model':
+                nested.append(child)
+            elif child.tag in _MODEL_UNSUPPORTED:
+                self.unsupported(scope.where, child, _MODEL_UNSUPPORTED)
+        for child in nested:
+            name = child.get('name')
+            if not name:
+                self.warn(scope.where, 'a nested <model> without a name; skipped')
+                continue
+            where = '%s model %s' % (scope.where, quote(name))
+            try:
+                pose = self.pose(child, where)
+                # Gazebo: a nested model is static by its own <static> (Model::Load), not by its outer model's
+                static = child_bool(child, 'static', False, 'static')
+            except Unusable as err:
+                self.skipped(where, err)
+                continue
+            self.read_level(model, child, _Scope(scope.prefix + name + '::', as_xyz_rpy(compose(scope.pose, pose)),
+                                                 static, where, child.get(BASE_DIR) or scope.base_dir,
+                                                 scope.around + (scope.prefix,)), joints)
+
+    @staticmethod
+    def scoped_link(model, names, name, scope):
+        """The link of `model` (flattened, names in `names`) a joint of `scope` names, as Gazebo's Joint::Load
+        finds it: in the joint's own (nested) model, then in each model around it; `world` is the world. A name
+        found nowhere is kept (scoped), for sdf_urdf to say which link is missing."""
+        if name == 'world':
+            return name
+        for prefix in (scope.prefix,) + scope.around[::-1]:
+            if prefix + name in names:
+                return prefix + name
+        if name.startswith(model.name + '::') and name[len(model.name) + 2:] in names:
+            return name[len(model.name) + 2:]  # the link's scoped name, world-wide
+        return scope.prefix + name
 
     def include(self, elem):
         """An <include>d model: model://ground_plane and model://sun are built in (as Gazebo ships
@@ -297,27 +372,19 @@ class _WorldReader(ElementReader):
             self.warn(where, 'no <uri>; give <uri>model://NAME</uri>; skipped')
             return None
         name = (elem.findtext('name') or '').strip()
-        if target in self._missing_models:
-            self._missing_models[target][1].append(name or target)
+        if target in self.missing_models:
+            self.missing_models[target][1].append(name or target)
             return None
         folder = self.model_folder(target)
         if folder.missing:
             # one warning per missing model however often it is included, given with the world's others
-            self._missing_models[target] = [folder.problem, [name or target]]
+            self.missing_models[target] = [folder.problem, [name or target]]
             return None
         if folder.problem is not None:
             return self.skipped(where, folder.problem)
-        try:
-            sdf_file = model_path.model_sdf_file(folder.path)
-        except model_path.ResolveError as err:
-            return self.skipped(where, err)
-        try:
-            root = ET.parse(sdf_file).getroot()
-        except (ET.ParseError, OSError) as err:
-            return self.skipped(where, '%s cannot be read as XML: %s' % (sdf_file, err))
-        model_elem = root if root.tag == 'model' else root.find('model')
+        model_elem = self.model_element(folder.path, where)
         if model_elem is None:
-            return self.skipped(where, '%s has no <model> (only models can be included)' % sdf_file)
+            return None
         try:
             pose = self.pose(elem, where) if elem.find('pose') is not None else None
             static = child_bool(elem, 'static', None, 'static')
@@ -325,11 +392,9 @@ class _WorldReader(ElementReader):
             return self.skipped(where, err)
         if name:
             model_elem.set('name', name)  # before reading, so that its warnings name it
-        outer_base, self.base_dir = self.base_dir, folder.path
-        try:
+        model_elem.extend(elem.findall('plugin'))  # sdformat adds the include's plugins to the model
+        with self.relative_to(folder.path):
             model = self.model(model_elem)
-        finally:
-            self.base_dir = outer_base
         if model is None:
             return None
         if pose is not None:
@@ -337,32 +402,6 @@ class _WorldReader(ElementReader):
         if static is not None:
             model.static = static
         return model
-
-    def model_folder(self, target):
-        """The _ModelFolder of an included model: model://NAME on the model path, or a file:// or
-        plain path to the folder; when it is not there, the problem names every place searched."""
-        if target.startswith('model://'):
-            name = target[len('model://'):]  # the whole path, as Gazebo looks it up
-            if not name:
-                return _ModelFolder(problem='names no model; give <uri>model://NAME</uri>')
-            folder, searched = model_path.find_model(name, self.search)
-            if folder is None:
-                return _ModelFolder(problem="model '%s' not found; searched %s; add the folder holding %s/ to "
-                                            'GAZEBO_MODEL_PATH (or put the model in ~/.gazebo/models)'
-                                            % (name, ', '.join(searched) or '(an empty model path)',
-                                               name.split('/')[0]), missing=True)
-            if not os.path.isdir(folder):
-                return _ModelFolder(problem='%s is a file, not a model folder; an <include> names the folder '
-                                            'that holds model.config' % folder)
-            return _ModelFolder(folder)
-        path = target[len('file://'):] if target.startswith('file://') else os.path.expanduser(target)
-        if '://' in path:
-            return _ModelFolder(problem='unknown URI scheme; use model://NAME or file:///path/to/model')
-        if not os.path.isabs(path):
-            path = os.path.join(self.base_dir or os.getcwd(), path)
-        if not os.path.isdir(path):
-            return _ModelFolder(problem='no model folder at %s' % path)
-        return _ModelFolder(path)
 
     def ground_plane(self, elem):
         name = (elem.findtext('name') or '').strip() or 'ground_plane'
@@ -470,10 +509,13 @@ class _WorldReader(ElementReader):
                 else:
                     model_pose = model.pose
                 link_poses = {}
-                for link_state in model_state.findall('link'):
-                    if link_state.find('pose') is not None:
-                        link_poses[link_state.get('name')] = self.pose(
-                            link_state, '%s link %s' % (where, quote(link_state.get('name'))))
+                levels = [('', model_state)]  # a nested model's links are inner::link (world poses, as the rest)
+                for prefix, level in levels:
+                    levels.extend((prefix + nested.get('name', '') + '::', nested) for nested in level.findall('model'))
+                    for link_state in level.findall('link'):
+                        if link_state.find('pose') is not None:
+                            name = prefix + link_state.get('name', '')
+                            link_poses[name] = self.pose(link_state, '%s link %s' % (where, quote(name)))
             except Unusable as err:
                 self.warn(where, '%s; the state is ignored for this model' % err)
                 continue
@@ -529,7 +571,7 @@ class _WorldReader(ElementReader):
         state = world_elem.find('state')
         if state is not None:
             self.state(state, world.models)
-        for uri, (message, names) in self._missing_models.items():
+        for uri, (message, names) in self.missing_models.items():
             self.warn('include %s' % quote(uri), '%s; skipped%s' % (message, '' if len(names) == 1 else (
                 ' (all %d includes of it: %s)' % (len(names), ', '.join(names)))))
         world.warnings = self.warnings
@@ -544,7 +586,7 @@ def parse_world(xml_text: str | bytes | ET.Element, source: str = '<string>',
     if isinstance(xml_text, ET.Element):
         return _WorldReader(source, search).world(xml_text)
     try:
-        root = ET.fromstring(xml_text)
+        root = xml_document.fromstring(xml_text)  # as TinyXML: a blank line before <?xml ...?> is no error
     except ET.ParseError as err:
         # The parser's message ends with "line L, column C" (column counted from 0).
         raise WorldError('%s is not valid XML: %s; check it with xmllint or `gz sdf -k`'
@@ -557,14 +599,15 @@ def parse_world(xml_text: str | bytes | ET.Element, source: str = '<string>',
 def load_world(path: str | os.PathLike, search_path: Sequence[str] = ()) -> World:
     """Read the world file at ``path``.
 
-    A relative path that does not exist is looked for under each directory of
-    ``search_path`` (as Gazebo searches GAZEBO_RESOURCE_PATH); ``worlds/empty.world`` not
-    found anywhere is Gazebo's empty world (ground plane and sun), built in.
+    A relative path that does not exist is looked for under each directory of ``search_path`` (the resource
+    path: as SystemPaths::FindFile, also under its models/, media/models/ and Media/models/); ``worlds/empty.world``
+    not found anywhere is Gazebo's empty world (ground plane and sun), built in.
     """
     path = os.path.expanduser(str(path))
     candidates = [path]
     if not os.path.isabs(path):
-        candidates += [os.path.join(d, path) for d in search_path if d]
+        candidates += [os.path.join(d, suffix, path) for d in search_path if d
+                       for suffix in model_path.RESOURCE_SUFFIXES]
     found = next((c for c in candidates if os.path.exists(c)), None)
     if found is None:
         if os.path.normpath(path) in _EMPTY_WORLD_NAMES:

@@ -12,7 +12,8 @@ managers), so an SDF robot is written out as the URDF that path reads:
   URDF reader lumps them);
 - the model's ``<plugin>``s in a ``<gazebo>`` block, as written;
 - a ``world`` root link when a joint names ``world`` as parent, or when the model is static (a
-  fixed base, as Gazebo holds a static model).
+  fixed base, as Gazebo holds a static model); every link of a static model (or of a static nested model)
+  that hangs from no joint is fixed to it.
 
 URDF puts a joint's axis through its child's origin.  An SDF joint whose ``<pose>`` moves the axis off
 the child's origin (sideways of the axis: along it changes nothing) gets its child's URDF frame moved
@@ -86,7 +87,9 @@ def _tree(model):
             seen.add(node)
             node = parent_joint[node].parent
     roots = sorted(name for name in names if name not in parent_joint)
-    if len(roots) > 1:
+    # Links that hold still (a static model's, a static nested model's) are each fixed to the world: they need
+    # no joint between them, as in Gazebo.
+    if len(roots) > 1 and not all(model.link(name).is_static(model) for name in roots):
         raise ConversionError("the links of model '%s' are not all joined: %s hang from no joint. Join them "
                               "with joints (a fixed joint for links that do not move), or fix them to the world "
                               "with <parent>world</parent>" % (model.name, ', '.join(roots)))
@@ -165,7 +168,8 @@ def model_urdf(model: Model) -> Conversion:
     frame = {name: compose(pose[name], shift[name]) for name in links}  # each URDF link frame, model frame
     frame[WORLD] = IDENTITY
     root = next((name for name in links if name not in parent_joint), None)  # None: all hang from the world
-    fixed_to_world = model.static or any(j.parent == WORLD for j in model.joints)
+    fixed_to_world = model.static or any(j.parent == WORLD for j in model.joints) or any(
+        link.is_static(model) for name, link in links.items() if name not in parent_joint)
 
     robot = ET.Element('robot', name=model.name)
     if fixed_to_world:
@@ -204,11 +208,13 @@ def model_urdf(model: Model) -> Conversion:
             extension.append(_shifted_sensor(sensor, back))
         if len(extension):
             robot.append(extension)
-    if model.static and root in links:
-        elem = ET.SubElement(robot, 'joint', name='%s_static' % model.name, type='fixed')
+    held = [name for name, link in links.items() if name not in parent_joint and link.is_static(model)]
+    for index, name in enumerate(held):
+        joint_name = '%s_static' % model.name if index == 0 else '%s_static_%s' % (model.name, name)
+        elem = ET.SubElement(robot, 'joint', name=joint_name, type='fixed')
         ET.SubElement(elem, 'parent', link=WORLD)
-        ET.SubElement(elem, 'child', link=root)
-        _origin(elem, frame[root])
+        ET.SubElement(elem, 'child', link=name)
+        _origin(elem, frame[name])
     for joint in model.joints:
         elem = ET.SubElement(robot, 'joint', name=joint.name, type=joint.type)
         ET.SubElement(elem, 'parent', link=joint.parent)

@@ -12,10 +12,19 @@ import xml.etree.ElementTree as ET
 PACKAGE_PREFIX = 'package://'
 
 
+def strip_xml_declaration(xml: str) -> str:
+    """gazebo_ros_api_plugin's stripXmlDeclaration: the first `<? ... ?>` of the text left out, wherever it stands
+    (so a blank line or a comment before `<?xml ...?>` is no error, as in Gazebo)."""
+    start, end = xml.find('<?'), xml.find('?>')
+    if start != -1 and end != -1 and end >= start:
+        return xml[:start] + xml[end + 2:]
+    return xml
+
+
 def parse(xml: str | bytes) -> ET.Element | None:
     """The document's root element (its one parse per spawn), or None when the text is not XML."""
     try:
-        return ET.fromstring(xml)
+        return ET.fromstring(strip_xml_declaration(xml) if isinstance(xml, str) else xml)
     except (ET.ParseError, ValueError, TypeError):
         return None
 

@@ -217,7 +217,7 @@ class PhysicsWorld:
 
     def _create_sdf_link(self, model, link):
         shapes, visuals = [], []
-        static = model.static or link.mass is None or link.mass <= 0
+        static = link.is_static(model) or link.mass is None or link.mass <= 0  # a nested model's: its own
         try:
             for col in link.collisions:
                 pos, orn = as_transform(col.pose)

@@ -386,6 +386,15 @@ class GazeboServices:
         want_links = self.link_states_pub.get_num_connections() > 0
         if not (want_models or want_links):
             return
+        models, links = self.states(want_models, want_links)
+        if want_models:
+            self.model_states_pub.publish(models)
+        if want_links:
+            self.link_states_pub.publish(links)
+
+    def states(self, want_models=True, want_links=True):
+        """(ModelStates, LinkStates) of the world now, each left empty unless wanted. A nested model's links are
+        links of its outer model: outer::inner::link."""
         with self.sim.lock:
             models, links = ModelStates(), LinkStates()
             for name, body in self.sim.world.bodies.items():
@@ -400,10 +409,7 @@ class GazeboServices:
                         links.name.append('%s::%s' % (name, link))
                         links.pose.append(_pose_msg(pose))
                         links.twist.append(_twist_msg(twist))
-        if want_models:
-            self.model_states_pub.publish(models)
-        if want_links:
-            self.link_states_pub.publish(links)
+        return models, links
 
     def shutdown(self):
         for s in self.services:
