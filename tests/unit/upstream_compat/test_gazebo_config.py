@@ -94,20 +94,22 @@ def test_an_include_the_scan_misses_fails_the_compile_with_the_advice(tmp_path):
     assert 'catkin_make -DCATKIN_BLACKLIST_PACKAGES=elsewhere_pkg' in done.stdout
 
 
-@pytest.mark.parametrize('include, refused', [
-    ('#include <trajectory_interface/quintic_spline_segment.h>', True),
-    ('#include <joint_trajectory_controller/joint_trajectory_controller.h>', True),
-    ('#include <control_msgs/FollowJointTrajectoryAction.h>', False),  # generated messages are real
+@pytest.mark.parametrize('standin, include, refused', [
+    ('joint_trajectory_controller', '#include <trajectory_interface/quintic_spline_segment.h>', True),
+    ('joint_trajectory_controller', '#include <joint_trajectory_controller/joint_trajectory_controller.h>', True),
+    ('joint_trajectory_controller', '#include <control_msgs/FollowJointTrajectoryAction.h>', False),  # generated
+    ('controller_manager', '#include <controller_manager/controller_manager.h>', True),  # not a name stand-in
+    ('gazebo_ros_control', '#include <gazebo_ros_control/robot_hw_sim.h>', True),
 ])
-def test_a_standins_catkin_config_refuses_code_including_its_headers(tmp_path, include, refused):
-    code, out, _ = project(tmp_path, 'find_package(joint_trajectory_controller REQUIRED)\n',
-                           {'src/arm_hw.cpp': include + '\n'}, name='my_arm_control')
+def test_a_standins_catkin_config_refuses_code_including_its_headers(tmp_path, standin, include, refused):
+    code, out, _ = project(tmp_path, 'find_package(%s REQUIRED)\n' % standin, {'src/arm_hw.cpp': include + '\n'},
+                           name='my_arm_control')
     if not refused:
         assert code == 0, out
         return
     assert code != 0, out
     out = flat(out)
-    assert "racebot: package 'my_arm_control' compiles C++ against joint_trajectory_controller" in out
+    assert "racebot: package 'my_arm_control' compiles C++ against %s" % standin in out
     assert 'src/arm_hw.cpp: %s' % include in out
     assert 'catkin_make -DCATKIN_BLACKLIST_PACKAGES="my_arm_control"' in out
 

@@ -29,7 +29,8 @@ PATTERN = re.compile(r'cmake_minimum_required\(VERSION 3\.0\.2\)\n'
 
 
 def standins():
-    return sorted(p.parent for p in UPSTREAM_COMPAT.glob('*/CMakeLists.txt') if 'name_standin.cmake' in p.read_text())
+    return sorted(p.parent for p in UPSTREAM_COMPAT.glob('*/CMakeLists.txt')
+                  if '/../cmake/name_standin.cmake)' in p.read_text())
 
 
 def test_every_expected_standin_is_there():
