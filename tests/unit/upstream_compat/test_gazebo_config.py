@@ -1,0 +1,122 @@
+"""racebot's stand-in for Gazebo's CMake config, and the C++ check of the name stand-ins' catkin configs.
+
+upstream_compat/gazebo_dev writes devel/lib/cmake/gazebo/gazebo-config.cmake (no Gazebo is installed here).
+Plain CMake projects, configured with the devel space on CMAKE_PREFIX_PATH as a sourced workspace has it, show
+what a package gets: Gazebo 11's variables for plain code; for code that includes Gazebo's headers, an error
+with REQUIRED and gazebo_FOUND false without it, the message naming the package and the catkin_make line that
+leaves it out; and a compile error with the same advice for an include the scan cannot see. The catkin config
+of a name stand-in refuses code including its headers the same way. Needs `make build`, cmake and g++; no
+master. The projects declare no language (no compiler check), so each configure takes a fraction of a second.
+"""
+import shutil
+import subprocess
+import textwrap
+from pathlib import Path
+
+import pytest
+
+DEVEL = Path(__file__).resolve().parents[3] / 'devel'
+GAZEBO_CONFIG = DEVEL / 'lib' / 'cmake' / 'gazebo' / 'gazebo-config.cmake'
+REPORT = textwrap.dedent('''
+    foreach(v gazebo_FOUND GAZEBO_VERSION GAZEBO_MAJOR_VERSION GAZEBO_INCLUDE_DIRS GAZEBO_LIBRARIES
+              GAZEBO_LIBRARY_DIRS GAZEBO_CXX_FLAGS)
+      message(STATUS "probe ${v}=${${v}}")
+    endforeach()
+''')
+
+
+def project(tmp_path, cmake, sources=None, name='probe_pkg'):
+    """(exit code, output, {variable: value} of the probe lines) of configuring a package `name`."""
+    if not GAZEBO_CONFIG.is_file():
+        pytest.fail('%s is missing: run `make build`' % GAZEBO_CONFIG)
+    src = tmp_path / name
+    (src / 'src').mkdir(parents=True)
+    (src / 'package.xml').write_text('<package format="2"><name>%s</name></package>\n' % name)
+    (src / 'CMakeLists.txt').write_text('cmake_minimum_required(VERSION 3.0.2)\nproject(%s NONE)\n%s' % (name, cmake))
+    for relative, text in (sources or {}).items():
+        (src / relative).write_text(text)
+    done = subprocess.run(['cmake', '-S', str(src), '-B', str(tmp_path / 'build'), '-DCMAKE_PREFIX_PATH=%s' % DEVEL],
+                          stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, timeout=120)
+    values = dict(line.split('probe ', 1)[1].split('=', 1) for line in done.stdout.splitlines() if 'probe ' in line)
+    return done.returncode, done.stdout, values
+
+
+PLUGIN = {'src/plugin.cc': '#include <ros/ros.h>\n  #  include "gazebo/physics/physics.hh"\n'}
+
+
+def flat(text):
+    return ' '.join(text.split())  # CMake wraps a message's lines
+
+
+def test_plain_code_gets_gazebo_11s_variables(tmp_path):
+    code, out, values = project(tmp_path, 'find_package(gazebo 9 REQUIRED)\n' + REPORT,
+                                {'src/node.cpp': '#include <ros/ros.h>\n#include <geometry_msgs/Twist.h>\n'})
+    assert code == 0, out
+    assert values['gazebo_FOUND'] in ('1', 'TRUE'), out
+    assert values['GAZEBO_VERSION'].startswith('11.') and values['GAZEBO_MAJOR_VERSION'] == '11'
+    assert values['GAZEBO_LIBRARIES'] == values['GAZEBO_LIBRARY_DIRS'] == ''
+    assert values['GAZEBO_CXX_FLAGS'] == '-std=c++17'
+    assert Path(values['GAZEBO_INCLUDE_DIRS'], 'gazebo', 'gazebo.hh').is_file()
+
+
+def test_a_newer_gazebo_than_11_is_not_found(tmp_path):
+    code, out, values = project(tmp_path, 'find_package(gazebo 12 QUIET)\n' + REPORT)
+    assert code == 0 and values['gazebo_FOUND'] in ('0', 'FALSE'), out
+
+
+def test_a_gazebo_plugin_is_refused_naming_the_package(tmp_path):
+    code, out, _ = project(tmp_path, 'find_package(gazebo REQUIRED)\n', PLUGIN, name='my_gazebo_plugins')
+    assert code != 0, out
+    out = flat(out)
+    assert ("racebot: package 'my_gazebo_plugins' compiles C++ against gazebo "
+            '(src/plugin.cc: # include "gazebo/physics/physics.hh")') in out
+    assert 'catkin_make -DCATKIN_BLACKLIST_PACKAGES="my_gazebo_plugins"' in out
+
+
+def test_without_required_a_plugin_package_gets_gazebo_not_found(tmp_path):
+    """As `find_package(gazebo QUIET) if(gazebo_FOUND) <plugin> endif()` packages expect without Gazebo."""
+    code, out, values = project(tmp_path, 'find_package(gazebo)\n' + REPORT, PLUGIN)
+    assert code == 0, out
+    assert values['gazebo_FOUND'] in ('0', 'FALSE'), out
+    assert 'CATKIN_BLACKLIST_PACKAGES' in out  # not QUIET: the reason is shown
+
+
+@pytest.mark.skipif(shutil.which('g++') is None, reason='no C++ compiler')
+def test_an_include_the_scan_misses_fails_the_compile_with_the_advice(tmp_path):
+    code, out, values = project(tmp_path, 'find_package(gazebo REQUIRED)\n' + REPORT, name='elsewhere_pkg')
+    assert code == 0, out
+    outside = tmp_path / 'shared.cpp'  # outside the package's folder, as a source another package lends
+    outside.write_text('#include <gazebo/gazebo.hh>\nint main() { return 0; }\n')
+    done = subprocess.run(['g++', '-fsyntax-only', '-I', values['GAZEBO_INCLUDE_DIRS'], str(outside)],
+                          stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, timeout=60)
+    assert done.returncode != 0
+    assert 'racebot: package elsewhere_pkg includes' in done.stdout, done.stdout
+    assert 'catkin_make -DCATKIN_BLACKLIST_PACKAGES=elsewhere_pkg' in done.stdout
+
+
+@pytest.mark.parametrize('standin, include, refused', [
+    ('joint_trajectory_controller', '#include <trajectory_interface/quintic_spline_segment.h>', True),
+    ('joint_trajectory_controller', '#include <joint_trajectory_controller/joint_trajectory_controller.h>', True),
+    ('joint_trajectory_controller', '#include <control_msgs/FollowJointTrajectoryAction.h>', False),  # generated
+    ('controller_manager', '#include <controller_manager/controller_manager.h>', True),  # not a name stand-in
+    ('gazebo_ros_control', '#include <gazebo_ros_control/robot_hw_sim.h>', True),
+])
+def test_a_standins_catkin_config_refuses_code_including_its_headers(tmp_path, standin, include, refused):
+    code, out, _ = project(tmp_path, 'find_package(%s REQUIRED)\n' % standin, {'src/arm_hw.cpp': include + '\n'},
+                           name='my_arm_control')
+    if not refused:
+        assert code == 0, out
+        return
+    assert code != 0, out
+    out = flat(out)
+    assert "racebot: package 'my_arm_control' compiles C++ against %s" % standin in out
+    assert 'src/arm_hw.cpp: %s' % include in out
+    assert 'catkin_make -DCATKIN_BLACKLIST_PACKAGES="my_arm_control"' in out
+
+
+def test_the_advice_keeps_what_is_left_out_already(tmp_path):
+    code, out, _ = project(tmp_path, 'set(CATKIN_BLACKLIST_PACKAGES "other_pkg")\nfind_package(hardware_interface)\n',
+                           {'src/hw.cpp': '#include <hardware_interface/robot_hw.h>\n'}, name='my_robot_hw')
+    assert code != 0, out
+    assert 'catkin_make -DCATKIN_BLACKLIST_PACKAGES="other_pkg;my_robot_hw"' in flat(out)
+

@@ -1,0 +1,101 @@
+# Refusing, at configure time, a package whose C or C++ code includes headers that only the real upstream
+# packages have: racebot's stand-ins (upstream_compat/*) and its gazebo config stand-in have the names, files
+# and catkin/CMake configs of those packages but no C++ headers or libraries, since racebot simulates them in
+# Python. Without this check such a package would get through CMake and fail deep in the compile with
+# "No such file or directory"; with it, catkin_make stops at once naming the package, the file and the line,
+# and how to leave the package out.
+#
+# Included by the catkin config of each name stand-in (upstream_compat/cmake/name_standin.cmake puts it in
+# their CFG_EXTRAS) and by the gazebo config that upstream_compat/gazebo_dev writes. It runs in the scope of
+# the package that find_package()s them, so CMAKE_CURRENT_SOURCE_DIR is that package's folder.
+
+if(COMMAND racebot_cpp_includes)
+  return()
+endif()
+
+# The package being configured: the <name> of its package.xml (what CATKIN_BLACKLIST_PACKAGES takes),
+# else PROJECT_NAME.
+function(racebot_configured_package out)
+  set(_name "${PROJECT_NAME}")
+  if(EXISTS "${CMAKE_CURRENT_SOURCE_DIR}/package.xml")
+    file(STRINGS "${CMAKE_CURRENT_SOURCE_DIR}/package.xml" _line REGEX "<name>[^<]+</name>" LIMIT_COUNT 1)
+    if(_line)
+      string(REGEX REPLACE ".*<name>[ \t]*([^< \t]+)[ \t]*</name>.*" "\\1" _name "${_line}")
+    endif()
+  endif()
+  set(${out} "${_name}" PARENT_SCOPE)
+endfunction()
+
+# In OUT: the first line of the configured package's C/C++ files that includes a header under one of the
+# folders in ARGN (`#include <gazebo/gazebo.hh>` is under `gazebo`), as "file: line"; empty when none.
+# The package's files are read once per configure run, whatever the number of stand-ins it names.
+function(racebot_cpp_includes out)
+  set(_key "RACEBOT_CPP_INCLUDES:${CMAKE_CURRENT_SOURCE_DIR}")
+  get_property(_scanned GLOBAL PROPERTY "${_key}" SET)
+  if(NOT _scanned)
+    set(_found "")
+    set(_patterns)
+    foreach(_ext c cc cpp cxx c++ h hh hpp hxx h++ ipp inl)
+      list(APPEND _patterns "${CMAKE_CURRENT_SOURCE_DIR}/*.${_ext}")
+    endforeach()
+    file(GLOB_RECURSE _files LIST_DIRECTORIES false ${_patterns})
+    foreach(_file ${_files})
+      if(_file MATCHES "/CMakeFiles/")
+        continue()
+      endif()
+      file(STRINGS "${_file}" _lines REGEX "^[ \t]*#[ \t]*include[ \t]*[<\"][A-Za-z0-9_]+/")
+      file(RELATIVE_PATH _relative "${CMAKE_CURRENT_SOURCE_DIR}" "${_file}")
+      foreach(_line ${_lines})
+        string(REGEX REPLACE "^[ \t]*#[ \t]*include[ \t]*[<\"]([A-Za-z0-9_]+)/.*" "\\1" _folder "${_line}")
+        string(REGEX REPLACE "^[ \t]*(#[ \t]*include[ \t]*[<\"][^>\"]*[>\"]).*" "\\1" _include "${_line}")
+        list(APPEND _found "${_folder}|${_relative}: ${_include}")
+      endforeach()
+    endforeach()
+    set_property(GLOBAL PROPERTY "${_key}" "${_found}")
+  endif()
+  get_property(_found GLOBAL PROPERTY "${_key}")
+  foreach(_entry ${_found})
+    string(FIND "${_entry}" "|" _bar)
+    string(SUBSTRING "${_entry}" 0 ${_bar} _folder)
+    list(FIND ARGN "${_folder}" _index)
+    if(NOT _index EQUAL -1)
+      math(EXPR _bar "${_bar} + 1")
+      string(SUBSTRING "${_entry}" ${_bar} -1 _where)
+      set(${out} "${_where}" PARENT_SCOPE)
+      return()
+    endif()
+  endforeach()
+  set(${out} "" PARENT_SCOPE)
+endfunction()
+
+# The message for a package whose code includes the headers of `standin` at `where` (a racebot_cpp_includes
+# result): what is wrong, why, and the catkin_make line that leaves the package out.
+function(racebot_cpp_message out standin where)
+  racebot_configured_package(_package)
+  set(_skip "${_package}")
+  if(CATKIN_BLACKLIST_PACKAGES)
+    set(_skip "${CATKIN_BLACKLIST_PACKAGES};${_package}")
+  endif()
+  if(standin STREQUAL "gazebo")
+    set(_standin "Gazebo is not installed: find_package(gazebo) finds racebot's stand-in config, which has")
+  else()
+    set(_standin "Its ${standin} is racebot's stand-in: the package's name, files and catkin config, with")
+  endif()
+  string(CONCAT _text
+    "racebot: package '${_package}' compiles C++ against ${standin} (${where}). racebot simulates Gazebo, "
+    "the gazebo_ros plugins and ros_control in Python. ${_standin} no C++ headers or libraries (racebot's "
+    "upstream_compat/README.md), so a Gazebo C++ plugin, or a C++ controller or robot hardware, can be neither "
+    "built nor loaded here. Leave the package out of the build:\n"
+    "  catkin_make -DCATKIN_BLACKLIST_PACKAGES=\"${_skip}\"\n"
+    "The plugins and controllers racebot simulates itself are listed in its docs/SUPPORTED.md.")
+  set(${out} "${_text}" PARENT_SCOPE)
+endfunction()
+
+# FATAL_ERROR when the configured package includes headers under any folder in ARGN (the stand-in `standin`'s).
+function(racebot_refuse_cpp standin)
+  racebot_cpp_includes(_where ${ARGN})
+  if(_where)
+    racebot_cpp_message(_message "${standin}" "${_where}")
+    message(FATAL_ERROR "${_message}")
+  endif()
+endfunction()
