@@ -487,6 +487,17 @@ class PhysicsWorld:
         if any(torque):
             self.client.applyExternalTorque(body_id, index, list(torque), pb.WORLD_FRAME)
 
+    def enable_joint_wrench(self, body: Body, index: int) -> None:
+        """Has PyBullet measure the wrench through the joint of link `index` (joint_wrench)."""
+        self.client.enableJointForceTorqueSensor(body.id, index, True)
+
+    def joint_wrench(self, body: Body, index: int) -> tuple[Vec3, Vec3]:
+        """(force, torque) the parent applies to link `index` (and what hangs below it) through its joint, in
+        the last step: PyBullet's default feedback, in the link's inertial-frame axes, the torque about its
+        centre of mass. Zero unless enable_joint_wrench was called for it."""
+        reaction = self.client.getJointState(body.id, index)[2]
+        return tuple(reaction[:3]), tuple(reaction[3:])
+
     def set_joint_dynamics(self, body: Body, joint_name: str, damping: float | None = None,
                            lower: float | None = None, upper: float | None = None) -> None:
         """A joint's viscous damping and position limits (None: unchanged)."""

@@ -11,6 +11,7 @@ from racebot_sim_bridge.gazebo_plugins import PluginKind, library_key
 from racebot_sim_bridge.gazebo_plugins.gazebo_ros_bumper import BumperSensor
 from racebot_sim_bridge.gazebo_plugins.gazebo_ros_camera import CameraSensor
 from racebot_sim_bridge.gazebo_plugins.gazebo_ros_diff_drive import DiffDrive
+from racebot_sim_bridge.gazebo_plugins.gazebo_ros_ft_sensor import FTSensor
 from racebot_sim_bridge.gazebo_plugins.gazebo_ros_imu import Imu
 from racebot_sim_bridge.gazebo_plugins.gazebo_ros_imu_sensor import ImuSensor
 from racebot_sim_bridge.gazebo_plugins.gazebo_ros_joint_state_publisher import JointStatePublisher
@@ -65,7 +66,7 @@ class Registry:
 
 REGISTRY = Registry((
     # model plugins: plugin_manager.PluginManager
-    DiffDrive, SkidSteerDrive, PlanarMove, P3D, JointStatePublisher, Imu, HectorGps, HectorImu,
+    DiffDrive, SkidSteerDrive, PlanarMove, P3D, JointStatePublisher, Imu, HectorGps, HectorImu, FTSensor,
     # sensor plugins: sensors/sensor_manager.SensorManager
     LaserSensor, CameraSensor, MultiCameraSensor, DepthCameraSensor, ImuSensor, RangeSensor, BumperSensor,
     # robot hardware: GazeboRosControlPlugin.attach hooks it into the simulator
