@@ -171,6 +171,9 @@ class PhysicsWorld:
         # (PyBullet body id, link index) -> laser_retro of its collisions (a laser ray's intensity); 0 if absent
         self.laser_retro = {}
         self.ground_mu = 1.0
+        # (body id, link index) -> [fx, fy, fz, tx, ty, tz] applied since the last step: Gazebo's Link force and
+        # torque accumulators (ODE clears them after each step, as PyBullet its external forces), for f3d
+        self.applied = {}
 
     # -- world --------------------------------------------------------------------------------
     def load_world(self, world: World, warn: Callable[[str], None] | None = None) -> list[str]:
@@ -479,8 +482,14 @@ class PhysicsWorld:
             return tuple(self.client.getBasePositionAndOrientation(body_id)[0])
         return tuple(self.client.getLinkState(body_id, index, computeForwardKinematics=1)[0])
 
-    def apply_wrench(self, body_id: int, index: int, force: Vec3, torque: Vec3) -> None:
-        """A world-frame force at the link's centre of mass and a world-frame torque, for one step."""
+    def apply_wrench(self, body_id: int, index: int, force: Vec3, torque: Vec3, accumulate: bool = True) -> None:
+        """A world-frame force at the link's centre of mass and a world-frame torque, for one step.
+        `accumulate`: it counts in applied_wrench (False: a stand-in for what Gazebo does otherwise)."""
+        if accumulate and (any(force) or any(torque)):
+            total = self.applied.setdefault((body_id, index), [0.0] * 6)
+            for i in range(3):
+                total[i] += force[i]
+                total[3 + i] += torque[i]
         if any(force):
             at = self.com_position(body_id, index)
             self.client.applyExternalForce(body_id, index, list(force), at, pb.WORLD_FRAME)
@@ -522,8 +531,16 @@ class PhysicsWorld:
         """Constraint solver parameters by PyBullet's names (numSolverIterations, erp, globalCFM)."""
         self.client.setPhysicsEngineParameter(**params)
 
+    def applied_wrench(self, body_id: int, index: int) -> tuple[Vec3, Vec3]:
+        """(force, torque), world axes, applied to a link with apply_wrench since the last step: Gazebo's
+        Link::WorldForce/WorldTorque (the torque about its centre of mass)."""
+        total = self.applied.get((body_id, index), (0.0,) * 6)
+        return tuple(total[:3]), tuple(total[3:])
+
     def step(self) -> None:
         self.client.stepSimulation()
+        if self.applied:
+            self.applied = {}
 
     def reset_to_spawn(self, body: Body) -> None:
         pos, orn = body.spawn_pose

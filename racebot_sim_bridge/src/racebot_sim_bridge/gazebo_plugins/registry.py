@@ -11,6 +11,8 @@ from racebot_sim_bridge.gazebo_plugins import PluginKind, library_key
 from racebot_sim_bridge.gazebo_plugins.gazebo_ros_bumper import BumperSensor
 from racebot_sim_bridge.gazebo_plugins.gazebo_ros_camera import CameraSensor
 from racebot_sim_bridge.gazebo_plugins.gazebo_ros_diff_drive import DiffDrive
+from racebot_sim_bridge.gazebo_plugins.gazebo_ros_f3d import F3D
+from racebot_sim_bridge.gazebo_plugins.gazebo_ros_force import Force
 from racebot_sim_bridge.gazebo_plugins.gazebo_ros_ft_sensor import FTSensor
 from racebot_sim_bridge.gazebo_plugins.gazebo_ros_imu import Imu
 from racebot_sim_bridge.gazebo_plugins.gazebo_ros_imu_sensor import ImuSensor
@@ -22,6 +24,7 @@ from racebot_sim_bridge.gazebo_plugins.gazebo_ros_p3d import P3D
 from racebot_sim_bridge.gazebo_plugins.gazebo_ros_planar_move import PlanarMove
 from racebot_sim_bridge.gazebo_plugins.gazebo_ros_range import RangeSensor
 from racebot_sim_bridge.gazebo_plugins.gazebo_ros_skid_steer_drive import SkidSteerDrive
+from racebot_sim_bridge.gazebo_plugins.gazebo_ros_template import Template
 from racebot_sim_bridge.gazebo_plugins.hector_gazebo_ros_gps import HectorGps
 from racebot_sim_bridge.gazebo_plugins.hector_gazebo_ros_imu import HectorImu
 from racebot_sim_bridge.gazebo_ros_control.gazebo_ros_control_plugin import GazeboRosControlPlugin
@@ -67,6 +70,7 @@ class Registry:
 REGISTRY = Registry((
     # model plugins: plugin_manager.PluginManager
     DiffDrive, SkidSteerDrive, PlanarMove, P3D, JointStatePublisher, Imu, HectorGps, HectorImu, FTSensor,
+    Force, F3D, Template,
     # sensor plugins: sensors/sensor_manager.SensorManager
     LaserSensor, CameraSensor, MultiCameraSensor, DepthCameraSensor, ImuSensor, RangeSensor, BumperSensor,
     # robot hardware: GazeboRosControlPlugin.attach hooks it into the simulator

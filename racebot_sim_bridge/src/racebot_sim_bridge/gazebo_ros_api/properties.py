@@ -285,7 +285,8 @@ class GazeboProperties:
                 continue
             body_id, index = link_address(body, link)
             mass = world.link_dynamics(body_id, index).mass
-            world.apply_wrench(body_id, index, tuple(-mass * g for g in world.gravity), (0.0, 0.0, 0.0))
+            world.apply_wrench(body_id, index, tuple(-mass * g for g in world.gravity), (0.0, 0.0, 0.0),
+                               accumulate=False)  # gravity off is no force in Gazebo
 
     # -- physics ----------------------------------------------------------------------------------
     def get_physics_properties(self, _req):
