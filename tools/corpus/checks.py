@@ -30,7 +30,11 @@ MESSAGE_TIMEOUT_S = 20.0
 
 
 class CheckFailed(Exception):
-    """A check's verdict: the message is its first reason."""
+    """A check's verdict: the message is its first reason; `numbers`, what was measured all the same."""
+
+    def __init__(self, reason, numbers=''):
+        super().__init__(reason)
+        self.numbers = numbers
 
 
 def sim_sleep(seconds):
@@ -219,7 +223,7 @@ def check_drive(check, row):
             if abs(odist - dist) > tol * max(dist, 0.05):
                 problems.append('odometry says %.3f m, ground truth %.3f m' % (odist, dist))
     if problems:
-        raise CheckFailed('; '.join(problems) + ' [%s]' % numbers)
+        raise CheckFailed('; '.join(problems), numbers)
     return numbers
 
 
@@ -281,7 +285,7 @@ def check_trajectory(check, row):
     if code != 0:
         raise CheckFailed('error_code %s (%s); %s' % (code, result.error_string if result else 'no result', numbers))
     if bad:
-        raise CheckFailed('; '.join(bad))
+        raise CheckFailed('; '.join(bad), numbers)
     return numbers
 
 
@@ -354,7 +358,7 @@ def check_sensors(check, row):
     if unchecked:
         numbers += '; not checked (no rule): ' + '; '.join(unchecked)
     if bad:
-        raise CheckFailed('; '.join(bad))
+        raise CheckFailed('; '.join(bad), numbers)
     return numbers
 
 
@@ -423,11 +427,16 @@ def check_world(check, row):
     with_links = {name.split('::', 1)[0] for name in links}
     missing = [m for m in declared if m not in present]
     linkless = [m for m in declared if m in present and m not in with_links]
+    listed = len(declared) - len(missing)
     numbers = '%d/%d models of %s listed by get_world_properties, %d with links in link_states' % (
-        len(declared) - len(missing), len(declared), os.path.basename(path), len(declared) - len(missing) - len(linkless))
-    if missing or linkless:
-        raise CheckFailed(numbers + ('; missing: ' + ', '.join(missing[:8]) + ('...' if len(missing) > 8 else '')
-                                     if missing else '') + ('; no links: ' + ', '.join(linkless[:8]) if linkless else ''))
+        listed, len(declared), os.path.basename(path), listed - len(linkless))
+    problems = []
+    if missing:
+        problems.append('missing: ' + ', '.join(missing[:8]) + ('...' if len(missing) > 8 else ''))
+    if linkless:
+        problems.append('no links: ' + ', '.join(linkless[:8]) + ('...' if len(linkless) > 8 else ''))
+    if problems:
+        raise CheckFailed('%d/%d models loaded; %s' % (listed, len(declared), '; '.join(problems)), numbers)
     return numbers
 
 
@@ -451,7 +460,7 @@ def run(row):
             try:
                 entry.update(ok=True, numbers=KINDS[check['kind']](check, row), reason='')
             except CheckFailed as err:
-                entry.update(ok=False, numbers='', reason=str(err))
+                entry.update(ok=False, numbers=err.numbers, reason=str(err))
             except Exception as err:  # a check that crashed is a failed check, with its cause
                 entry.update(ok=False, numbers='', reason='%s: %s' % (type(err).__name__, err))
                 traceback.print_exc()

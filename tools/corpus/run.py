@@ -23,6 +23,7 @@ import socket
 import subprocess
 import sys
 import time
+import traceback
 
 sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 
@@ -59,7 +60,8 @@ def build_error(log_text):
     """The first cause in a catkin_make log, one line: which package, what it could not find or compile."""
     project = None
     for line in log_text.splitlines():
-        started = re.search(r'~~\s+- (\S+)$|^-- ==> add_subdirectory\((.+)\)$|Processing catkin package: \'(.+)\'', line)
+        started = re.search(r"~~\s+- (\S+)$|^-- ==> add_subdirectory\((.+)\)$|Processing catkin package: '(.+)'",
+                            line)
         if started:
             project = next(g for g in started.groups() if g)
             continue
@@ -313,6 +315,7 @@ def main():
         try:
             result = run_row(row, args.out, env_base)
         except Exception as err:  # one row's crash must not take the table with it
+            traceback.print_exc()
             result = {'name': row['name'], 'covers': row['covers'], 'commands': row['commands'], 'repos': [],
                       'checks': [], 'build': 'not run', 'status': 'not run', 'reason': 'runner: %r' % err}
         results.append(result)

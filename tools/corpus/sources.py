@@ -71,6 +71,8 @@ class SourceError(RuntimeError):
 
 
 def head_commit(path):
+    if not os.path.isdir(path):
+        return None
     done = _git(['rev-parse', 'HEAD'], cwd=path)
     return done.stdout.strip() if done.returncode == 0 else None
 

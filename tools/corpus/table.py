@@ -74,7 +74,8 @@ def markdown(results, header):
             lines.append('- left out of the build: ' + '; '.join('`%s` (%s)' % kv for kv in r['blacklist'].items()))
         lines.append('- build: %s' % r.get('build', ''))
         for c in r.get('checks') or []:
-            lines.append('- %s **%s**: %s%s' % ('pass' if c.get('ok') else 'FAIL', c['kind'], cell(c.get('numbers'), 600),
+            verdict = 'pass' if c.get('ok') else 'FAIL'
+            lines.append('- %s **%s**: %s%s' % (verdict, c['kind'], cell(c.get('numbers'), 600),
                                                  '' if c.get('ok') else ' -- ' + cell(c.get('reason'), 400)))
         for note in r.get('notes') or []:
             lines.append('- note: %s' % cell(note, 400))
