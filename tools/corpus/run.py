@@ -82,7 +82,9 @@ def build_error(log_text):
     return tail[0].strip()
 
 
+ANSI = re.compile(r'\x1b\[[0-9;]*m|\x1b\]2;[^\x07]*\x07')
 LAUNCH_PATTERNS = {
+    'fatal': re.compile(r'\[FATAL\] \[[\d.]+(?:, [\d.]+)?\]: (.*)'),
     'died': re.compile(r'\[([^\]]+)\] process has died \[pid \d+, exit code (-?\d+)'),
     'missing': re.compile(r'ERROR: cannot launch node of type \[([^\]]+)\]: (.*)'),
     'error': re.compile(r'^(RLException: .*|ResourceNotFound: .*|Invalid roslaunch XML syntax.*|'
@@ -92,9 +94,12 @@ LAUNCH_PATTERNS = {
 
 def launch_notes(log_text):
     """What a roslaunch log says went wrong: nodes that died (with exit codes), node types that could not
-    be started (a package missing), and roslaunch's own fatal error."""
-    died, missing, errors = [], [], []
-    for line in log_text.splitlines():
+    be started (a package missing), roslaunch's own fatal error and nodes' FATAL log lines."""
+    died, missing, errors, fatal = [], [], [], []
+    for line in ANSI.sub('', log_text).splitlines():
+        found = LAUNCH_PATTERNS['fatal'].search(line)
+        if found:
+            fatal.append(found.group(1).strip())
         found = LAUNCH_PATTERNS['died'].search(line)
         if found and found.group(2) != '0':
             died.append('%s (exit %s)' % (re.sub(r'-\d+$', '', found.group(1)), found.group(2)))
@@ -104,7 +109,7 @@ def launch_notes(log_text):
         found = LAUNCH_PATTERNS['error'].search(line.strip())
         if found:
             errors.append(found.group(1))
-    return {'died': sorted(set(died)), 'missing': sorted(set(missing)), 'errors': errors[:3]}
+    return {'died': sorted(set(died)), 'missing': sorted(set(missing)), 'errors': errors[:3], 'fatal': fatal[:3]}
 
 
 def shell_env(script, base):
@@ -250,13 +255,15 @@ def run_row(row, out, env_base):
         exited = [(row['commands'][i], p.returncode) for i, p in enumerate(procs) if p.poll() is not None]
     finally:
         stop(procs)
-    notes = {'died': [], 'missing': [], 'errors': []}
+    notes = {'died': [], 'missing': [], 'errors': [], 'fatal': []}
     for path in launch_logs:
         with open(path, errors='replace') as f:
             for key, values in launch_notes(f.read()).items():
                 notes[key] += values
     if notes['errors']:
         result['notes'].append('roslaunch: ' + ' | '.join(notes['errors']))
+    if notes['fatal']:
+        result['notes'].append('FATAL: ' + ' | '.join(notes['fatal']))
     if notes['died']:
         result['notes'].append('died: ' + ', '.join(notes['died']))
     if notes['missing']:
@@ -267,6 +274,8 @@ def run_row(row, out, env_base):
         reason = table.first_reason(result)
         if first_launch_exit is not None and notes['errors']:
             reason = '`%s` exited %s: %s' % (row['commands'][0], first_launch_exit, notes['errors'][0])
+        elif ': not ready: ' in reason and notes['fatal']:  # the world never came up: say why, not what waited
+            reason = 'not ready: FATAL %s' % notes['fatal'][0]
         hints = ['died: ' + ', '.join(notes['died'])] if notes['died'] else []
         result['reason'] = reason + (' [%s]' % '; '.join(hints) if hints else '')
     result['seconds'] = round(time.time() - start)
