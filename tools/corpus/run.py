@@ -32,7 +32,7 @@ from corpus import manifest, sources, table  # noqa: E402
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 CHECKS = os.path.join(os.path.dirname(os.path.abspath(__file__)), 'checks.py')
 BUILD_TIMEOUT_S = 1800
-CHECKS_TIMEOUT_S = 900
+CHECKS_TIMEOUT_S = 600
 
 
 def free_port():
@@ -167,6 +167,21 @@ def wait_for_service(env, name, timeout):
     return False
 
 
+def wait_for_master(port, first, timeout):
+    """True once the master's port answers; False when the first command exited before (roslaunch refused
+    its launch file: no master will come) or after `timeout` s. rospy.init_node would wait forever."""
+    deadline = time.time() + timeout
+    while time.time() < deadline:
+        try:
+            with socket.create_connection(('localhost', port), timeout=2.0):
+                return True
+        except OSError:
+            if first.poll() is not None:
+                return False
+            time.sleep(1.0)
+    return False
+
+
 def stop(procs):
     """SIGINT to each started process group (roslaunch shuts its nodes down), then TERM, then KILL."""
     for sig, grace in ((signal.SIGINT, 30.0), (signal.SIGTERM, 10.0), (signal.SIGKILL, 5.0)):
@@ -234,6 +249,7 @@ def run_row(row, out, env_base):
                 procs.append(subprocess.Popen(['bash', '-c', command], env=env, stdout=log, stderr=subprocess.STDOUT,
                                               stdin=subprocess.DEVNULL, cwd=logs, start_new_session=True))
             time.sleep(float(row.get('command_gap', 3.0)))
+        master_up = wait_for_master(port, procs[0], float(row.get('ready_timeout', 120)))
         row_file = os.path.join(logs, 'row.json')
         with open(row_file, 'w') as f:
             json.dump(row, f, indent=2)
@@ -241,17 +257,20 @@ def run_row(row, out, env_base):
         if os.path.exists(result_file):
             os.unlink(result_file)
         with open(os.path.join(logs, 'checks.log'), 'w') as log:
-            try:
-                subprocess.call([python(), CHECKS, row_file, result_file], env=env, stdout=log,
-                                stderr=subprocess.STDOUT, timeout=CHECKS_TIMEOUT_S)
-            except subprocess.TimeoutExpired:
-                result['notes'].append('the checks took over %d s and were stopped' % CHECKS_TIMEOUT_S)
+            if not master_up:
+                log.write('no ROS master came up on port %d: checks not run\n' % port)
+            else:
+                try:
+                    subprocess.call([python(), CHECKS, row_file, result_file], env=env, stdout=log,
+                                    stderr=subprocess.STDOUT, timeout=CHECKS_TIMEOUT_S)
+                except subprocess.TimeoutExpired:
+                    result['notes'].append('the checks took over %d s and were stopped' % CHECKS_TIMEOUT_S)
         try:
             with open(result_file) as f:
                 result['checks'] = json.load(f)
         except (OSError, ValueError):
-            result['checks'] = [{'kind': c['kind'], 'ok': False, 'numbers': '',
-                                 'reason': 'the checker wrote no result (see checks.log)'} for c in row['checks']]
+            why = 'no ROS master came up' if not master_up else 'the checker wrote no result (see checks.log)'
+            result['checks'] = [{'kind': c['kind'], 'ok': False, 'numbers': '', 'reason': why} for c in row['checks']]
         exited = [(row['commands'][i], p.returncode) for i, p in enumerate(procs) if p.poll() is not None]
     finally:
         stop(procs)
