@@ -96,6 +96,9 @@ def wait_ready(row):
             if rospy.get_rostime().to_sec() > 0:
                 return
         time.sleep(1.0)
+    if model in names:
+        raise CheckFailed('%r is in the world but sim time is 0 after %.0f s: the world stayed paused' % (
+            model, timeout))
     raise CheckFailed('model %r not in the world after %.0f s (world has: %s)' % (model, timeout, ', '.join(names)))
 
 

@@ -46,6 +46,7 @@ def python():
     return venv if os.path.exists(venv) else sys.executable
 
 
+COMPILE_ERROR = re.compile(r'/src/([^/\s]+)/\S*:\d+:\d+: ((?:fatal )?error: .*)')
 BUILD_ERROR_PATTERNS = [
     re.compile(r'Could not find a package configuration file provided by "([^"]+)"'),
     re.compile(r'Could not find a configuration file for package "([^"]+)"'),
@@ -70,6 +71,10 @@ def build_error(log_text):
             if found:
                 return '%s: find_package(%s) found nothing' % (project or '?', found.group(1))
     lines = log_text.splitlines()
+    for line in lines:  # a compiler's error names its source file, hence its package
+        found = COMPILE_ERROR.search(line)
+        if found:
+            return '%s: %s' % found.groups()
     for i, line in enumerate(lines):
         for pattern in BUILD_ERROR_PATTERNS[2:]:
             found = pattern.search(line)

@@ -264,6 +264,9 @@ def test_build_error_names_the_package_and_what_it_could_not_find():
     compile_log = '-- ==> add_subdirectory(ur_kinematics)\nfoo.cpp:3:10: fatal error: boost/x.hpp: No such file\n'
     assert corpus_run.build_error(compile_log) == 'ur_kinematics: fatal error: boost/x.hpp: No such file'
     assert corpus_run.build_error('\nsomething odd\n\n') == 'something odd'
+    late = ('-- ==> add_subdirectory(racecar_gazebo)\n[ 50%] Building CXX object ackermann_cmd_mux/x.o\n'
+            '/ws/src/ackermann_cmd_mux/src/n.cpp:4:10: fatal error: pluginlib/class_list_macros.h: No such file\n')
+    assert corpus_run.build_error(late) == 'ackermann_cmd_mux: fatal error: pluginlib/class_list_macros.h: No such file'
 
 
 def test_launch_notes_read_deaths_missing_packages_and_fatal_errors():
