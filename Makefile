@@ -6,7 +6,7 @@ VENV := $(ROOT)/.venv
 SYSTEM_PYTHON := /usr/bin/python3
 IN_WS := source $(ROOT)/devel/setup.bash &&
 
-.PHONY: setup debian venv build test unit lint run demo bench bench-quick soak fresh-check clean help
+.PHONY: setup debian venv build test unit lint run demo bench bench-quick soak corpus fresh-check clean help
 
 help:
 	@echo "make run    set up, build, start the simulator with the racebot in the room"
@@ -15,6 +15,8 @@ help:
 	@echo "make demo   headless: drive a scripted route, print it, draw it (out/demo/demo_path.png)"
 	@echo "make unit   only the unit tests (no ROS master)"
 	@echo "make lint   ruff over the repository (ruff.toml); make test runs it too"
+	@echo "make corpus public ROS 1 robot and world packages run unchanged; the table in out/corpus/ (network,"
+	@echo "            or RACEBOT_CORPUS_DIR=existing clones; ~1 h; docs/CORPUS.md)"
 	@echo "make fresh-check  'make test' in a brand-new minimal Debian 12 root (root only; ~10 min); CI runs it"
 	@echo "            extra roslaunch arguments: make run ARGS='paused:=true x_pos:=1'"
 	@echo "make clean  remove build/ devel/ (keeps .venv)"
@@ -87,6 +89,13 @@ bench-quick: setup
 # out/soak/. Shorter or other: make soak ARGS='--sim-minutes 5'.
 soak: setup
 	@$(IN_WS) $(VENV)/bin/python3 tools/soak.py $(ARGS)
+
+# The corpus (tools/corpus/manifest.yaml): each public package cloned at its pinned commit into
+# ~/.cache/racebot/corpus (RACEBOT_CORPUS_DIR: a folder of existing clones instead, no network), built on
+# top of racebot, run headless with its own commands and checked; prints the table, writes
+# out/corpus/corpus.md and corpus.json. One row: make corpus ARGS='--only husky'. docs/CORPUS.md.
+corpus: setup
+	@$(IN_WS) $(VENV)/bin/python3 tools/corpus/run.py $(ARGS)
 
 # The README's `make test` on a brand-new minimal Debian 12 (mmdebstrap, chroot) from a clone of HEAD:
 # proves that `make setup` installs everything the suite calls. Needs root; CI runs it.

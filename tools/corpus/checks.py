@@ -1,0 +1,488 @@
+#!/usr/bin/env python3
+"""The checks of one corpus row, against a simulation the row's commands started (run.py runs this
+in a child process with the row's environment: its workspace sourced, its ROS master).
+
+    checks.py ROW_JSON RESULT_JSON
+
+Every check is a black box on the ROS interfaces a Gazebo user has: topics, the /gazebo services,
+controller_manager and actionlib. Waits are bounded in wall time, so a world whose /clock stops ends a
+check with a reason instead of hanging.
+"""
+import json
+import math
+import os
+import subprocess
+import sys
+import threading
+import time
+import traceback
+import xml.etree.ElementTree as ET
+
+sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+
+import rospy  # noqa: E402
+from roslib.message import get_message_class  # noqa: E402
+
+from corpus import sensors  # noqa: E402
+
+WALL_MARGIN_S = 60.0     # sim-time waits may take this much wall time beyond their length (RTF < 1)
+MESSAGE_TIMEOUT_S = 20.0
+
+
+class CheckFailed(Exception):
+    """A check's verdict: the message is its first reason; `numbers`, what was measured all the same."""
+
+    def __init__(self, reason, numbers=''):
+        super().__init__(reason)
+        self.numbers = numbers
+
+
+def sim_sleep(seconds):
+    """Sleeps `seconds` of sim time; fails when the clock does not get there in wall time."""
+    end = rospy.get_rostime() + rospy.Duration(seconds)
+    deadline = time.time() + seconds * 4 + WALL_MARGIN_S
+    while rospy.get_rostime() < end:
+        if time.time() > deadline or rospy.is_shutdown():
+            raise CheckFailed('sim time stalled: %.1f s of sim time did not pass in %.0f s' % (
+                seconds, seconds * 4 + WALL_MARGIN_S))
+        time.sleep(0.02)
+
+
+def message(topic, type_name, timeout=MESSAGE_TIMEOUT_S):
+    cls = get_message_class(type_name)
+    if cls is None:
+        raise CheckFailed('message type %s unknown here' % type_name)
+    try:
+        return rospy.wait_for_message(topic, cls, timeout=timeout)
+    except rospy.ROSException:
+        raise CheckFailed('no %s on %s in %.0f s' % (type_name, topic, timeout))
+
+
+def service(name, srv_type, timeout=30.0):
+    try:
+        rospy.wait_for_service(name, timeout=timeout)
+    except rospy.ROSException:
+        raise CheckFailed('service %s not offered in %.0f s' % (name, timeout))
+    return rospy.ServiceProxy(name, srv_type)
+
+
+def yaw_of(q):
+    return math.atan2(2.0 * (q.w * q.z + q.x * q.y), 1.0 - 2.0 * (q.y * q.y + q.z * q.z))
+
+
+def wrap(angle):
+    return math.atan2(math.sin(angle), math.cos(angle))
+
+
+def joint_positions(topic):
+    msg = message(topic, 'sensor_msgs/JointState')
+    return dict(zip(msg.name, msg.position))
+
+
+def wait_ready(row):
+    """Until the world answers and the row's model is in it (or the row has none)."""
+    from gazebo_msgs.srv import GetWorldProperties
+    timeout = float(row.get('ready_timeout', 120))
+    props = service('/gazebo/get_world_properties', GetWorldProperties, timeout)
+    deadline = time.time() + timeout
+    model = row.get('model')
+    names = []
+    while time.time() < deadline:
+        try:
+            names = props().model_names
+        except rospy.ServiceException:
+            names = []
+        if not model or model in names:
+            if rospy.get_rostime().to_sec() > 0:
+                return
+        time.sleep(1.0)
+    if model in names:
+        raise CheckFailed('%r is in the world but sim time is 0 after %.0f s: the world stayed paused' % (
+            model, timeout))
+    raise CheckFailed('model %r not in the world after %.0f s (world has: %s)' % (model, timeout, ', '.join(names)))
+
+
+# --- the kinds --------------------------------------------------------------------------------------
+
+def check_controllers(check, row):
+    from controller_manager_msgs.srv import ListControllers
+    lister = service(check['manager'] + '/list_controllers', ListControllers, 60.0)
+    want = list(check['running'])
+    deadline = time.time() + float(check.get('timeout', 60))
+    states = {}
+    while time.time() < deadline:
+        try:
+            states = {c.name: c.state for c in lister().controller}
+        except rospy.ServiceException:
+            states = {}
+        if all(states.get(n) == 'running' for n in want):
+            break
+        time.sleep(1.0)
+    running = [n for n in want if states.get(n) == 'running']
+    numbers = '%d/%d running' % (len(running), len(want))
+    bad = ['%s: %s' % (n, states.get(n, 'not loaded')) for n in want if n not in running]
+    if bad:
+        raise CheckFailed(numbers + '; ' + ', '.join(bad))
+    return numbers + ' (%s)' % ', '.join(want)
+
+
+class Commander:
+    """Publishes one command at 20 Hz (wall) until stopped, then a zero command."""
+
+    def __init__(self, check):
+        kind = check.get('msg', 'twist')
+        if kind == 'ackermann':
+            from ackermann_msgs.msg import AckermannDriveStamped
+            self.pub = rospy.Publisher(check['cmd_topic'], AckermannDriveStamped, queue_size=1)
+            self.msg, self.zero = AckermannDriveStamped(), AckermannDriveStamped()
+            self.msg.drive.speed = check.get('speed', 0.0)
+            self.msg.drive.steering_angle = check.get('steer', 0.0)
+            self.zero.drive.steering_angle = check.get('steer', 0.0)
+        else:
+            from geometry_msgs.msg import Twist
+            self.pub = rospy.Publisher(check['cmd_topic'], Twist, queue_size=1)
+            self.msg, self.zero = Twist(), Twist()
+            self.msg.linear.x, self.msg.linear.y = check.get('vx', 0.0), check.get('vy', 0.0)
+            self.msg.angular.z = check.get('wz', 0.0)
+        self.running = True
+        self.thread = threading.Thread(target=self._loop, daemon=True)
+        self.thread.start()
+
+    def _loop(self):
+        while self.running and not rospy.is_shutdown():
+            if hasattr(self.msg, 'header'):
+                self.msg.header.stamp = rospy.get_rostime()
+            self.pub.publish(self.msg)
+            time.sleep(0.05)
+
+    def stop(self):
+        self.running = False
+        self.thread.join()
+        for _ in range(3):
+            self.pub.publish(self.zero)
+            time.sleep(0.05)
+
+
+class Latest:
+    """The newest message of a topic."""
+
+    def __init__(self, topic, type_name):
+        self.msg = None
+        self.sub = rospy.Subscriber(topic, get_message_class(type_name), self._cb, queue_size=1)
+
+    def _cb(self, msg):
+        self.msg = msg
+
+
+def model_pose(getter, model):
+    reply = getter(model_name=model, relative_entity_name='')
+    if not reply.success:
+        raise CheckFailed('get_model_state(%s): %s' % (model, reply.status_message))
+    p = reply.pose
+    stamp = reply.header.stamp.to_sec() or rospy.get_rostime().to_sec()
+    return p.position.x, p.position.y, yaw_of(p.orientation), stamp
+
+
+def check_drive(check, row):
+    """Drives with a constant command; judges the ground-truth speed (and yaw rate) against what the
+    robot's own parameters say it must be, and the odometry's distance against the ground truth's."""
+    from gazebo_msgs.srv import GetModelState
+    getter = service('/gazebo/get_model_state', GetModelState)
+    model = check.get('model', row.get('model'))
+    odom = Latest(check['odom_topic'], 'nav_msgs/Odometry') if check.get('odom_topic') else None
+    cmd = Commander(check)
+    try:
+        sim_sleep(float(check.get('settle', 2.0)))
+        x0, y0, th0, t0 = model_pose(getter, model)
+        o0 = odom.msg if odom else None
+        sim_sleep(float(check['seconds']))
+        x1, y1, th1, t1 = model_pose(getter, model)
+        o1 = odom.msg if odom else None
+    finally:
+        cmd.stop()
+    dt = t1 - t0
+    if dt <= 0:
+        raise CheckFailed('sim time did not advance between the two model states')
+    dist = math.hypot(x1 - x0, y1 - y0)
+    speed, yaw_rate = dist / dt, wrap(th1 - th0) / dt
+    tol = float(check['tolerance'])
+    want = float(check['expect_speed'])
+    numbers = 'ground truth %.3f m/s over %.1f s (expected %.3f +-%.0f%%)' % (speed, dt, want, tol * 100)
+    problems = []
+    if abs(speed - want) > tol * max(abs(want), 0.05):
+        problems.append('speed %.3f m/s, expected %.3f' % (speed, want))
+    if 'expect_yaw_rate' in check:
+        want_w = float(check['expect_yaw_rate'])
+        numbers += '; yaw rate %.3f rad/s (expected %.3f)' % (yaw_rate, want_w)
+        if abs(yaw_rate - want_w) > tol * max(abs(want_w), 0.05):
+            problems.append('yaw rate %.3f rad/s, expected %.3f' % (yaw_rate, want_w))
+    if odom:
+        if o0 is None or o1 is None:
+            problems.append('no odometry on %s' % check['odom_topic'])
+        else:
+            p0, p1 = o0.pose.pose.position, o1.pose.pose.position
+            odist = math.hypot(p1.x - p0.x, p1.y - p0.y)
+            numbers += '; odometry %s %.3f m vs ground truth %.3f m' % (check['odom_topic'], odist, dist)
+            if abs(odist - dist) > tol * max(dist, 0.05):
+                problems.append('odometry says %.3f m, ground truth %.3f m' % (odist, dist))
+    if problems:
+        raise CheckFailed('; '.join(problems), numbers)
+    return numbers
+
+
+def check_joint_position(check, row):
+    from std_msgs.msg import Float64
+    pub = rospy.Publisher(check['command_topic'], Float64, queue_size=1, latch=True)
+    target, tol, joint = float(check['target']), float(check['tolerance']), check['joint']
+    time.sleep(1.0)
+    pub.publish(Float64(target))
+    sim_sleep(float(check.get('seconds', 5.0)))
+    got = joint_positions(check['joint_states']).get(joint)
+    if got is None:
+        raise CheckFailed('%s not in %s' % (joint, check['joint_states']))
+    numbers = '%s at %.4f rad, target %.4f +-%.3f' % (joint, got, target, tol)
+    if abs(got - target) > tol:
+        raise CheckFailed(numbers)
+    return numbers
+
+
+def _goal_tolerance(check, joint):
+    """The controller's own goal tolerance for `joint` (its constraints/<joint>/goal), else the row's."""
+    param = check.get('tolerance_param')
+    if param:
+        value = rospy.get_param(param.format(joint=joint), 0.0)
+        if value and value > 0:
+            return float(value), param.format(joint=joint)
+    return float(check['tolerance']), 'row'
+
+
+def check_trajectory(check, row):
+    import actionlib
+    from control_msgs.msg import FollowJointTrajectoryAction, FollowJointTrajectoryGoal
+    from trajectory_msgs.msg import JointTrajectoryPoint
+    client = actionlib.SimpleActionClient(check['action'], FollowJointTrajectoryAction)
+    if not client.wait_for_server(rospy.Duration(60.0)):
+        raise CheckFailed('action server %s not up in 60 s' % check['action'])
+    now = joint_positions(check['joint_states'])
+    target = {j: float(v) + (now.get(j, 0.0) if check.get('relative') else 0.0) for j, v in check['target'].items()}
+    goal = FollowJointTrajectoryGoal()
+    goal.trajectory.joint_names = list(target)
+    goal.trajectory.points = [JointTrajectoryPoint(positions=list(target.values()),
+                                                   time_from_start=rospy.Duration(float(check['duration'])))]
+    client.send_goal(goal)
+    if not client.wait_for_result(rospy.Duration(float(check['duration']) + WALL_MARGIN_S)):
+        raise CheckFailed('no result in %.0f s' % (float(check['duration']) + WALL_MARGIN_S))
+    result = client.get_result()
+    code = result.error_code if result is not None else None
+    sim_sleep(0.5)
+    final = joint_positions(check['joint_states'])
+    worst, worst_joint, bad = 0.0, None, []
+    for joint, want in target.items():
+        err = abs(final.get(joint, float('nan')) - want)
+        tol, source = _goal_tolerance(check, joint)
+        if not err <= tol:
+            bad.append('%s %.4f rad off (tolerance %.3f from %s)' % (joint, err, tol, source))
+        if not err <= worst:
+            worst, worst_joint = err, joint
+    numbers = 'error_code %s, max |error| %.4f rad (%s), %d joints' % (code, worst, worst_joint, len(target))
+    if code != 0:
+        raise CheckFailed('error_code %s (%s); %s' % (code, result.error_string if result else 'no result', numbers))
+    if bad:
+        raise CheckFailed('; '.join(bad), numbers)
+    return numbers
+
+
+def check_gripper(check, row):
+    import actionlib
+    from actionlib_msgs.msg import GoalStatus
+    from control_msgs.msg import GripperCommandAction, GripperCommandGoal
+    client = actionlib.SimpleActionClient(check['action'], GripperCommandAction)
+    if not client.wait_for_server(rospy.Duration(60.0)):
+        raise CheckFailed('action server %s not up in 60 s' % check['action'])
+    goal = GripperCommandGoal()
+    goal.command.position, goal.command.max_effort = float(check['position']), float(check.get('max_effort', 0.0))
+    client.send_goal(goal)
+    if not client.wait_for_result(rospy.Duration(float(check.get('seconds', 10)) + WALL_MARGIN_S)):
+        raise CheckFailed('no result')
+    state, result = client.get_state(), client.get_result()
+    got = joint_positions(check['joint_states']).get(check['joint'])
+    tol, want = float(check['tolerance']), float(check.get('joint_target', check['position']))
+    numbers = '%s at %s (expected %.4f +-%.4f), action %s, reached_goal %s' % (
+        check['joint'], '%.4f' % got if got is not None else 'absent', want, tol,
+        GoalStatus.to_string(state) if hasattr(GoalStatus, 'to_string') else state,
+        getattr(result, 'reached_goal', None))
+    if got is None or abs(got - want) > tol or state != GoalStatus.SUCCEEDED:
+        raise CheckFailed(numbers)
+    return numbers
+
+
+def observe(msg):
+    """The attributes sensors.compare judges, read off one message."""
+    seen = {}
+    for key in ('width', 'height', 'encoding', 'angle_min', 'angle_max', 'range_max'):
+        if hasattr(msg, key):
+            seen[key] = getattr(msg, key)
+    if hasattr(msg, 'ranges'):
+        seen['len(ranges)'] = len(msg.ranges)
+    if hasattr(msg, 'orientation'):
+        q = msg.orientation
+        values = (q.x, q.y, q.z, q.w)
+        seen['finite(orientation)'] = all(math.isfinite(v) for v in values) and abs(
+            math.sqrt(sum(v * v for v in values)) - 1.0) < 1e-2
+    if hasattr(msg, 'fields') and any(f.name == 'ring' for f in msg.fields):
+        from sensor_msgs import point_cloud2
+        rings = [p[0] for p in point_cloud2.read_points(msg, field_names=('ring',))]
+        seen['ring_max'] = max(rings) if rings else None
+    return seen
+
+
+def check_sensors(check, row):
+    xml = rospy.get_param(check['description'], None)
+    if not xml:
+        raise CheckFailed('no robot description on %s' % check['description'])
+    expects, unchecked = sensors.declared(xml, check.get('namespace', ''))
+    lines, bad = [], []
+    if len(expects) != int(check['count']):
+        bad.append('the description declares %d sensor topics, the row expects %d' % (len(expects), check['count']))
+    for e in expects:
+        try:
+            seen = observe(message(e['topic'], e['type']))
+            mismatch = sensors.compare(e['fields'], seen)
+        except CheckFailed as err:
+            mismatch, seen = str(err), {}
+        shown = ', '.join('%s=%s' % (k, round(v, 4) if isinstance(v, float) else v) for k, v in sorted(seen.items()))
+        if mismatch:
+            bad.append('%s (%s): %s' % (e['topic'], e['plugin'], mismatch))
+            lines.append('%s FAIL' % e['topic'])
+        else:
+            lines.append('%s ok (%s)' % (e['topic'], shown))
+    numbers = '%d/%d topics right: %s' % (len(expects) - sum(1 for x in lines if x.endswith('FAIL')), len(expects),
+                                          '; '.join(lines))
+    if unchecked:
+        numbers += '; not checked (no rule): ' + '; '.join(unchecked)
+    if bad:
+        raise CheckFailed('; '.join(bad), numbers)
+    return numbers
+
+
+def model_paths():
+    """Gazebo's model path as gazebo_ros would set it: GAZEBO_MODEL_PATH, every package's
+    gazebo_model_path export, ~/.gazebo/models."""
+    paths = [p for p in os.environ.get('GAZEBO_MODEL_PATH', '').split(':') if p]
+    done = subprocess.run(['rospack', 'plugins', '--attrib=gazebo_model_path', 'gazebo_ros'],
+                          stdout=subprocess.PIPE, stderr=subprocess.DEVNULL, universal_newlines=True)
+    paths += [line.split(' ', 1)[1] for line in done.stdout.splitlines() if ' ' in line]
+    return paths + [os.path.expanduser('~/.gazebo/models')]
+
+
+def included_name(uri, paths):
+    """The name Gazebo gives an <include> without <name>: the included model's own, or None for a light."""
+    model = uri.replace('model://', '').strip('/')
+    for root in paths:
+        config = os.path.join(root, model, 'model.config')
+        if os.path.isfile(config):
+            sdf = ET.parse(config).getroot().findtext('sdf', 'model.sdf').strip()
+            tree = ET.parse(os.path.join(root, model, sdf)).getroot()
+            found = tree.find('model')
+            if found is None:
+                return None if tree.find('light') is not None else model
+            return found.get('name')
+    return None if model == 'sun' else model.split('/')[-1]
+
+
+def world_models(path):
+    """The models a world file declares at its top level: <model name> and <include>s (lights left out)."""
+    with open(path, 'rb') as f:
+        root = ET.fromstring(f.read().strip())
+    world = root.find('world')
+    names, paths = [], None
+    for child in world:
+        if child.tag == 'model':
+            names.append(child.get('name'))
+        elif child.tag == 'include':
+            name = child.findtext('name')
+            if name is None:
+                paths = paths if paths is not None else model_paths()
+                name = included_name(child.findtext('uri', ''), paths)
+            if name:
+                names.append(name.strip())
+    return names
+
+
+def resolve_find(text):
+    import rospkg
+    if text.startswith('$(find '):
+        package, rest = text[len('$(find '):].split(')', 1)
+        return rospkg.RosPack().get_path(package) + rest
+    return text
+
+
+def check_world(check, row):
+    from gazebo_msgs.msg import LinkStates
+    from gazebo_msgs.srv import GetWorldProperties
+    path = resolve_find(check['world'])
+    declared = world_models(path)
+    if len(declared) < int(check['min_models']):
+        raise CheckFailed('the world file declares %d models, the row expects at least %d' % (
+            len(declared), check['min_models']))
+    present = set(service('/gazebo/get_world_properties', GetWorldProperties)().model_names)
+    links = rospy.wait_for_message('/gazebo/link_states', LinkStates, timeout=MESSAGE_TIMEOUT_S).name
+    with_links = {name.split('::', 1)[0] for name in links}
+    missing = [m for m in declared if m not in present]
+    linkless = [m for m in declared if m in present and m not in with_links]
+    listed = len(declared) - len(missing)
+    numbers = '%d/%d models of %s listed by get_world_properties, %d with links in link_states' % (
+        listed, len(declared), os.path.basename(path), listed - len(linkless))
+    problems = []
+    if missing:
+        problems.append('missing: ' + ', '.join(missing[:8]) + ('...' if len(missing) > 8 else ''))
+    if linkless:
+        problems.append('no links: ' + ', '.join(linkless[:8]) + ('...' if len(linkless) > 8 else ''))
+    if problems:
+        raise CheckFailed('%d/%d models loaded; %s' % (listed, len(declared), '; '.join(problems)), numbers)
+    return numbers
+
+
+KINDS = {'controllers': check_controllers, 'drive': check_drive, 'joint_position': check_joint_position,
+         'trajectory': check_trajectory, 'gripper': check_gripper, 'sensors': check_sensors, 'world': check_world}
+
+
+def run(row):
+    results = []
+    try:
+        wait_ready(row)
+        ready = None
+    except CheckFailed as err:
+        ready = str(err)
+    for check in row['checks']:
+        start = time.time()
+        entry = {'kind': check['kind'], 'from': check.get('from', '')}
+        if ready:
+            entry.update(ok=False, numbers='', reason='not ready: ' + ready)
+        else:
+            try:
+                entry.update(ok=True, numbers=KINDS[check['kind']](check, row), reason='')
+            except CheckFailed as err:
+                entry.update(ok=False, numbers=err.numbers, reason=str(err))
+            except Exception as err:  # a check that crashed is a failed check, with its cause
+                entry.update(ok=False, numbers='', reason='%s: %s' % (type(err).__name__, err))
+                traceback.print_exc()
+        entry['seconds'] = round(time.time() - start, 1)
+        print('corpus check %s: %s %s' % (entry['kind'], 'ok' if entry['ok'] else 'FAIL',
+                                          entry['numbers'] or entry['reason']), flush=True)
+        results.append(entry)
+    return results
+
+
+def main():
+    with open(sys.argv[1]) as f:
+        row = json.load(f)
+    rospy.init_node('racebot_corpus_checks', anonymous=True, disable_signals=True)
+    results = run(row)
+    with open(sys.argv[2], 'w') as f:
+        json.dump(results, f, indent=2)
+    rospy.signal_shutdown('done')
+
+
+if __name__ == '__main__':
+    main()

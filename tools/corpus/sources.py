@@ -1,0 +1,116 @@
+"""Where a corpus repository comes from, and its checkout at the pinned commit.
+
+Three sources, first match wins:
+  RACEBOT_CORPUS_DIR=DIR       existing clones, used as they are (no network, nothing fetched or checked
+                               out in them): DIR/<name>, DIR/<owner>/<name> or DIR/<owner>+<name>
+  RACEBOT_CORPUS_MIRRORS=ROOT  local mirrors to clone from (no network): ROOT/<owner>+<name>/repo[/.git],
+                               ROOT/<owner>/<name>.git or ROOT/<owner>/<name>
+  otherwise                    https://github.com/<owner>/<name>.git (RACEBOT_CORPUS_URL overrides the
+                               pattern, with {owner} and {name})
+Clones go to the cache (RACEBOT_CORPUS_CACHE, default ~/.cache/racebot/corpus): one clone per repository
+in git/, one checkout per (repository, commit) in src/. resolve() is pure; checkout() runs git.
+"""
+import os
+import subprocess
+
+DEFAULT_URL = 'https://github.com/{owner}/{name}.git'
+
+
+def cache_dir(env=os.environ):
+    return os.path.expanduser(env.get('RACEBOT_CORPUS_CACHE') or os.path.join('~', '.cache', 'racebot', 'corpus'))
+
+
+def _is_git(path):
+    return os.path.isdir(os.path.join(path, '.git')) or os.path.isfile(os.path.join(path, 'HEAD'))
+
+
+def clone_candidates(root, repo):
+    owner, name = repo.split('/')
+    return [os.path.join(root, name), os.path.join(root, owner, name), os.path.join(root, '%s+%s' % (owner, name))]
+
+
+def mirror_candidates(root, repo):
+    owner, name = repo.split('/')
+    flat = os.path.join(root, '%s+%s' % (owner, name))
+    return [os.path.join(flat, 'repo', '.git'), os.path.join(flat, 'repo'), flat,
+            os.path.join(root, owner, name + '.git'), os.path.join(root, owner, name)]
+
+
+def resolve(repo, env=os.environ):
+    """('dir', path) for an existing clone to use in place, ('clone', source) for a mirror or URL to clone
+    from, or ('missing', why) when a folder was named but holds no clone of `repo`."""
+    clones = env.get('RACEBOT_CORPUS_DIR')
+    if clones:
+        found = next((p for p in clone_candidates(clones, repo) if _is_git(p)), None)
+        if found:
+            return 'dir', found
+        mirrors = env.get('RACEBOT_CORPUS_MIRRORS')
+        if not mirrors:
+            return 'missing', 'no clone of %s in RACEBOT_CORPUS_DIR=%s (looked for %s)' % (
+                repo, clones, ', '.join(os.path.relpath(p, clones) for p in clone_candidates(clones, repo)))
+    mirrors = env.get('RACEBOT_CORPUS_MIRRORS')
+    if mirrors:
+        found = next((p for p in mirror_candidates(mirrors, repo) if _is_git(p)), None)
+        if found:
+            return 'clone', found
+        return 'missing', 'no mirror of %s under RACEBOT_CORPUS_MIRRORS=%s' % (repo, mirrors)
+    owner, name = repo.split('/')
+    return 'clone', (env.get('RACEBOT_CORPUS_URL') or DEFAULT_URL).format(owner=owner, name=name)
+
+
+def _git(args, cwd=None, log=None):
+    done = subprocess.run(['git'] + args, cwd=cwd, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
+                          universal_newlines=True)
+    if log is not None:
+        log.append('$ git %s\n%s' % (' '.join(args), done.stdout))
+    return done
+
+
+class SourceError(RuntimeError):
+    """A repository could not be had at its commit; the message says why."""
+
+
+def head_commit(path):
+    if not os.path.isdir(path):
+        return None
+    done = _git(['rev-parse', 'HEAD'], cwd=path)
+    return done.stdout.strip() if done.returncode == 0 else None
+
+
+def checkout(repo, commit, env=os.environ, log=None):
+    """(path of a work tree of `repo` at `commit`, note): a checkout in the cache, or with
+    RACEBOT_CORPUS_DIR the user's clone as it is (the note says when its HEAD is not the pinned commit)."""
+    kind, where = resolve(repo, env)
+    if kind == 'missing':
+        raise SourceError(where)
+    if kind == 'dir':
+        head = head_commit(where)
+        note = '' if head == commit else 'clone at %s, manifest pins %s' % ((head or '?')[:12], commit[:12])
+        return where, note
+    cache = cache_dir(env)
+    owner, name = repo.split('/')
+    bare = os.path.join(cache, 'git', '%s+%s.git' % (owner, name))
+    tree = os.path.join(cache, 'src', '%s+%s' % (owner, name), commit[:12])
+    if head_commit(tree) == commit:
+        return tree, ''
+    if not os.path.isdir(bare):
+        os.makedirs(os.path.dirname(bare), exist_ok=True)
+        done = _git(['clone', '--quiet', '--bare', where, bare], log=log)
+        if done.returncode != 0:
+            raise SourceError('git clone %s failed: %s' % (where, done.stdout.strip().splitlines()[-1:]))
+    if _git(['cat-file', '-e', commit + '^{commit}'], cwd=bare).returncode != 0:
+        _git(['fetch', '--quiet', where, '+refs/heads/*:refs/heads/*', '+refs/tags/*:refs/tags/*'], cwd=bare, log=log)
+        if _git(['cat-file', '-e', commit + '^{commit}'], cwd=bare).returncode != 0:
+            _git(['fetch', '--quiet', where, commit], cwd=bare, log=log)
+    if _git(['cat-file', '-e', commit + '^{commit}'], cwd=bare).returncode != 0:
+        raise SourceError('commit %s is not in %s' % (commit, where))
+    if os.path.isdir(tree):
+        done = _git(['checkout', '--quiet', '--detach', '--force', commit], cwd=tree, log=log)
+    else:
+        os.makedirs(os.path.dirname(tree), exist_ok=True)
+        done = _git(['clone', '--quiet', '--shared', '--no-checkout', bare, tree], log=log)
+        if done.returncode == 0:
+            done = _git(['checkout', '--quiet', '--detach', commit], cwd=tree, log=log)
+    if done.returncode != 0 or head_commit(tree) != commit:
+        raise SourceError('checkout of %s at %s failed: %s' % (repo, commit[:12], done.stdout.strip()[-300:]))
+    return tree, ''
