@@ -370,7 +370,7 @@ def model_paths():
     gazebo_model_path export, ~/.gazebo/models."""
     paths = [p for p in os.environ.get('GAZEBO_MODEL_PATH', '').split(':') if p]
     done = subprocess.run(['rospack', 'plugins', '--attrib=gazebo_model_path', 'gazebo_ros'],
-                          stdout=subprocess.PIPE, stderr=subprocess.DEVNULL, universal_newlines=True)
+                          stdout=subprocess.PIPE, stderr=subprocess.DEVNULL, text=True)
     paths += [line.split(' ', 1)[1] for line in done.stdout.splitlines() if ' ' in line]
     return paths + [os.path.expanduser('~/.gazebo/models')]
 

@@ -165,7 +165,7 @@ def wait_for_service(env, name, timeout):
     deadline = time.time() + timeout
     while time.time() < deadline:
         done = subprocess.run(['rosservice', 'list'], env=env, stdout=subprocess.PIPE, stderr=subprocess.DEVNULL,
-                              universal_newlines=True, timeout=30)
+                              text=True, timeout=30)
         if name in done.stdout.split():
             return True
         time.sleep(2.0)
@@ -308,9 +308,9 @@ def run_row(row, out, env_base):
 
 def racebot_commit():
     head = subprocess.run(['git', 'rev-parse', 'HEAD'], cwd=ROOT, stdout=subprocess.PIPE,
-                          universal_newlines=True).stdout.strip()
+                          text=True).stdout.strip()
     dirty = subprocess.run(['git', 'status', '--porcelain', '--untracked-files=no'], cwd=ROOT,
-                           stdout=subprocess.PIPE, universal_newlines=True).stdout.strip()
+                           stdout=subprocess.PIPE, text=True).stdout.strip()
     return head + (' (with uncommitted changes)' if dirty else '')
 
 

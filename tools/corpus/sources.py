@@ -60,7 +60,7 @@ def resolve(repo, env=os.environ):
 
 def _git(args, cwd=None, log=None):
     done = subprocess.run(['git'] + args, cwd=cwd, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
-                          universal_newlines=True)
+                          text=True)
     if log is not None:
         log.append('$ git %s\n%s' % (' '.join(args), done.stdout))
     return done

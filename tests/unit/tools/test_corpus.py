@@ -88,7 +88,7 @@ def test_a_sensors_check_without_a_count_has_no_number():
 
 def git(*args, cwd):
     return subprocess.run(['git', '-c', 'user.name=t', '-c', 'user.email=t@t', *args], cwd=cwd, check=True,
-                          stdout=subprocess.PIPE, universal_newlines=True).stdout.strip()
+                          stdout=subprocess.PIPE, text=True).stdout.strip()
 
 
 @pytest.fixture
