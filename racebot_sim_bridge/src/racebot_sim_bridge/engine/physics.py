@@ -590,6 +590,7 @@ def prepare_urdf_for_bullet(root: ET.Element, urdf_model: RobotModel, visuals: b
         if axis.get('xyz') is None:
             axis.set('xyz', '1 0 0')
     urdf_lumping.lump_fixed_links(root, urdf_model)
+    _links_in_tree_order(root, urdf_model)
     for link in root.findall('link'):
         if link.find('inertial') is None:
             inertial = ET.SubElement(link, 'inertial')
@@ -601,6 +602,37 @@ def prepare_urdf_for_bullet(root: ET.Element, urdf_model: RobotModel, visuals: b
                 link.remove(el)
     _indent(root)  # PyBullet's URDF reader fails on some very long lines (a one-line document)
     return ET.tostring(root, encoding='unicode')
+
+
+def _links_in_tree_order(root: ET.Element, urdf_model: RobotModel) -> None:
+    """Moves the <link> elements so that the root link comes first and every link after its parent, the
+    document order kept otherwise. With URDF_MAINTAIN_LINK_ORDER PyBullet takes the links in document order
+    as its multibody's: a root link written after another makes loadURDF crash the process (SIGSEGV), and a
+    child written before its parent gives a body whose state turns NaN at the first step (its kinematics
+    walk the links in index order, parent first). Xacros write the root `world` link last often enough."""
+    links = root.findall('link')
+    by_name = {link.get('name'): link for link in links}
+    parent = {}  # link -> parent link, of the joints left after lumping
+    for joint in root.findall('joint'):
+        p, c = joint.find('parent'), joint.find('child')
+        if p is not None and c is not None:
+            parent[c.get('link')] = p.get('link')
+    ordered, placed = [], set()
+    for link in [urdf_model.root_link] + [link.get('name') for link in links]:
+        chain = []
+        while link in by_name and link not in placed and link not in chain:  # the reader refused cycles already
+            chain.append(link)
+            link = parent.get(link)
+        for name in reversed(chain):
+            placed.add(name)
+            ordered.append(by_name[name])
+    if ordered == links:
+        return
+    first = list(root).index(links[0])
+    for link in links:
+        root.remove(link)
+    for offset, link in enumerate(ordered):
+        root.insert(first + offset, link)
 
 
 def _indent(elem: ET.Element, level: int = 0) -> None:
