@@ -14,7 +14,8 @@ from racebot_sim_bridge.description import urdf_reader
 from racebot_sim_bridge.engine.physics import PhysicsWorld
 
 INERTIAL = ('<inertial><mass value="1"/><inertia ixx="0.01" iyy="0.01" izz="0.01" ixy="0" ixz="0" iyz="0"/>'
-            '</inertial><collision><geometry><box size="0.1 0.1 0.3"/></geometry></collision>')
+            '</inertial><collision><geometry><box size="0.1 0.1 0.3"/></geometry></collision>'
+            '<visual><geometry><box size="0.1 0.1 0.3"/></geometry></visual>')  # with visuals PyBullet aborted
 LINKS = {
     'world': '<link name="world"/>',
     'link1': '<link name="link1">%s</link>' % INERTIAL,
