@@ -188,7 +188,7 @@ def test_gazebo_extensions_take_the_value_attribute_else_the_text():
         'mu1': 0.5, 'mu2': 0.7, 'kp': 1e7, 'kd': 2.0, 'material': 'Gazebo/Red', 'fdir1': '0 1 0',
         'maxContacts': 4.0, 'turnGravityOff': True, 'selfCollide': True, 'static': False,
         'gravity': ''}  # not an extension sdformat reads: copied into the SDF as written, value unread
-    from racebot_sim_bridge.engine.physics import link_friction
+    from racebot_sim_bridge.engine.bullet_urdf import link_friction
     assert link_friction(model, 'a') == 0.5
 
 

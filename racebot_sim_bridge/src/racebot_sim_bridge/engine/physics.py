@@ -37,8 +37,11 @@ from typing import TYPE_CHECKING
 
 import pybullet as pb
 
-from racebot_sim_bridge.description import urdf_assets, urdf_lumping
+from racebot_sim_bridge.description import urdf_assets
 from racebot_sim_bridge.description.geometry import ShapeKind
+from racebot_sim_bridge.engine.bullet_urdf import (NEGLIGIBLE_INERTIA, NEGLIGIBLE_MASS,  # noqa: F401 (re-exported)
+                                                  joint_friction, link_friction, link_laser_retro,
+                                                  prepare_urdf_for_bullet)
 from racebot_sim_bridge.engine.pybullet_client import PybulletClient
 from racebot_sim_bridge.kinematics.rotations import Quat, Vec3, as_transform
 
@@ -46,9 +49,9 @@ if TYPE_CHECKING:
     from racebot_sim_bridge.description.sdf_model import Model, World
     from racebot_sim_bridge.description.urdf_model import RobotModel
 
-# Mass and inertia given to links that declare no <inertial> (Gazebo drops such links' mass).
-NEGLIGIBLE_MASS = 1e-4
-NEGLIGIBLE_INERTIA = 1e-9
+# Links in one PyBullet body whose state it can report (SharedMemoryPublic.h MAX_DEGREE_OF_FREEDOM): with
+# more, loadURDF succeeds and then every state query (getBasePositionAndOrientation, ...) fails.
+MAX_BULLET_LINKS = 128
 
 JointInfo = namedtuple('JointInfo', 'index name type lower upper max_effort max_velocity child_link')
 JointState = namedtuple('JointState', 'position velocity')
@@ -200,13 +203,23 @@ class PhysicsWorld:
         if model.name in self.bodies:
             raise PhysicsError("a model named '%s' already exists" % model.name)
         ids = []
-        for link in model.links:
-            body_id = self._create_sdf_link(model, link)
-            if body_id is not None:
-                ids.append((link.name, body_id))
-                retro = next((c.laser_retro for c in link.collisions if c.laser_retro), 0.0)
-                if retro:
-                    self.laser_retro[(body_id, -1)] = retro
+        try:
+            for link in model.links:
+                body_id = self._create_sdf_link(model, link)
+                if body_id is not None:
+                    ids.append((link.name, body_id))
+                    retro = next((c.laser_retro for c in link.collisions if c.laser_retro), 0.0)
+                    if retro:
+                        self.laser_retro[(body_id, -1)] = retro
+        except Exception as err:  # the links built so far go too: nothing of a refused model stays behind
+            for _, body_id in ids:
+                self.client.removeBody(body_id)
+            made = {body_id for _, body_id in ids}
+            self.laser_retro = {k: v for k, v in self.laser_retro.items() if k[0] not in made}
+            if isinstance(err, PhysicsError):
+                raise
+            raise PhysicsError("model '%s' link '%s' could not be built (%s: %s)"
+                               % (model.name, link.name, type(err).__name__, err)) from err
         if not ids:
             raise PhysicsError("model '%s' has no link with supported geometry (give it a box, cylinder, sphere, "
                                "plane or mesh of positive size)" % model.name)
@@ -239,19 +252,23 @@ class PhysicsWorld:
         col_id = shapes[0][0] if len(shapes) == 1 else self._compound(link, static) if shapes else -1
         body = self.client.createMultiBody(baseMass=mass, baseCollisionShapeIndex=col_id, baseVisualShapeIndex=vis_id,
                                            basePosition=world_pos, baseOrientation=world_orn)
-        if len(visuals) > 1:  # createVisualShapeArray takes no colours: one call per shape
-            for i, vis in enumerate(visuals):
-                self.client.changeVisualShape(body, -1, shapeIndex=i, rgbaColor=_rgba(vis))
-        if not static and link.inertia is not None:
-            ixx, _, _, iyy, _, izz = link.inertia
-            self.client.changeDynamics(body, -1, localInertiaDiagonal=(ixx, iyy, izz))
-        mus = [c.mu for _, c in shapes if c.mu is not None]
-        is_ground = any(c.shape.kind is ShapeKind.PLANE for _, c in shapes)
-        if is_ground and mus:
-            self.ground_mu = min(mus)
-        # Static world surfaces get 1 so that Bullet's product equals the robot side's min(mu).
-        friction = 1.0 if static else (min(mus) if mus else 1.0)
-        self.client.changeDynamics(body, -1, lateralFriction=friction)
+        try:
+            if len(visuals) > 1:  # createVisualShapeArray takes no colours: one call per shape
+                for i, vis in enumerate(visuals):
+                    self.client.changeVisualShape(body, -1, shapeIndex=i, rgbaColor=_rgba(vis))
+            if not static and link.inertia is not None:
+                ixx, _, _, iyy, _, izz = link.inertia
+                self.client.changeDynamics(body, -1, localInertiaDiagonal=(ixx, iyy, izz))
+            mus = [c.mu for _, c in shapes if c.mu is not None]
+            is_ground = any(c.shape.kind is ShapeKind.PLANE for _, c in shapes)
+            if is_ground and mus:
+                self.ground_mu = min(mus)
+            # Static world surfaces get 1 so that Bullet's product equals the robot side's min(mu).
+            friction = 1.0 if static else (min(mus) if mus else 1.0)
+            self.client.changeDynamics(body, -1, lateralFriction=friction)
+        except Exception:
+            self.client.removeBody(body)
+            raise
         return body
 
     def _compound(self, link, static):
@@ -355,17 +372,36 @@ class PhysicsWorld:
         flags = pb.URDF_USE_INERTIA_FROM_FILE | pb.URDF_MAINTAIN_LINK_ORDER | pb.URDF_USE_IMPLICIT_CYLINDER
         # A root link named world is the world (sdformat's URDF reader): its joints hold the robot to the world.
         fixed = urdf_model.root_link == 'world'
+        bullet_urdf = prepare_urdf_for_bullet(root, urdf_model, self.visuals)
+        links = len(root.findall('link'))
+        if links > MAX_BULLET_LINKS:
+            raise PhysicsError("'%s' has %d links once fixed joints are merged as Gazebo merges them; PyBullet "
+                               "cannot report the state of a body of more than %d (its MAX_DEGREE_OF_FREEDOM): "
+                               "join links with fixed joints or spawn it as several models"
+                               % (name, links, MAX_BULLET_LINKS))
         # PyBullet reads a URDF from a file, once: the file lives only as long as the load, so a process
         # that is killed leaves nothing behind in /tmp.
         with tempfile.TemporaryDirectory(prefix='racebot_urdf_') as tmp:
             path = os.path.join(tmp, 'robot.urdf')
             with open(path, 'w') as f:
-                f.write(prepare_urdf_for_bullet(root, urdf_model, self.visuals))
+                f.write(bullet_urdf)
             try:
                 body_id = self.client.loadURDF(path, basePosition=position, baseOrientation=orientation,
                                                flags=flags, useFixedBase=fixed)
             except pb.error as err:
                 raise PhysicsError("PyBullet could not load the URDF of '%s': %s" % (name, err))
+        try:
+            body = self._set_up_urdf_body(name, body_id, urdf_model, urdf_xml)
+        except Exception as err:  # a body half set up would stay in the world, stepped and never reported
+            self.client.removeBody(body_id)
+            self.laser_retro = {k: v for k, v in self.laser_retro.items() if k[0] != body_id}
+            raise PhysicsError("PyBullet loaded the URDF of '%s' but could not set its body up (%s: %s); it is "
+                               "removed" % (name, type(err).__name__, err)) from err
+        self.bodies[name] = body
+        return body
+
+    def _set_up_urdf_body(self, name: str, body_id: int, urdf_model: RobotModel, urdf_xml: str) -> Body:
+        """The Body of a URDF PyBullet just loaded, with Gazebo's friction, damping and joint motors."""
         # urdf_xml has its meshes resolved: a copy needs no package path
         body = Body(self.client, name, body_id, False, BodySource(BodyKind.URDF, urdf_model, urdf_xml))
         for link, index in body.link_index.items():
@@ -384,7 +420,6 @@ class PhysicsWorld:
             # gets the hardware's motor instead (DefaultRobotHWSim.write_sim).
             self.client.setJointMotorControl2(body_id, joint.index, pb.VELOCITY_CONTROL, targetVelocity=0.0,
                                               force=joint_friction(urdf_model, joint_name))
-        self.bodies[name] = body
         return body
 
     def add_copy(self, name: str, source: BodySource) -> Body:
@@ -570,76 +605,3 @@ def _mesh_flags(static):
 
 def _rgba(visual):
     return list(visual.rgba) if visual.rgba else [0.7, 0.7, 0.7, 1.0]  # Gazebo's default grey
-
-
-def joint_friction(urdf_model: RobotModel, joint_name: str) -> float:
-    """The URDF <dynamics friction> of a joint (N*m or N), 0 without one."""
-    joint = urdf_model.joints.get(joint_name)
-    dynamics = getattr(joint, 'dynamics', None)
-    return max(0.0, dynamics.friction) if dynamics is not None else 0.0
-
-
-def link_laser_retro(urdf_model: RobotModel, link: str) -> float:
-    """<laserRetro> of a (merged) PyBullet link: the first the URDF links merged into it give (Gazebo keeps it per
-    collision; a ray here knows only the link it hit), 0 if none."""
-    for name, spec in urdf_model.links.items():
-        if urdf_model.lumped_link(name) != link or not spec.collisions:
-            continue
-        value = urdf_model.gazebo_refs.get(name, {}).get('laserRetro')
-        if isinstance(value, float) and value:
-            return value
-    return 0.0
-
-
-def link_friction(urdf_model: RobotModel, link: str) -> float:
-    """mu of a (merged) PyBullet link: the smaller of mu1/mu2 of the URDF links merged into it that
-    carry collision geometry (Gazebo keeps friction per collision; Bullet has one per link), 1 if none says."""
-    mus = []
-    for name, spec in urdf_model.links.items():
-        if urdf_model.lumped_link(name) != link or not spec.collisions:
-            continue
-        props = urdf_model.gazebo_refs.get(name, {})
-        values = [props[k] for k in ('mu1', 'mu2') if isinstance(props.get(k), float)]  # the reader warned of others
-        if values:
-            mus.append(min(values))
-    return min(mus) if mus else 1.0
-
-
-def prepare_urdf_for_bullet(root: ET.Element, urdf_model: RobotModel, visuals: bool = True) -> str:
-    """The URDF text PyBullet should read, rewritten from its root element (changed in place): links
-    lumped as Gazebo lumps them; negligible inertia for links that declare none; <gazebo>, <transmission>
-    and sensor blocks dropped; the visuals dropped unless `visuals`; an <axis> without xyz given urdfdom's
-    default, 1 0 0 (PyBullet would read uninitialised memory for it). Mesh filenames must already be files
-    PyBullet reads (urdf_assets.resolve_assets)."""
-    for tag in ('gazebo', 'transmission'):
-        for el in root.findall(tag):
-            root.remove(el)
-    for axis in root.findall('joint/axis'):
-        if axis.get('xyz') is None:
-            axis.set('xyz', '1 0 0')
-    urdf_lumping.lump_fixed_links(root, urdf_model)
-    for link in root.findall('link'):
-        if link.find('inertial') is None:
-            inertial = ET.SubElement(link, 'inertial')
-            ET.SubElement(inertial, 'mass', value=repr(NEGLIGIBLE_MASS))
-            ET.SubElement(inertial, 'inertia', ixx=repr(NEGLIGIBLE_INERTIA), iyy=repr(NEGLIGIBLE_INERTIA),
-                          izz=repr(NEGLIGIBLE_INERTIA), ixy='0', ixz='0', iyz='0')
-        if not visuals:
-            for el in link.findall('visual'):
-                link.remove(el)
-    _indent(root)  # PyBullet's URDF reader fails on some very long lines (a one-line document)
-    return ET.tostring(root, encoding='unicode')
-
-
-def _indent(elem: ET.Element, level: int = 0) -> None:
-    """One element per line, as ET.indent (Python 3.9+) writes it; Ubuntu 20.04's Noetic runs Python 3.8."""
-    pad = '\n' + '  ' * level
-    children = list(elem)
-    if children:
-        if not (elem.text or '').strip():
-            elem.text = pad + '  '
-        for child in children:
-            _indent(child, level + 1)
-            if not (child.tail or '').strip():
-                child.tail = pad + '  '
-        children[-1].tail = pad if not (children[-1].tail or '').strip() else children[-1].tail

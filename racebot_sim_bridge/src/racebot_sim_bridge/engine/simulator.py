@@ -124,19 +124,32 @@ class Simulator:
                                              warn=lambda m: self.log.warn('%s: %s' % (name, m)))
             except physics.PhysicsError as err:
                 raise SpawnError('SpawnModel: Failure - %s' % err)
+            except Exception as err:  # what the checks before PyBullet missed; nothing was added to the world
+                raise SpawnError('SpawnModel: Failure - %s could not be built (%s: %s)'
+                                 % (name, type(err).__name__, err)) from err
+            # From here on a failure takes out all of the model it made: no description may leave a half-made
+            # body in the world (stepped every step, reported by no service) or stop the world server.
             robot = Robot(name, body, model, robot_namespace)
             try:
                 for hook in self.on_create:
                     hook(robot)
-            except SpawnError:
+            except Exception as err:
                 if robot.control is not None:
                     robot.control.close()
                 self.world.remove(name)
-                raise
+                if isinstance(err, SpawnError):
+                    raise
+                raise SpawnError('SpawnModel: Failure - %s could not be set up (%s: %s); it is removed'
+                                 % (name, type(err).__name__, err)) from err
             self.robots[name] = robot
             self._refresh_controls()
-            for hook in self.on_spawn:
-                hook(robot)
+            try:
+                for hook in self.on_spawn:
+                    hook(robot)
+            except Exception as err:
+                self.delete_model(name)
+                raise SpawnError('SpawnModel: Failure - the plugins or sensors of %s could not start (%s: %s); '
+                                 'it is removed' % (name, type(err).__name__, err)) from err
             return robot
 
     def spawn_sdf_robot(self, model: Model, robot_namespace: str = '') -> Robot:

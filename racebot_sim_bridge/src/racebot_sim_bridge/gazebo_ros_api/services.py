@@ -106,6 +106,21 @@ class GazeboServices:
 
     # -- spawn / delete ---------------------------------------------------------------------------
     def spawn_urdf_model(self, req):
+        return self._answered(req, self._spawn_urdf_model)
+
+    def spawn_sdf_model(self, req):
+        return self._answered(req, lambda r: self._spawn(r, spawn_xml.parse(r.model_xml)))
+
+    def _answered(self, req, spawn):
+        """spawn(req)'s response; for an error nothing foresaw, a refusal saying what it was (rospy would answer
+        the client a bare error). The Simulator and PhysicsWorld take out what a failed spawn made."""
+        try:
+            return spawn(req)
+        except Exception as err:
+            return self._not_loaded(req.model_name, 'the model could not be spawned (%s: %s)'
+                                    % (type(err).__name__, err))
+
+    def _spawn_urdf_model(self, req):
         root = spawn_xml.parse(req.model_xml)
         if not spawn_xml.is_urdf(root):
             # upstream also fails the call itself (returns false); rospy cannot send a response with that
@@ -119,9 +134,6 @@ class GazeboServices:
                                   "model:// URIs)" % (req.model_name, package, package))
                 return srv.SpawnModelResponse(False, SPAWN_NO_PACKAGE + package)  # upstream also fails the call
         return self._spawn(req, root)
-
-    def spawn_sdf_model(self, req):
-        return self._spawn(req, spawn_xml.parse(req.model_xml))
 
     def _spawn(self, req, root):
         """spawnSDFModel's order: reference frame, format, name in use, then the spawn itself. `root`: the
@@ -155,9 +167,8 @@ class GazeboServices:
         try:
             model = urdf_reader.parse_urdf(root)
         except urdf_model.UrdfError as err:
-            # Gazebo cannot load it and the service waits out its 10 s; the reason is in the server's log
-            self.rospy.logerr('SpawnModel: the URDF of %s is not valid: %s' % (name, err))
-            return srv.SpawnModelResponse(False, SPAWN_NOT_LOADED % name)
+            # Gazebo cannot load it and the service waits out its 10 s; upstream's words, then the reason
+            return self._not_loaded(name, 'the URDF is not valid: %s' % err)
         return self._spawned(lambda: self.sim.spawn_urdf(name, root, req.robot_namespace, pose[0], pose[1],
                                                          model=model))
 
@@ -169,6 +180,10 @@ class GazeboServices:
             return srv.SpawnModelResponse(False, self._err(str(err)))
         return srv.SpawnModelResponse(True, SPAWN_OK)
 
+    def _not_loaded(self, name, reason):
+        """The answer to a spawn whose model did not appear: upstream's status words, then why."""
+        return srv.SpawnModelResponse(False, self._err('%s: %s' % (SPAWN_NOT_LOADED % name, reason)))
+
     def _spawn_sdf(self, req, root, pose):
         spawn_xml.add_robot_namespace(root, req.robot_namespace)
         document = ET.Element('sdf', version='1.6')
@@ -176,14 +191,12 @@ class GazeboServices:
         try:
             world = sdf_reader.parse_world(document, source='spawn_sdf_model request')
         except (sdf_reader.WorldError, ValueError) as err:
-            self.rospy.logerr('SpawnModel: the SDF of %s is not valid: %s' % (req.model_name, err))
-            return srv.SpawnModelResponse(False, SPAWN_NOT_LOADED % req.model_name)
+            return self._not_loaded(req.model_name, 'the SDF is not valid: %s' % err)
         for w in world.warnings:
             self.rospy.logwarn('spawn_sdf_model: %s' % w)
         if len(world.models) != 1:
-            self.rospy.logerr('SpawnModel: the SDF of %s must hold one <model> with supported geometry, found %d'
-                              % (req.model_name, len(world.models)))
-            return srv.SpawnModelResponse(False, SPAWN_NOT_LOADED % req.model_name)
+            return self._not_loaded(req.model_name, 'the SDF must hold one <model> with supported geometry, found %d'
+                                    % len(world.models))
         model = world.models[0]
         model.name = req.model_name or model.name
         if model.name in self.sim.world.bodies:
@@ -196,8 +209,7 @@ class GazeboServices:
         try:
             self.sim.world.add_sdf_model(model)
         except PhysicsError as err:
-            self.rospy.logerr('SpawnModel: %s' % err)
-            return srv.SpawnModelResponse(False, SPAWN_NOT_LOADED % model.name)
+            return self._not_loaded(model.name, str(err))
         return srv.SpawnModelResponse(True, SPAWN_OK)
 
     def delete_model(self, req):

@@ -1,0 +1,124 @@
+"""A URDF as PyBullet must read it, and the per-link values Gazebo keeps per collision that PyBullet keeps per link.
+
+prepare_urdf_for_bullet rewrites a spawned robot's parsed URDF for loadURDF: Gazebo's fixed-joint lumping
+(../description/urdf_lumping.py), the links in tree order (PyBullet crashes on a root written last), negligible
+inertia where none is declared, the Gazebo-only blocks dropped. No PyBullet calls here: physics.py loads the text.
+"""
+from __future__ import annotations
+
+import xml.etree.ElementTree as ET
+
+from racebot_sim_bridge.description import urdf_lumping
+from racebot_sim_bridge.description.urdf_model import RobotModel
+
+__all__ = ['NEGLIGIBLE_MASS', 'NEGLIGIBLE_INERTIA', 'prepare_urdf_for_bullet', 'joint_friction', 'link_friction',
+           'link_laser_retro']
+
+# Mass and inertia given to links that declare no <inertial> (Gazebo drops such links' mass; PyBullet would give 1 kg).
+NEGLIGIBLE_MASS = 1e-4
+NEGLIGIBLE_INERTIA = 1e-9
+
+
+def joint_friction(urdf_model: RobotModel, joint_name: str) -> float:
+    """The URDF <dynamics friction> of a joint (N*m or N), 0 without one."""
+    joint = urdf_model.joints.get(joint_name)
+    dynamics = getattr(joint, 'dynamics', None)
+    return max(0.0, dynamics.friction) if dynamics is not None else 0.0
+
+
+def link_laser_retro(urdf_model: RobotModel, link: str) -> float:
+    """<laserRetro> of a (merged) PyBullet link: the first the URDF links merged into it give (Gazebo keeps it per
+    collision; a ray here knows only the link it hit), 0 if none."""
+    for name, spec in urdf_model.links.items():
+        if urdf_model.lumped_link(name) != link or not spec.collisions:
+            continue
+        value = urdf_model.gazebo_refs.get(name, {}).get('laserRetro')
+        if isinstance(value, float) and value:
+            return value
+    return 0.0
+
+
+def link_friction(urdf_model: RobotModel, link: str) -> float:
+    """mu of a (merged) PyBullet link: the smaller of mu1/mu2 of the URDF links merged into it that
+    carry collision geometry (Gazebo keeps friction per collision; Bullet has one per link), 1 if none says."""
+    mus = []
+    for name, spec in urdf_model.links.items():
+        if urdf_model.lumped_link(name) != link or not spec.collisions:
+            continue
+        props = urdf_model.gazebo_refs.get(name, {})
+        values = [props[k] for k in ('mu1', 'mu2') if isinstance(props.get(k), float)]  # the reader warned of others
+        if values:
+            mus.append(min(values))
+    return min(mus) if mus else 1.0
+
+
+def prepare_urdf_for_bullet(root: ET.Element, urdf_model: RobotModel, visuals: bool = True) -> str:
+    """The URDF text PyBullet should read, rewritten from its root element (changed in place): links
+    lumped as Gazebo lumps them; negligible inertia for links that declare none; <gazebo>, <transmission>
+    and sensor blocks dropped; the visuals dropped unless `visuals`; an <axis> without xyz given urdfdom's
+    default, 1 0 0 (PyBullet would read uninitialised memory for it). Mesh filenames must already be files
+    PyBullet reads (urdf_assets.resolve_assets)."""
+    for tag in ('gazebo', 'transmission'):
+        for el in root.findall(tag):
+            root.remove(el)
+    for axis in root.findall('joint/axis'):
+        if axis.get('xyz') is None:
+            axis.set('xyz', '1 0 0')
+    urdf_lumping.lump_fixed_links(root, urdf_model)
+    _links_in_tree_order(root, urdf_model)
+    for link in root.findall('link'):
+        if link.find('inertial') is None:
+            inertial = ET.SubElement(link, 'inertial')
+            ET.SubElement(inertial, 'mass', value=repr(NEGLIGIBLE_MASS))
+            ET.SubElement(inertial, 'inertia', ixx=repr(NEGLIGIBLE_INERTIA), iyy=repr(NEGLIGIBLE_INERTIA),
+                          izz=repr(NEGLIGIBLE_INERTIA), ixy='0', ixz='0', iyz='0')
+        if not visuals:
+            for el in link.findall('visual'):
+                link.remove(el)
+    _indent(root)  # PyBullet's URDF reader fails on some very long lines (a one-line document)
+    return ET.tostring(root, encoding='unicode')
+
+
+def _links_in_tree_order(root: ET.Element, urdf_model: RobotModel) -> None:
+    """Moves the <link> elements so that the root link comes first and every link after its parent, the
+    document order kept otherwise. With URDF_MAINTAIN_LINK_ORDER PyBullet takes the links in document order
+    as its multibody's: a root link written after another makes loadURDF crash the process (SIGSEGV), and a
+    child written before its parent gives a body whose state turns NaN at the first step (its kinematics
+    walk the links in index order, parent first). Xacros write the root `world` link last often enough."""
+    links = root.findall('link')
+    by_name = {link.get('name'): link for link in links}
+    parent = {}  # link -> parent link, of the joints left after lumping
+    for joint in root.findall('joint'):
+        p, c = joint.find('parent'), joint.find('child')
+        if p is not None and c is not None:
+            parent[c.get('link')] = p.get('link')
+    ordered, placed = [], set()
+    for link in [urdf_model.root_link] + [link.get('name') for link in links]:
+        chain = []
+        while link in by_name and link not in placed and link not in chain:  # the reader refused cycles already
+            chain.append(link)
+            link = parent.get(link)
+        for name in reversed(chain):
+            placed.add(name)
+            ordered.append(by_name[name])
+    if ordered == links:
+        return
+    first = list(root).index(links[0])
+    for link in links:
+        root.remove(link)
+    for offset, link in enumerate(ordered):
+        root.insert(first + offset, link)
+
+
+def _indent(elem: ET.Element, level: int = 0) -> None:
+    """One element per line, as ET.indent (Python 3.9+) writes it; Ubuntu 20.04's Noetic runs Python 3.8."""
+    pad = '\n' + '  ' * level
+    children = list(elem)
+    if children:
+        if not (elem.text or '').strip():
+            elem.text = pad + '  '
+        for child in children:
+            _indent(child, level + 1)
+            if not (child.tail or '').strip():
+                child.tail = pad + '  '
+        children[-1].tail = pad if not (children[-1].tail or '').strip() else children[-1].tail
