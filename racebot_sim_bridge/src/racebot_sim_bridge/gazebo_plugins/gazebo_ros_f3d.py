@@ -42,10 +42,4 @@ class F3D(ModelPlugin):
         if self.pub.get_num_connections() == 0:
             return
         force, torque = self.world.applied_wrench(self.robot.body.id, self.index)
-        msg = self.msg_class()
-        msg.header.frame_id = self.frame_id
-        msg.header.stamp = self.stamp(time)
-        w = msg.wrench
-        w.force.x, w.force.y, w.force.z = force
-        w.torque.x, w.torque.y, w.torque.z = torque
-        self.pub.publish(msg)
+        self.publish_wrench(time, force, torque)

@@ -90,11 +90,5 @@ class FTSensor(ModelPlugin):
             gauss = self.rng.gauss
             force = tuple(v + gauss(0.0, self.noise) for v in force)
             torque = tuple(v + gauss(0.0, self.noise) for v in torque)
-        msg = self.msg_class()
-        msg.header.frame_id = self.frame_id
-        msg.header.stamp = self.stamp(time)
-        w = msg.wrench
-        w.force.x, w.force.y, w.force.z = force
-        w.torque.x, w.torque.y, w.torque.z = torque
-        self.pub.publish(msg)
+        self.publish_wrench(time, force, torque)
         self.clock.mark(time)

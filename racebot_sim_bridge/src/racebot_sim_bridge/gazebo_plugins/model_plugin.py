@@ -207,6 +207,17 @@ class ModelPlugin:
     def stamp(self, time):
         return ros_time(self.ctx.rospy.Time, time)
 
+    def publish_wrench(self, time, force, torque):
+        """A geometry_msgs/WrenchStamped (`self.msg_class`) in `self.frame_id`, stamped `time`, on `self.pub`: what
+        gazebo_ros_ft_sensor and gazebo_ros_f3d publish."""
+        msg = self.msg_class()
+        msg.header.frame_id = self.frame_id
+        msg.header.stamp = self.stamp(time)
+        w = msg.wrench
+        w.force.x, w.force.y, w.force.z = force
+        w.torque.x, w.torque.y, w.torque.z = torque
+        self.pub.publish(msg)
+
     def joint(self, tag, default=None):
         """The movable joint named by <tag> (a physics.JointInfo); PluginError when it is missing or
         names no movable joint of the robot: nothing sensible can stand in for a wheel."""
