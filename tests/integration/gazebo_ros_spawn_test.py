@@ -151,10 +151,11 @@ class GazeboRosSpawnTest(unittest.TestCase):
         cls.clock_sub = rospy.Subscriber('/clock', Clock, lambda m: cls.clock_stamps.append(m.clock.to_sec()),
                                          queue_size=100)
         try:
-            rospy.wait_for_service(GZ + '/get_world_properties', timeout=WALL_TIMEOUT)
+            # gazebo_ros advertises reset_world last (one master call each): with it, every service is there
+            rospy.wait_for_service(GZ + '/reset_world', timeout=WALL_TIMEOUT)
         except rospy.ROSException:
             cls.tearDownClass()  # unittest skips it when setUpClass fails: the world would outlive the test
-            raise AssertionError('%s/get_world_properties did not appear; roslaunch said:\n%s'
+            raise AssertionError('%s/reset_world did not appear; roslaunch said:\n%s'
                                  % (GZ, cls.world.text[-3000:]))
         cls.world_properties = rospy.ServiceProxy(GZ + '/get_world_properties', GetWorldProperties)
         cls.physics = rospy.ServiceProxy(GZ + '/get_physics_properties', GetPhysicsProperties)

@@ -65,8 +65,8 @@ class SimProbe:
         self.clock = msg.clock.to_sec()
 
     def wait_ready(self, timeout=WALL_TIMEOUT):
-        rospy.wait_for_service('/gazebo/get_world_properties', timeout=timeout)
-        rospy.wait_for_service('/gazebo/get_model_state', timeout=timeout)
+        # gazebo_ros advertises reset_world last: with it, every gazebo service is there
+        rospy.wait_for_service('/gazebo/reset_world', timeout=timeout)
         wait_for(lambda: self.clock is not None, '/clock', timeout)
 
     def sim_sleep(self, seconds, timeout=WALL_TIMEOUT):

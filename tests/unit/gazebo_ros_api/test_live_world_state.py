@@ -21,9 +21,8 @@ from test_plugin_namespace import _Log
 @pytest.fixture
 def world():
     sim = Simulator(sdf_reader.parse_world(sdf_reader.EMPTY_WORLD_SDF), None, _Log(), lambda path: None)
-    properties = GazeboProperties(rospy, sim, '/gazebo')
+    properties = GazeboProperties(rospy, sim)
     yield sim, properties, copy.deepcopy(sim.spec)
-    properties.shutdown()
     sim.close()
 
 

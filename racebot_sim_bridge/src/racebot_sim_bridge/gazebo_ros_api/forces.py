@@ -124,9 +124,9 @@ def truncate_effort(effort, velocity, effort_limit, velocity_limit):
 
 
 class GazeboForces:
-    """The four force services under `ns`, and the simulator hook that applies the jobs."""
+    """The four force services' handlers, and the simulator hook that applies the jobs."""
 
-    def __init__(self, rospy, sim, ns):
+    def __init__(self, rospy, sim):
         from gazebo_msgs import srv
         self.rospy = rospy
         self.sim = sim
@@ -134,13 +134,13 @@ class GazeboForces:
         self.schedule = ForceSchedule()
         self.entities = WorldEntities(sim.world)
         sim.before_physics.append(self.apply)
-        s = lambda name, cls, cb: rospy.Service('%s/%s' % (ns, name), cls, cb)
-        self.services = [
-            s('apply_body_wrench', srv.ApplyBodyWrench, self.apply_body_wrench),
-            s('apply_joint_effort', srv.ApplyJointEffort, self.apply_joint_effort),
-            s('clear_body_wrenches', srv.BodyRequest, self.clear_body_wrenches),
-            s('clear_joint_forces', srv.JointRequest, self.clear_joint_forces),
-        ]
+        # advertised by GazeboServices, in gazebo_ros's order
+        self.handlers = {
+            'apply_body_wrench': (srv.ApplyBodyWrench, self.apply_body_wrench),
+            'apply_joint_effort': (srv.ApplyJointEffort, self.apply_joint_effort),
+            'clear_body_wrenches': (srv.BodyRequest, self.clear_body_wrenches),
+            'clear_joint_forces': (srv.JointRequest, self.clear_joint_forces),
+        }
 
     # -- services ---------------------------------------------------------------------------------
     def apply_body_wrench(self, req):
@@ -243,9 +243,6 @@ class GazeboForces:
                     return model, joint
         return None
 
-    def shutdown(self):
-        for s in self.services:
-            s.shutdown()
 
 
 def link_address(body, link):

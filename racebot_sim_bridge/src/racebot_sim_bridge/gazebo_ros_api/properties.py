@@ -74,12 +74,12 @@ def urdf_geom_names(model, link):
 
 
 class GazeboProperties:
-    """The property services under `ns`, and the step hook that cancels gravity where it is off."""
+    """The property services' handlers, and the step hook that cancels gravity where it is off."""
 
     # ODE joint parameters that PyBullet has no counterpart for.
     IGNORED_JOINT_PARAMS = ('erp', 'cfm', 'stop_erp', 'stop_cfm', 'fudge_factor')
 
-    def __init__(self, rospy, sim, ns):
+    def __init__(self, rospy, sim):
         from gazebo_msgs import msg, srv
         self.rospy = rospy
         self.sim = sim
@@ -95,19 +95,19 @@ class GazeboProperties:
         self._lock = threading.Lock()
         self.entities = WorldEntities(sim.world)
         sim.before_physics.append(self.cancel_gravity)
-        s = lambda name, cls, cb: rospy.Service('%s/%s' % (ns, name), cls, cb)
-        self.services = [
-            s('get_model_properties', srv.GetModelProperties, self.get_model_properties),
-            s('get_joint_properties', srv.GetJointProperties, self.get_joint_properties),
-            s('get_link_properties', srv.GetLinkProperties, self.get_link_properties),
-            s('set_link_properties', srv.SetLinkProperties, self.set_link_properties),
-            s('set_joint_properties', srv.SetJointProperties, self.set_joint_properties),
-            s('get_physics_properties', srv.GetPhysicsProperties, self.get_physics_properties),
-            s('set_physics_properties', srv.SetPhysicsProperties, self.set_physics_properties),
-            s('get_light_properties', srv.GetLightProperties, self.get_light_properties),
-            s('set_light_properties', srv.SetLightProperties, self.set_light_properties),
-            s('delete_light', srv.DeleteLight, self.delete_light),
-        ]
+        # advertised by GazeboServices, in gazebo_ros's order
+        self.handlers = {
+            'get_model_properties': (srv.GetModelProperties, self.get_model_properties),
+            'get_joint_properties': (srv.GetJointProperties, self.get_joint_properties),
+            'get_link_properties': (srv.GetLinkProperties, self.get_link_properties),
+            'set_link_properties': (srv.SetLinkProperties, self.set_link_properties),
+            'set_joint_properties': (srv.SetJointProperties, self.set_joint_properties),
+            'get_physics_properties': (srv.GetPhysicsProperties, self.get_physics_properties),
+            'set_physics_properties': (srv.SetPhysicsProperties, self.set_physics_properties),
+            'get_light_properties': (srv.GetLightProperties, self.get_light_properties),
+            'set_light_properties': (srv.SetLightProperties, self.set_light_properties),
+            'delete_light': (srv.DeleteLight, self.delete_light),
+        }
 
     def _fail(self, res, message):
         self.rospy.logerr(message)
@@ -384,6 +384,3 @@ class GazeboProperties:
         res.success, res.status_message = True, 'DeleteLight: %s successfully deleted' % req.light_name
         return res
 
-    def shutdown(self):
-        for s in self.services:
-            s.shutdown()

@@ -65,6 +65,18 @@ def _twist_in(msg):
     return (lin, ang) if frames.finite(*lin + ang) else None
 
 
+# The order of gazebo_ros_api_plugin.cpp's advertiseServices(): a client that waits for one service finds
+# those before it (registering takes a master call each; reset_world, the last, means all are there)
+ADVERTISED = (
+    'spawn_sdf_model', 'spawn_urdf_model', 'delete_model', 'delete_light', 'get_model_properties',
+    'get_model_state', 'get_world_properties', 'get_joint_properties', 'get_link_properties', 'get_link_state',
+    'get_light_properties', 'set_light_properties', 'get_physics_properties', 'set_link_properties',
+    'set_physics_properties', 'set_model_state', 'set_model_configuration', 'set_joint_properties',
+    'set_link_state', 'pause_physics', 'unpause_physics', 'apply_body_wrench', 'apply_joint_effort',
+    'clear_joint_forces', 'clear_body_wrenches', 'reset_simulation', 'reset_world',
+)
+
+
 class GazeboServices:
     def __init__(self, rospy, sim, ns='/gazebo'):
         self.rospy = rospy
@@ -73,25 +85,26 @@ class GazeboServices:
         self.entities = WorldEntities(sim.world)
         self.model_states_pub = rospy.Publisher(self.ns + '/model_states', ModelStates, queue_size=1)
         self.link_states_pub = rospy.Publisher(self.ns + '/link_states', LinkStates, queue_size=1)
-        s = lambda name, cls, cb: rospy.Service('%s/%s' % (self.ns, name), cls, cb)
-        self.services = [
-            s('spawn_urdf_model', srv.SpawnModel, self.spawn_urdf_model),
-            s('spawn_sdf_model', srv.SpawnModel, self.spawn_sdf_model),
-            s('delete_model', srv.DeleteModel, self.delete_model),
-            s('get_model_state', srv.GetModelState, self.get_model_state),
-            s('set_model_state', srv.SetModelState, self.set_model_state),
-            s('get_world_properties', srv.GetWorldProperties, self.get_world_properties),
-            s('get_link_state', srv.GetLinkState, self.get_link_state),
-            s('set_link_state', srv.SetLinkState, self.set_link_state),
-            s('set_model_configuration', srv.SetModelConfiguration, self.set_model_configuration),
-            s('pause_physics', Empty, self.pause_physics),
-            s('unpause_physics', Empty, self.unpause_physics),
-            s('reset_simulation', Empty, self.reset_simulation),
-            s('reset_world', Empty, self.reset_world),
-        ]
         # properties, physics settings and lights; wrenches and joint efforts: modules of their own
-        self.properties = GazeboProperties(rospy, sim, self.ns)
-        self.forces = GazeboForces(rospy, sim, self.ns)
+        self.properties = GazeboProperties(rospy, sim)
+        self.forces = GazeboForces(rospy, sim)
+        handlers = {
+            'spawn_urdf_model': (srv.SpawnModel, self.spawn_urdf_model),
+            'spawn_sdf_model': (srv.SpawnModel, self.spawn_sdf_model),
+            'delete_model': (srv.DeleteModel, self.delete_model),
+            'get_model_state': (srv.GetModelState, self.get_model_state),
+            'set_model_state': (srv.SetModelState, self.set_model_state),
+            'get_world_properties': (srv.GetWorldProperties, self.get_world_properties),
+            'get_link_state': (srv.GetLinkState, self.get_link_state),
+            'set_link_state': (srv.SetLinkState, self.set_link_state),
+            'set_model_configuration': (srv.SetModelConfiguration, self.set_model_configuration),
+            'pause_physics': (Empty, self.pause_physics),
+            'unpause_physics': (Empty, self.unpause_physics),
+            'reset_simulation': (Empty, self.reset_simulation),
+            'reset_world': (Empty, self.reset_world),
+            **self.properties.handlers, **self.forces.handlers,
+        }
+        self.services = [rospy.Service('%s/%s' % (self.ns, name), *handlers[name]) for name in ADVERTISED]
         # the topic forms of set_model_state / set_link_state: the same handlers, answers only logged
         self.subscribers = [
             rospy.Subscriber(self.ns + '/set_model_state', ModelState,
@@ -426,8 +439,6 @@ class GazeboServices:
     def shutdown(self):
         for s in self.services:
             s.shutdown()
-        self.properties.shutdown()
-        self.forces.shutdown()
         for sub in self.subscribers:
             sub.unregister()
 
