@@ -7,6 +7,8 @@ the file is given to the helper as it is). A stall is a helper stopped with SIGS
 """
 import os
 import signal
+import threading
+import time
 import xml.etree.ElementTree as ET
 
 import pybullet as pb
@@ -47,6 +49,21 @@ def test_a_urdf_that_loads_passes_and_the_helper_stays(trial, files):
     helper = trial.process.pid
     assert trial.check(files['root_first'], FLAGS, True) is None
     assert trial.process.pid == helper  # one helper for every check
+
+
+def test_the_helper_outlives_the_thread_that_asked_first(trial, files):
+    # the world server checks in rospy's service threads, which end with their call; the helper dies with the
+    # thread that started it (PR_SET_PDEATHSIG): a helper started by the caller's thread was killed after
+    # the first spawn and the next spawn refused as a crash (found by the fleet bench's fifth robot)
+    answers = []
+    first = threading.Thread(target=lambda: answers.append(trial.check(files['root_first'], FLAGS, True)))
+    first.start()
+    first.join()
+    helper = trial.process
+    time.sleep(0.5)  # SIGTERM, had it been sent, would have arrived
+    assert helper.poll() is None
+    assert trial.check(files['root_first'], FLAGS, True) is None and answers == [None]
+    assert trial.process is helper
 
 
 def test_a_urdf_that_crashes_pybullet_is_named_and_the_next_check_has_a_new_helper(trial, files):

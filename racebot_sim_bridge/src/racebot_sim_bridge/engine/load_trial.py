@@ -12,6 +12,7 @@ from __future__ import annotations
 import signal
 import subprocess
 import sys
+from concurrent.futures import ThreadPoolExecutor
 from multiprocessing.connection import Connection
 
 from racebot_sim_bridge.engine import child_process
@@ -20,6 +21,7 @@ from racebot_sim_bridge.engine import child_process
 # mobile manipulator with its meshes) loads in under 2 s on this 2-core machine; a load that spins is
 # one of hours.
 DEFAULT_TIMEOUT = 60.0
+HELPER_EXIT_WAIT = 10.0  # s for a helper that hung up to be reaped (a crash may write a core dump first)
 
 
 class LoadTrial:
@@ -30,27 +32,33 @@ class LoadTrial:
         self.timeout = timeout
         self.process: subprocess.Popen | None = None
         self.conn: Connection | None = None
+        # The helper dies with the thread that started it (PR_SET_PDEATHSIG), and checks run in rospy's
+        # service threads, which end with their call: helpers are started by this one thread, which lives on.
+        self._starter = ThreadPoolExecutor(max_workers=1, thread_name_prefix='load_trial')
 
     def check(self, path: str, flags: int, fixed: bool) -> str | None:
         if self.process is None or self.process.poll() is not None:
             self._restart()
         try:
             self.conn.send(('load', path, flags, fixed))
-            if self.conn.poll(self.timeout):
-                self.conn.recv()
-                return None
+            if not self.conn.poll(self.timeout):  # still loading: it may never end
+                self._stop()
+                return 'PyBullet did not finish loading it in %g s' % self.timeout
+            self.conn.recv()
+            return None
         except (OSError, EOFError):
-            pass  # the helper died while loading: said below
-        if self.process.poll() is None:  # still loading: it may never end
-            self._stop()
-            return 'PyBullet did not finish loading it in %g s' % self.timeout
-        code = self.process.wait()
+            pass  # the helper's end of the connection closed: it died while loading
+        try:
+            code = self.process.wait(HELPER_EXIT_WAIT)
+        except subprocess.TimeoutExpired:
+            code = None
         self._stop()
-        return 'PyBullet crashed loading it (%s)' % _death(code)
+        return 'PyBullet crashed loading it (%s)' % ('its process hung up' if code is None else _death(code))
 
     def _restart(self) -> None:
         self._stop()
-        self.process, self.conn = child_process.start('racebot_sim_bridge.engine.load_trial')
+        start = self._starter.submit(child_process.start, 'racebot_sim_bridge.engine.load_trial')
+        self.process, self.conn = start.result()
 
     def _stop(self) -> None:
         child_process.stop(self.process, self.conn, wait=1.0)
@@ -59,6 +67,7 @@ class LoadTrial:
     def close(self) -> None:
         child_process.ask_to_stop(self.process, self.conn, wait=1.0)
         self._stop()
+        self._starter.shutdown(wait=False)
 
 
 def _death(code: int) -> str:
