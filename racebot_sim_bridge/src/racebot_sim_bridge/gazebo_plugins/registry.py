@@ -13,6 +13,7 @@ from racebot_sim_bridge.gazebo_plugins.gazebo_ros_camera import CameraSensor
 from racebot_sim_bridge.gazebo_plugins.gazebo_ros_diff_drive import DiffDrive
 from racebot_sim_bridge.gazebo_plugins.gazebo_ros_f3d import F3D
 from racebot_sim_bridge.gazebo_plugins.gazebo_ros_force import Force
+from racebot_sim_bridge.gazebo_plugins.gazebo_ros_hand_of_god import HandOfGod
 from racebot_sim_bridge.gazebo_plugins.gazebo_ros_ft_sensor import FTSensor
 from racebot_sim_bridge.gazebo_plugins.gazebo_ros_imu import Imu
 from racebot_sim_bridge.gazebo_plugins.gazebo_ros_imu_sensor import ImuSensor
@@ -73,6 +74,7 @@ REGISTRY = Registry((
     DiffDrive, SkidSteerDrive, PlanarMove, P3D, JointStatePublisher, Imu, HectorGps, HectorImu, FTSensor,
     Force, F3D, Template,
     TricycleDrive,
+    HandOfGod,
     # sensor plugins: sensors/sensor_manager.SensorManager
     LaserSensor, CameraSensor, MultiCameraSensor, DepthCameraSensor, ImuSensor, RangeSensor, BumperSensor,
     # robot hardware: GazeboRosControlPlugin.attach hooks it into the simulator
