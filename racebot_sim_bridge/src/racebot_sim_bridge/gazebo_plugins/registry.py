@@ -17,6 +17,7 @@ from racebot_sim_bridge.gazebo_plugins.gazebo_ros_hand_of_god import HandOfGod
 from racebot_sim_bridge.gazebo_plugins.gazebo_ros_ft_sensor import FTSensor
 from racebot_sim_bridge.gazebo_plugins.gazebo_ros_imu import Imu
 from racebot_sim_bridge.gazebo_plugins.gazebo_ros_imu_sensor import ImuSensor
+from racebot_sim_bridge.gazebo_plugins.gazebo_ros_joint_pose_trajectory import JointPoseTrajectory
 from racebot_sim_bridge.gazebo_plugins.gazebo_ros_joint_state_publisher import JointStatePublisher
 from racebot_sim_bridge.gazebo_plugins.gazebo_ros_laser import LaserSensor
 from racebot_sim_bridge.gazebo_plugins.gazebo_ros_multicamera import MultiCameraSensor
@@ -75,7 +76,7 @@ REGISTRY = Registry((
     DiffDrive, SkidSteerDrive, PlanarMove, P3D, JointStatePublisher, Imu, HectorGps, HectorImu, FTSensor,
     Force, F3D, Template,
     TricycleDrive,
-    HandOfGod, VacuumGripper,
+    HandOfGod, VacuumGripper, JointPoseTrajectory,
     # sensor plugins: sensors/sensor_manager.SensorManager
     LaserSensor, CameraSensor, MultiCameraSensor, DepthCameraSensor, ImuSensor, RangeSensor, BumperSensor,
     # robot hardware: GazeboRosControlPlugin.attach hooks it into the simulator
