@@ -22,6 +22,7 @@ from racebot_sim_bridge.gazebo_plugins.gazebo_ros_multicamera import MultiCamera
 from racebot_sim_bridge.gazebo_plugins.gazebo_ros_openni_kinect import DepthCameraSensor
 from racebot_sim_bridge.gazebo_plugins.gazebo_ros_p3d import P3D
 from racebot_sim_bridge.gazebo_plugins.gazebo_ros_planar_move import PlanarMove
+from racebot_sim_bridge.gazebo_plugins.gazebo_ros_prosilica import ProsilicaCameraSensor
 from racebot_sim_bridge.gazebo_plugins.gazebo_ros_range import RangeSensor
 from racebot_sim_bridge.gazebo_plugins.gazebo_ros_skid_steer_drive import SkidSteerDrive
 from racebot_sim_bridge.gazebo_plugins.gazebo_ros_template import Template
@@ -78,7 +79,7 @@ REGISTRY = Registry((
     HectorMagnetic, HectorBaro,
     # sensor plugins: sensors/sensor_manager.SensorManager
     LaserSensor, CameraSensor, MultiCameraSensor, DepthCameraSensor, ImuSensor, RangeSensor, BumperSensor,
-    TriggeredCameraSensor, TriggeredMultiCameraSensor,
+    TriggeredCameraSensor, TriggeredMultiCameraSensor, ProsilicaCameraSensor,
     # robot hardware: GazeboRosControlPlugin.attach hooks it into the simulator
     GazeboRosControlPlugin,
 ))
