@@ -2,6 +2,8 @@
 rendered in the physics thread as test_sensor_plugins_sim's cameras) with the rospy stand-in: no frame before a
 trigger whatever the sensor's rate, exactly one per trigger after it, and a multicamera's trigger of either side
 giving one stereo pair."""
+import time
+
 import numpy as np
 import pytest
 from std_msgs.msg import Empty
@@ -50,17 +52,22 @@ ROBOT = """<robot name="cam_bot">
 SIDES = ('/pair/left/image_raw', '/pair/right/image_raw')
 
 
-@pytest.fixture
-def world(tmp_path):
+def make(tmp_path, worker=False):
     path = tmp_path / 'box.world'
     path.write_text(WORLD)
     sim = Simulator(sdf_reader.load_world(str(path)), NullIO(), Log(), lambda path: None)
     fake = PluginRospy({'~sensors/report_period': 0, '~sensors/render_budget': 1.0, '~sensors/noise': False,
-                        '~sensors/render_worker': False})
-    SensorManager(fake, sim)
+                        '~sensors/render_worker': worker, '~sensors/renderer': 'tiny'})
+    manager = SensorManager(fake, sim)
     robot = sim.spawn_urdf('cam_bot', ROBOT, '/', (0.0, 0.0, 0.0))
     frame = robot.body.com_pose_for_frame((0.0, 0.0, 0.0), (0, 0, 0, 1))
     sim.world.set_pose(robot.body, frame.position, frame.orientation)
+    return sim, fake, manager
+
+
+@pytest.fixture
+def world(tmp_path):
+    sim, fake, _ = make(tmp_path)
     yield sim, fake
     sim.close()
 
@@ -131,3 +138,27 @@ def test_a_trigger_of_either_side_gives_one_stereo_pair(world):
     run(sim, 0.3)
     assert [len(images(fake, t)) for t in SIDES] == [4, 4]
     assert images(fake, '/shot/image_raw') == []  # the other sensor's trigger is its own
+
+
+def test_with_the_render_worker_triggers_wait_for_it_and_each_gives_one_frame(tmp_path):
+    """The default path: frames rendered in the worker process, published from its reader thread. Triggers sent
+    before the worker is up are kept (the frames it cannot take yet are skipped, not the triggers)."""
+    sim, fake, manager = make(tmp_path, worker=True)
+    try:
+        listen(fake, '/shot/image_raw')
+        trigger(fake, '/shot/image_trigger', 3)
+        shots = images(fake, '/shot/image_raw')
+        deadline = time.monotonic() + 90.0  # wall time for a shared machine, not a speed assertion
+        while len(shots) < 3:
+            assert time.monotonic() < deadline, 'timed out waiting for three frames'
+            run(sim, 0.01)
+            time.sleep(0.002)
+        assert manager.worker is not None and manager.worker.ready
+        for _ in range(50):  # the worker's frames of the three triggers are all in; no fourth comes
+            run(sim, 0.01)
+            time.sleep(0.002)
+        assert len(shots) == 3 and len({m.header.stamp for m in shots}) == 3
+        assert np.frombuffer(shots[-1].data, np.uint8).std() > 5.0
+    finally:
+        manager.close()
+        sim.close()
