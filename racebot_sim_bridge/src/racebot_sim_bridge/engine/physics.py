@@ -182,6 +182,8 @@ class PhysicsWorld:
         # such a body's joint for the coming step (what the damper's prediction needs)
         self.implicit_dampers = {}
         self.joint_efforts = {}
+        # a LoadTrial (engine/load_trial.py) that loads each URDF in a helper first: the world server's world
+        self.load_trial = None
 
     # -- world --------------------------------------------------------------------------------
     def load_world(self, world: World, warn: Callable[[str], None] | None = None) -> list[str]:
@@ -390,6 +392,10 @@ class PhysicsWorld:
             path = os.path.join(tmp, 'robot.urdf')
             with open(path, 'w') as f:
                 f.write(bullet_urdf)
+            trouble = self.load_trial.check(path, flags, fixed) if self.load_trial is not None else None
+            if trouble is not None:
+                raise PhysicsError("'%s' is not loaded: %s; the world goes on without it. Report the URDF to "
+                                   'racebot with this message' % (name, trouble))
             try:
                 body_id = self.client.loadURDF(path, basePosition=position, baseOrientation=orientation,
                                                flags=flags, useFixedBase=fixed)
@@ -620,6 +626,8 @@ class PhysicsWorld:
         self.client.resetDebugVisualizerCamera(distance, yaw, pitch, pos)
 
     def close(self) -> None:
+        if self.load_trial is not None:
+            self.load_trial.close()
         self.client.close()
 
 
