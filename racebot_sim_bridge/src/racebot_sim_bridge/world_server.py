@@ -166,10 +166,30 @@ def resolve_world(name):
     return name  # load_world reports it missing, with the path
 
 
+EMPTY_WORLD = 'worlds/empty.world'
+
+
+def load_world_spec(path, fallback_to_empty=False, log=RospyLog):
+    """(path, World) of the world to run. A file that cannot be loaded (not found, unreadable, not an SDF
+    world) raises WorldError, unless `fallback_to_empty`: then, as gzserver's Server::ParseArgs does, the
+    failure is an error ("Could not open file[...]"), a warning says "Falling back on worlds/empty.world" and
+    that world is loaded (launch files naming a world that is not there, e.g. jackal_gazebo's
+    $(find gazebo_ros)/worlds/empty_world.world, run on the empty world in Gazebo)."""
+    try:
+        return path, sdf_reader.load_world(path, model_path.resource_path())
+    except sdf_reader.WorldError as err:
+        if not fallback_to_empty:
+            raise
+        log.error('Could not open file[%s]: %s' % (path, err))
+        log.warn('Falling back on %s' % EMPTY_WORLD)
+    empty = resolve_world(EMPTY_WORLD)
+    return empty, sdf_reader.load_world(empty, model_path.resource_path())
+
+
 class WorldServer:
-    def __init__(self, world_path, paused, gui):
+    def __init__(self, world_path, paused, gui, fallback_to_empty=False):
         # the resource path: a name not found is reported with the folders it was looked for in
-        spec = sdf_reader.load_world(world_path, model_path.resource_path())
+        world_path, spec = load_world_spec(world_path, fallback_to_empty)
         for w in spec.warnings:
             rospy.logwarn('%s: %s' % (os.path.basename(world_path), w))
         if gui:
@@ -365,8 +385,10 @@ def set_own_ros_time(stamp):
     rospy.rostime._set_rostime(stamp)
 
 
-def main(argv=None, debugger=False):
-    """`debugger`: started as gazebo_ros's `debug` (empty_world.launch debug:=true)."""
+def main(argv=None, debugger=False, fallback_to_empty=False):
+    """`debugger`: started as gazebo_ros's `debug` (empty_world.launch debug:=true). `fallback_to_empty`: a
+    world file that cannot be loaded is replaced by worlds/empty.world, as gzserver does (gazebo_ros's
+    gzserver sets it); racebot's own world_server keeps it fatal."""
     argv = rospy.myargv(argv if argv is not None else sys.argv)[1:]
     init_clock_source('gazebo')
     if not rospy.has_param('/use_sim_time'):  # gazebo_ros sets it when nobody has
@@ -382,7 +404,7 @@ def main(argv=None, debugger=False):
                       'either way; there are no extra gzserver messages to show')
     path = resolve_world(world)
     try:
-        server = WorldServer(path, paused, bool(rospy.get_param('~gui', False)))
+        server = WorldServer(path, paused, bool(rospy.get_param('~gui', False)), fallback_to_empty)
     except (sdf_reader.WorldError, PhysicsError) as err:
         rospy.logfatal('could not load world: %s' % err)
         sys.exit(1)

@@ -38,6 +38,7 @@ from racebot_sim_bridge.gazebo_plugins.hector_gazebo_ros_gps import HectorGps
 from racebot_sim_bridge.gazebo_plugins.hector_gazebo_ros_imu import HectorImu
 from racebot_sim_bridge.gazebo_plugins.hector_gazebo_ros_magnetic import HectorMagnetic
 from racebot_sim_bridge.gazebo_plugins.hector_gazebo_ros_baro import HectorBaro
+from racebot_sim_bridge.gazebo_plugins.ridgeback_ros_force_based_move import RidgebackForceBasedMove
 from racebot_sim_bridge.gazebo_ros_control.gazebo_ros_control_plugin import GazeboRosControlPlugin
 from racebot_sim_bridge.supported_table import WHERE as SUPPORTED_TABLE
 
@@ -82,7 +83,7 @@ REGISTRY = Registry((
     # model plugins: plugin_manager.PluginManager
     DiffDrive, SkidSteerDrive, PlanarMove, P3D, JointStatePublisher, Imu, HectorGps, HectorImu, FTSensor,
     Force, F3D, Template, TricycleDrive, HandOfGod, VacuumGripper, JointPoseTrajectory, HectorMagnetic, HectorBaro,
-    Video, Projector,
+    Video, Projector, RidgebackForceBasedMove,
     # sensor plugins: sensors/sensor_manager.SensorManager
     LaserSensor, CameraSensor, MultiCameraSensor, DepthCameraSensor, ImuSensor, RangeSensor, BumperSensor,
     TriggeredCameraSensor, TriggeredMultiCameraSensor, ProsilicaCameraSensor,

@@ -12,6 +12,7 @@ Types:
   position_controllers/JointPositionController
   {position,velocity,effort}_controllers/JointTrajectoryController
   {position,effort}_controllers/GripperActionController
+  mecanum_drive_controller/MecanumDriveController (ridgeback_control's, the Ridgeback's own)
 
 One module per ros_controllers package; each lists its classes in TYPES, and CONTROLLER_TYPES
 (type name -> class) is what the controller manager loads from. A new controller type is a class
@@ -22,7 +23,8 @@ from racebot_sim_bridge.ros_controllers import (ackermann_steering_controller as
                                                 diff_drive_controller as diff_drive, effort_controllers,
                                                 gripper_action_controller as gripper_action,
                                                 joint_state_controller as joint_state,
-                                                joint_trajectory_controller as joint_trajectory, position_controllers,
+                                                joint_trajectory_controller as joint_trajectory,
+                                                mecanum_drive_controller as mecanum_drive, position_controllers,
                                                 velocity_controllers)
 from racebot_sim_bridge.ros_control.controller_interface import (LIMIT_WARN_TOLERANCE, STATE_PUBLISH_EVERY,  # noqa: F401
                                                                  CommandController, Controller, ControllerInitError,
@@ -37,5 +39,5 @@ from racebot_sim_bridge.ros_controllers.velocity_controllers import (VelocityFor
                                                                      VelocityJointPositionController)
 
 MODULES = (joint_state, effort_controllers, velocity_controllers, position_controllers, diff_drive,
-           ackermann_steering, joint_trajectory, gripper_action)
+           ackermann_steering, joint_trajectory, gripper_action, mecanum_drive)
 CONTROLLER_TYPES = {c.type_name: c for m in MODULES for c in getattr(m, 'TYPES', ())}

@@ -5,7 +5,8 @@
 gazebo_ros's gzserver script sources Gazebo's setup.sh, which puts Gazebo's own resource folder
 (/usr/share/gazebo-11, holding worlds/empty.world) first on GAZEBO_RESOURCE_PATH, and then runs
 gzserver with its ROS plugins. Here this package is that folder (it holds worlds/empty.world) and the
-world server is racebot_sim_bridge's; the world name is looked up in the resource path as Gazebo does.
+world server is racebot_sim_bridge's; the world name is looked up in the resource path as Gazebo does,
+and a world file that cannot be loaded falls back on worlds/empty.world, as gzserver's Server::ParseArgs.
 """
 import os
 
@@ -34,4 +35,4 @@ def main(debugger=False):
     if folder:
         os.environ[RESOURCE_PATH_VARIABLE] = resource_path(folder, os.environ.get(RESOURCE_PATH_VARIABLE))
     from racebot_sim_bridge.world_server import main as world_server_main
-    world_server_main(debugger=debugger)
+    world_server_main(debugger=debugger, fallback_to_empty=True)
