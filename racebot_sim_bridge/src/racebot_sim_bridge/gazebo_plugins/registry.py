@@ -8,6 +8,7 @@ path or a bare name finds the same class. A plugin that another kind of block as
 <sensor>) is not found there, and warned about as Gazebo would fail to load it.
 """
 from racebot_sim_bridge.gazebo_plugins import PluginKind, library_key
+from racebot_sim_bridge.gazebo_plugins.gazebo_ros_block_laser import BlockLaserSensor
 from racebot_sim_bridge.gazebo_plugins.gazebo_ros_bumper import BumperSensor
 from racebot_sim_bridge.gazebo_plugins.gazebo_ros_camera import CameraSensor
 from racebot_sim_bridge.gazebo_plugins.gazebo_ros_diff_drive import DiffDrive
@@ -73,6 +74,7 @@ REGISTRY = Registry((
     Force, F3D, Template,
     # sensor plugins: sensors/sensor_manager.SensorManager
     LaserSensor, CameraSensor, MultiCameraSensor, DepthCameraSensor, ImuSensor, RangeSensor, BumperSensor,
+    BlockLaserSensor,
     # robot hardware: GazeboRosControlPlugin.attach hooks it into the simulator
     GazeboRosControlPlugin,
 ))
