@@ -26,6 +26,8 @@ from racebot_sim_bridge.gazebo_plugins.gazebo_ros_planar_move import PlanarMove
 from racebot_sim_bridge.gazebo_plugins.gazebo_ros_range import RangeSensor
 from racebot_sim_bridge.gazebo_plugins.gazebo_ros_skid_steer_drive import SkidSteerDrive
 from racebot_sim_bridge.gazebo_plugins.gazebo_ros_template import Template
+from racebot_sim_bridge.gazebo_plugins.gazebo_ros_velodyne_gpu_laser import VelodyneGpuLaser
+from racebot_sim_bridge.gazebo_plugins.gazebo_ros_velodyne_laser import VelodyneLaser
 from racebot_sim_bridge.gazebo_plugins.hector_gazebo_ros_gps import HectorGps
 from racebot_sim_bridge.gazebo_plugins.hector_gazebo_ros_imu import HectorImu
 from racebot_sim_bridge.gazebo_ros_control.gazebo_ros_control_plugin import GazeboRosControlPlugin
@@ -74,7 +76,7 @@ REGISTRY = Registry((
     Force, F3D, Template,
     # sensor plugins: sensors/sensor_manager.SensorManager
     LaserSensor, CameraSensor, MultiCameraSensor, DepthCameraSensor, ImuSensor, RangeSensor, BumperSensor,
-    BlockLaserSensor,
+    BlockLaserSensor, VelodyneLaser, VelodyneGpuLaser,
     # robot hardware: GazeboRosControlPlugin.attach hooks it into the simulator
     GazeboRosControlPlugin,
 ))
