@@ -30,6 +30,7 @@ from racebot_sim_bridge.gazebo_plugins.gazebo_ros_velodyne_gpu_laser import Velo
 from racebot_sim_bridge.gazebo_plugins.gazebo_ros_velodyne_laser import VelodyneLaser
 from racebot_sim_bridge.gazebo_plugins.hector_gazebo_ros_gps import HectorGps
 from racebot_sim_bridge.gazebo_plugins.hector_gazebo_ros_imu import HectorImu
+from racebot_sim_bridge.gazebo_plugins.hector_gazebo_ros_sonar import HectorSonar
 from racebot_sim_bridge.gazebo_ros_control.gazebo_ros_control_plugin import GazeboRosControlPlugin
 from racebot_sim_bridge.supported_table import WHERE as SUPPORTED_TABLE
 
@@ -76,7 +77,7 @@ REGISTRY = Registry((
     Force, F3D, Template,
     # sensor plugins: sensors/sensor_manager.SensorManager
     LaserSensor, CameraSensor, MultiCameraSensor, DepthCameraSensor, ImuSensor, RangeSensor, BumperSensor,
-    BlockLaserSensor, VelodyneLaser, VelodyneGpuLaser,
+    BlockLaserSensor, VelodyneLaser, VelodyneGpuLaser, HectorSonar,
     # robot hardware: GazeboRosControlPlugin.attach hooks it into the simulator
     GazeboRosControlPlugin,
 ))
