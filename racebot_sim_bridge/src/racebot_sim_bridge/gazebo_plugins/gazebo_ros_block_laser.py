@@ -34,6 +34,13 @@ from racebot_sim_bridge.sensors.raycast import cast_rays
 EPSILON_DIFF = 0.000001  # upstream's: no noise on a point this close to range max
 
 
+def point32(x, y, z, new=Point32.__new__):
+    """A Point32 without genpy's keyword-handling __init__ (ten times faster: a cloud has thousands)."""
+    p = new(Point32)
+    p.x, p.y, p.z = x, y, z
+    return p
+
+
 def corners(points, rays):
     """For `points` interpolated from `rays` rays (PutLaserData's hb / vb): (lower ray, upper ray, fraction)."""
     b = np.zeros(points) if points == 1 else np.arange(points) * (rays - 1) / (points - 1)
@@ -135,7 +142,7 @@ class BlockLaserSensor(Sensor, libraries=('libgazebo_ros_block_laser.so',), sens
         points, _, intensity = self.measure()
         points = points.astype(np.float32).tolist()
         msg = PointCloud(header=header(stamp, self.config.frame_id),
-                         points=[Point32(x, y, z) for x, y, z in points],
+                         points=[point32(x, y, z) for x, y, z in points],
                          channels=[ChannelFloat32(name='', values=intensity.astype(np.float32).tolist())])
         self.publishers['cloud'].publish(msg)
         self.meter.tick()
