@@ -54,7 +54,7 @@ def test_lookups_by_filename_and_kind():
     assert REGISTRY.find('libgazebo_ros_laser.so', PluginKind.MODEL) is None  # a sensor plugin, not a model's
     assert REGISTRY.find('libgazebo_ros_openni_kinect.so') is REGISTRY.find('libgazebo_ros_depth_camera.so')
     assert REGISTRY.find('libgazebo_ros_control.so').plugin_kind is PluginKind.ROBOT_HARDWARE
-    assert REGISTRY.find('libgazebo_ros_block_laser.so') is None
+    assert REGISTRY.find('liblab_lidar_plugin.so') is None
     with pytest.raises(ValueError, match='both answer libgazebo_ros_laser.so'):
         Registry([LaserSensor, type('Other', (LaserSensor,), {})])
 
@@ -114,7 +114,7 @@ def test_a_library_not_simulated_is_warned_about_once_wherever_it_sits(tmp_path)
         for library, where in (('libacme_vacuum_gripper.so', "plugin 'gripper'"),
                                ('libgazebo_ros_laser.so', "plugin 'laser_here'"),  # a sensor plugin, in no sensor
                                ('libgazebo_ros_p3d.so', "sensor 'sonar' (type ray): plugin 'odometry'"),
-                               ('libgazebo_ros_block_laser.so', "sensor 'block_laser' (type ray)")):
+                               ('liblab_lidar_plugin.so', "sensor 'lab_lidar' (type ray)")):
             said = [w for w in warnings if library in w]
             assert len(said) == 1, (library, warnings)
             assert where in said[0] and 'is not simulated by racebot' in said[0]

@@ -344,7 +344,7 @@ def test_urdf_reads_every_camera_and_the_contact_collisions(model):
 
 def test_a_plugin_racebot_does_not_simulate_is_named(model):
     specs = {s.name: s for s in model.sensors}
-    assert sensor_config(specs['block_laser'], '/', 'sensor_robot') is None
-    warning, = (REGISTRY.not_simulated('sensor_robot', p, specs['block_laser']) for p in specs['block_laser'].plugins)
-    assert "sensor 'block_laser' (type ray): plugin 'block_laser_controller' (libgazebo_ros_block_laser.so)" in warning
+    assert sensor_config(specs['lab_lidar'], '/', 'sensor_robot') is None
+    warning, = (REGISTRY.not_simulated('sensor_robot', p, specs['lab_lidar']) for p in specs['lab_lidar'].plugins)
+    assert "sensor 'lab_lidar' (type ray): plugin 'lab_lidar_controller' (liblab_lidar_plugin.so)" in warning
     assert [REGISTRY.not_simulated('sensor_robot', p, specs['sonar']) for p in specs['sonar'].plugins] == [None]

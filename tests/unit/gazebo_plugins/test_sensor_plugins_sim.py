@@ -66,9 +66,9 @@ def test_topics_and_one_warning_for_the_plugin_not_simulated(world):
         '/sonar', '/bumper', '/stereo/left/image_raw', '/stereo/left/camera_info', '/stereo/right/image_raw',
         '/stereo/right/camera_info', '/kinect/rgb/image_raw', '/kinect/rgb/camera_info', '/kinect/depth/image_raw',
         '/kinect/depth/camera_info', '/kinect/depth/points'])
-    warned = [msg for level, msg in fake.logs if level == 'warn' and 'libgazebo_ros_block_laser.so' in msg]
+    warned = [msg for level, msg in fake.logs if level == 'warn' and 'liblab_lidar_plugin.so' in msg]
     assert len(warned) == 1
-    assert "'block_laser'" in warned[0]
+    assert "'lab_lidar'" in warned[0]
     # the docs page by its path in this checkout: a user can open it from the log line
     page = Path(__file__).resolve().parents[3] / 'docs' / 'SUPPORTED.md'
     assert "see the table 'Supported plugins, sensors and controllers' in %s" % page in warned[0]
@@ -76,11 +76,11 @@ def test_topics_and_one_warning_for_the_plugin_not_simulated(world):
 
 
 def test_a_plugin_not_simulated_beside_one_that_is(tmp_path):
-    extra = '<plugin name="extra" filename="libhector_gazebo_ros_sonar.so"/></sensor>'
+    extra = '<plugin name="extra" filename="liblab_sonar_plugin.so"/></sensor>'
     urdf = ROBOT.read_text().replace('</plugin>\n    </sensor>', '</plugin>\n    ' + extra, 1)
     sim, fake, manager, robot = make_world(tmp_path, urdf)
     try:
-        warned = [msg for level, msg in fake.logs if level == 'warn' and 'libhector_gazebo_ros_sonar.so' in msg]
+        warned = [msg for level, msg in fake.logs if level == 'warn' and 'liblab_sonar_plugin.so' in msg]
         assert len(warned) == 1 and "sensor 'sonar'" in warned[0]
         assert '/sonar' in fake.publishers  # gazebo_ros_range beside it still runs
     finally:

@@ -197,6 +197,7 @@ class RaySpec:
     min_angle: float = 0.0
     max_angle: float = 0.0
     vertical_samples: int = 1
+    vertical_resolution: float = 1.0
     vertical_min_angle: float = 0.0
     vertical_max_angle: float = 0.0
     range_min: float = 0.0

@@ -502,6 +502,7 @@ class _UrdfReader:
             ('resolution', 'scan/horizontal/resolution'),
             ('min_angle', 'scan/horizontal/min_angle'),
             ('max_angle', 'scan/horizontal/max_angle'),
+            ('vertical_resolution', 'scan/vertical/resolution'),
             ('vertical_min_angle', 'scan/vertical/min_angle'),
             ('vertical_max_angle', 'scan/vertical/max_angle'),
             ('range_min', 'range/min'),

@@ -6,7 +6,8 @@ filename="libgazebo_ros_diff_drive.so"; gazebo_ros_laser.py also answers libgaze
   model plugins          gazebo_ros_diff_drive, _skid_steer_drive, _planar_move, _p3d, _joint_state_publisher, _imu,
                          hector_gazebo_ros_gps, hector_gazebo_ros_imu (gazebo_plugins noetic-devel,
                          hector_gazebo_plugins); their base model_plugin.py, built and run by plugin_manager.py
-  sensor plugins         gazebo_ros_laser, _camera, _multicamera, _openni_kinect, _imu_sensor, _range, _bumper; their
+  sensor plugins         gazebo_ros_laser, _camera, _multicamera, _openni_kinect, _imu_sensor, _range, _bumper,
+                         _block_laser, _velodyne_laser, _velodyne_gpu_laser, hector_gazebo_ros_sonar; their
                          base sensor_plugin.py, built and run by ../sensors/sensor_manager.py with the pipeline
                          stages in ../sensors/
   robot hardware         gazebo_ros_control: ../gazebo_ros_control/, hooked into the simulator at spawn

@@ -8,6 +8,7 @@ path or a bare name finds the same class. A plugin that another kind of block as
 <sensor>) is not found there, and warned about as Gazebo would fail to load it.
 """
 from racebot_sim_bridge.gazebo_plugins import PluginKind, library_key
+from racebot_sim_bridge.gazebo_plugins.gazebo_ros_block_laser import BlockLaserSensor
 from racebot_sim_bridge.gazebo_plugins.gazebo_ros_bumper import BumperSensor
 from racebot_sim_bridge.gazebo_plugins.gazebo_ros_camera import CameraSensor
 from racebot_sim_bridge.gazebo_plugins.gazebo_ros_diff_drive import DiffDrive
@@ -39,6 +40,9 @@ from racebot_sim_bridge.gazebo_plugins.hector_gazebo_ros_imu import HectorImu
 from racebot_sim_bridge.gazebo_plugins.hector_gazebo_ros_magnetic import HectorMagnetic
 from racebot_sim_bridge.gazebo_plugins.hector_gazebo_ros_baro import HectorBaro
 from racebot_sim_bridge.gazebo_plugins.ridgeback_ros_force_based_move import RidgebackForceBasedMove
+from racebot_sim_bridge.gazebo_plugins.gazebo_ros_velodyne_gpu_laser import VelodyneGpuLaser
+from racebot_sim_bridge.gazebo_plugins.gazebo_ros_velodyne_laser import VelodyneLaser
+from racebot_sim_bridge.gazebo_plugins.hector_gazebo_ros_sonar import HectorSonar
 from racebot_sim_bridge.gazebo_ros_control.gazebo_ros_control_plugin import GazeboRosControlPlugin
 from racebot_sim_bridge.supported_table import WHERE as SUPPORTED_TABLE
 
@@ -87,6 +91,7 @@ REGISTRY = Registry((
     # sensor plugins: sensors/sensor_manager.SensorManager
     LaserSensor, CameraSensor, MultiCameraSensor, DepthCameraSensor, ImuSensor, RangeSensor, BumperSensor,
     TriggeredCameraSensor, TriggeredMultiCameraSensor, ProsilicaCameraSensor,
+    BlockLaserSensor, VelodyneLaser, VelodyneGpuLaser, HectorSonar,
     # robot hardware: GazeboRosControlPlugin.attach hooks it into the simulator
     GazeboRosControlPlugin,
 ))

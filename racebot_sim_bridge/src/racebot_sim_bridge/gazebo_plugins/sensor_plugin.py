@@ -25,6 +25,9 @@ class SensorKind(str, Enum):
     IMU = 'imu'
     RANGE = 'range'
     BUMPER = 'bumper'
+    BLOCK_LASER = 'block_laser'
+    VELODYNE = 'velodyne'
+    SONAR = 'sonar'
 
     def __str__(self):
         return self.value

@@ -4,10 +4,12 @@ module named after its library (gazebo_ros_laser.py, ...), on the base gazebo_pl
 
 The stages, module by module:
   config.py          which sensors, topics, frames and rates a URDF's <sensor> blocks declare, and which
-                     registered plugin class runs each (../gazebo_plugins/registry.py)
+                     registered plugin class runs each (../gazebo_plugins/registry.py); config_types.py:
+                     SensorConfig and the helpers a plugin's own `configure` uses
   schedule.py        when: update times in sim time, achieved rates, the in-thread render budget
   mount.py           where: a sensor's pose on its robot
-  raycast.py         laser, range: the ray casts; ray.py: beam geometry and ranges as Gazebo reports them
+  raycast.py         laser, range: the ray casts; ray.py: beam geometry and ranges as Gazebo reports them;
+                     ray_shape.py: the raw rays (Gazebo's MultiRayShape) block_laser and hector's sonar read
   render.py          cameras: renderer choice (EGL / TinyRenderer) and one camera's frame;
                      camera.py: pinhole maths; scene.py: colours and analytic ground planes;
                      egl_shadow_map.py: the EGL plugin's per-frame shadow pass, switched off

@@ -14,7 +14,8 @@ applying each plugin's own defaults and naming rules:
 | gazebo_ros_bumper                              | bumper | bumperTopicName                               |
 | gazebo_ros_multicamera                         | multicamera | cameraName/{left,right}/{image..., cameraInfo...} |
 
-(the kind is the class's `kind`; the sensor types it may sit in, its `sensor_types`)
+(the kind is the class's `kind`; the sensor types it may sit in, its `sensor_types`). A class with a `configure`
+classmethod reads its own parameters in its module (gazebo_ros_block_laser.py, ...) with config_types.py's helpers.
 
 Relative topic names resolve in the plugin's namespace as Gazebo sets it: its own <robotNamespace>,
 else the spawn request's robot_namespace, else each plugin's default (../gazebo_plugins/plugin_namespace.py has
@@ -28,50 +29,17 @@ sensor's <update_rate> (0: every world update, as in Gazebo), throttled by gazeb
 updateRateHZ; gazebo_ros_camera's updateRate does not change the rate frames come at but skips whole
 frames (params['update_rate'], schedule.FrameThrottle), as upstream's OnNewFrame does.
 """
-from dataclasses import dataclass, field, replace
+from dataclasses import replace
 
 from racebot_sim_bridge.gazebo_plugins import PluginKind, library_key
 from racebot_sim_bridge.gazebo_plugins.plugin_namespace import sensor_namespace
 from racebot_sim_bridge.gazebo_plugins.registry import REGISTRY
 from racebot_sim_bridge.kinematics.rotations import as_xyz_rpy, compose
+from racebot_sim_bridge.sensors.config_types import (SensorConfig, SensorConfigError, join_topic, number as _number,
+                                                      resolve_frame, set_frame as _frame, tf_resolve)
 from racebot_sim_bridge.supported_table import WHERE as SUPPORTED_TABLE
 
-class SensorConfigError(ValueError):
-    """A sensor block that cannot be simulated as written; the message says why."""
-
-
-@dataclass
-class SensorConfig:
-    name: str
-    kind: str                       # the sensor class's kind: laser, camera, depth, imu, range, ...
-    reference: str                  # the link Gazebo mounts it on (SensorSpec.reference: after lumping)
-    frame_id: str
-    rate: float                     # Hz of sim time; 0 = every world update
-    topics: dict = field(default_factory=dict)   # role -> absolute topic name
-    params: dict = field(default_factory=dict)   # kind-specific numbers (cutoffs, baseline, noise)
-    warnings: list = field(default_factory=list)
-    sensor_class: type = None       # the registered sensor plugin class that runs it
-
-
-def join_topic(namespace, *parts):
-    """Resolves a topic as a ros::NodeHandle in `namespace` would: an absolute last part stays."""
-    names = [p for p in parts if p]
-    if names and names[-1].startswith('/'):
-        return '/' + names[-1].strip('/')
-    pieces = [namespace] + names
-    return '/' + '/'.join(p.strip('/') for p in pieces if p and p.strip('/'))
-
-
-def _number(params, key, default, warnings, what):
-    text = params.get(key)
-    if text is None or text == '':
-        return default
-    try:
-        return float(text)
-    except ValueError:
-        warnings.append('%s: <%s> %r is not a number; using %g' % (what, key, text, default))
-        return default
-
+__all__ = ['SensorConfig', 'SensorConfigError', 'join_topic', 'resolve_frame', 'sensor_config', 'tf_resolve']
 
 def sensor_config(spec, spawn_namespace='', model_name='', node_namespace='/'):
     """The SensorConfig of a urdf_model.SensorSpec, or None when none of its plugins publishes to
@@ -92,6 +60,8 @@ def sensor_config(spec, spawn_namespace='', model_name='', node_namespace='/'):
     if spec.type not in cls.sensor_types:
         raise SensorConfigError('%s: %s is a %s plugin but the sensor is of type %r (expected %s)'
                                 % (what, plugin.filename, kind, spec.type, ' or '.join(cls.sensor_types)))
+    if getattr(cls, 'configure', None) is not None:  # a plugin that reads its own parameters (its module says how)
+        return cls.configure(spec, plugin, what, spawn_namespace, model_name, node_namespace)
     if kind in ('camera', 'depth') and spec.camera is None:
         raise SensorConfigError('%s: the sensor has no <camera> block' % what)
     if kind in ('laser', 'range') and spec.ray is None:
@@ -195,30 +165,6 @@ def _throttled(sensor_rate, plugin_rate):
     """The rate a plugin publishes at: the sensor's, or the plugin's own if that is lower."""
     rates = [r for r in (sensor_rate, plugin_rate) if r and r > 0]
     return min(rates) if rates else 0.0
-
-
-def tf_resolve(prefix, frame):
-    """tf::resolve (noetic): a frame with a leading slash loses it and ignores the prefix; else
-    prefix/frame (the prefix without a leading slash), or the frame alone without a prefix."""
-    if frame.startswith('/'):
-        return frame.lstrip('/')
-    prefix = prefix.lstrip('/')
-    return '%s/%s' % (prefix, frame) if prefix else frame
-
-
-def _frame(config, params, default, namespace):
-    """Sets a range or bumper config's frame as its Load() does: frameName (or `default`) resolved
-    with the tf_prefix parameter of the plugin's namespace; the manager reads that parameter
-    (config.params['tf_prefix_param']) and calls resolve_frame. Without it: tf_resolve('', frame)."""
-    text = params.get('frameName')
-    config.params['frame_name'] = (default if text is None else text).strip()
-    config.params['tf_prefix_param'] = namespace.rstrip('/') + '/tf_prefix'
-    config.frame_id = tf_resolve('', config.params['frame_name'])
-
-
-def resolve_frame(config, tf_prefix):
-    """Gives a config whose plugin reads tf_prefix (config.params['tf_prefix_param']) its frame."""
-    config.frame_id = tf_resolve(str(tf_prefix or ''), config.params['frame_name'])
 
 
 def _range_or_bumper_config(cls, spec, plugin, what, spawn_namespace, model_name, node_namespace):

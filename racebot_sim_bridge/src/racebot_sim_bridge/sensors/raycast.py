@@ -1,7 +1,9 @@
 """The laser's measurement: one PyBullet rayTestBatch for all beams, on the physics client."""
 import numpy as np
 
-MAX_RAYS_PER_BATCH = 16384  # PyBullet's limit for one rayTestBatch call
+# PyBullet's limit for one rayTestBatch call: fewer than 16 * 1024 (pybullet 3.2.7 answers 16384 numpy rays with no
+# results at all, and 16384 in a list with 16383)
+MAX_RAYS_PER_BATCH = 16383
 
 
 def cast_rays(world, starts, ends, objects=False):

@@ -34,6 +34,7 @@ import math
 import threading
 import time as walltime
 
+from racebot_sim_bridge.gazebo_plugins.plugin_manager import dynamic_reconfigure_server
 from racebot_sim_bridge.gazebo_plugins.registry import REGISTRY
 from racebot_sim_bridge.sensors.config import SensorConfigError, resolve_frame, sensor_config
 from racebot_sim_bridge.sensors.render import RENDERER_CHOICES, RENDERER_NAMES, TINY
@@ -52,10 +53,13 @@ class RospyLog:
 
 
 class SensorManager:
-    def __init__(self, rospy, sim, clock=walltime.perf_counter):
+    def __init__(self, rospy, sim, clock=walltime.perf_counter, reconfigure=dynamic_reconfigure_server):
+        """reconfigure(namespace, config_type, callback): a plugin's dynamic_reconfigure server (tests without a
+        master give a stand-in)."""
         self.rospy = rospy
         self.sim = sim
         self.clock = clock
+        self.reconfigure = reconfigure
         self.noise_enabled = bool(rospy.get_param('~sensors/noise', True))
         self.budget = RenderBudget(self._number('~sensors/render_budget', DEFAULT_RENDER_BUDGET), clock)
         self.report_period = self._number('~sensors/report_period', DEFAULT_REPORT_PERIOD)
