@@ -7,7 +7,7 @@ import pytest
 
 from racebot_sim_bridge.description import sdf_reader, urdf_reader
 from racebot_sim_bridge.description.urdf_model import UrdfError
-from racebot_sim_bridge.engine.simulator import Simulator
+from racebot_sim_bridge.engine.simulator import Simulator, SpawnError
 from racebot_sim_bridge.gazebo_ros_control.gazebo_ros_control_plugin import GazeboRosControlPlugin
 
 INERTIAL = ('<inertial><origin xyz="0.05 0 0"/><mass value="0.3"/><inertia ixx="0.001" iyy="0.001" izz="0.001" '
@@ -130,6 +130,13 @@ def test_a_mimic_loop_is_refused_with_the_loop_named():
         with pytest.raises(UrdfError, match='form a loop') as err:
             urdf_reader.parse_urdf(gripper(mimics))
         assert "'a' mimics" in str(err.value)
+
+
+def test_a_mimic_loop_is_a_spawn_refusal(sim):
+    with pytest.raises(SpawnError, match="the URDF of gripper is not valid: the <mimic> joints form a loop "
+                                         "\\('a' mimics 'b' mimics 'a'\\)"):
+        sim.spawn_urdf('gripper', gripper([('a', 'revolute', 'joint="b"'), ('b', 'revolute', 'joint="a"')]))
+    assert 'gripper' not in sim.world.bodies
 
 
 def test_mimics_that_cannot_be_driven_are_warned_and_left_free():

@@ -27,6 +27,7 @@ from racebot_sim_bridge.gazebo_plugins.gazebo_ros_skid_steer_drive import SkidSt
 from racebot_sim_bridge.gazebo_plugins.gazebo_ros_template import Template
 from racebot_sim_bridge.gazebo_plugins.hector_gazebo_ros_gps import HectorGps
 from racebot_sim_bridge.gazebo_plugins.hector_gazebo_ros_imu import HectorImu
+from racebot_sim_bridge.gazebo_plugins.roboticsgroup_upatras_gazebo_mimic_joint_plugin import MimicJointPlugin
 from racebot_sim_bridge.gazebo_ros_control.gazebo_ros_control_plugin import GazeboRosControlPlugin
 from racebot_sim_bridge.supported_table import WHERE as SUPPORTED_TABLE
 
@@ -71,6 +72,7 @@ REGISTRY = Registry((
     # model plugins: plugin_manager.PluginManager
     DiffDrive, SkidSteerDrive, PlanarMove, P3D, JointStatePublisher, Imu, HectorGps, HectorImu, FTSensor,
     Force, F3D, Template,
+    MimicJointPlugin,
     # sensor plugins: sensors/sensor_manager.SensorManager
     LaserSensor, CameraSensor, MultiCameraSensor, DepthCameraSensor, ImuSensor, RangeSensor, BumperSensor,
     # robot hardware: GazeboRosControlPlugin.attach hooks it into the simulator
