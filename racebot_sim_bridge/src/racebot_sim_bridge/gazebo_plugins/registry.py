@@ -11,6 +11,7 @@ from racebot_sim_bridge.gazebo_plugins import PluginKind, library_key
 from racebot_sim_bridge.gazebo_plugins.gazebo_ros_bumper import BumperSensor
 from racebot_sim_bridge.gazebo_plugins.gazebo_ros_camera import CameraSensor
 from racebot_sim_bridge.gazebo_plugins.gazebo_ros_diff_drive import DiffDrive
+from racebot_sim_bridge.gazebo_plugins.gazebo_ros_elevator import Elevator
 from racebot_sim_bridge.gazebo_plugins.gazebo_ros_f3d import F3D
 from racebot_sim_bridge.gazebo_plugins.gazebo_ros_force import Force
 from racebot_sim_bridge.gazebo_plugins.gazebo_ros_ft_sensor import FTSensor
@@ -72,7 +73,7 @@ REGISTRY = Registry((
     # model plugins: plugin_manager.PluginManager
     DiffDrive, SkidSteerDrive, PlanarMove, P3D, JointStatePublisher, Imu, HectorGps, HectorImu, FTSensor,
     Force, F3D, Template,
-    MimicJointPlugin,
+    MimicJointPlugin, Elevator,
     # sensor plugins: sensors/sensor_manager.SensorManager
     LaserSensor, CameraSensor, MultiCameraSensor, DepthCameraSensor, ImuSensor, RangeSensor, BumperSensor,
     # robot hardware: GazeboRosControlPlugin.attach hooks it into the simulator
