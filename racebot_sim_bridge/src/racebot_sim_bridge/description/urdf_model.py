@@ -162,13 +162,15 @@ class Rewrite:
 @dataclass
 class GazeboPlugin:
     """A <plugin>: ``params`` maps each child tag to its text (the first one wins).
-    ``reference`` is the link of the enclosing <gazebo reference> (the link it was lumped into, if it was), or
+    ``element`` is the <plugin> element itself, for plugins that read nested elements. ``reference`` is the link
+    of the enclosing <gazebo reference> (the link it was lumped into, if it was), or
     None. ``rewrites``: what sdformat's fixed-joint reduction changed (sdf_reduction)."""
     name: str
     filename: str
     params: dict = field(default_factory=dict)
     reference: str = None
     rewrites: list = field(default_factory=list)
+    element: ET.Element = field(default=None, repr=False, compare=False)  # as written: nested blocks (a harness's)
 
     @property
     def robot_namespace(self) -> str | None:

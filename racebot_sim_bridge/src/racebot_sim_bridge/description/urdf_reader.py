@@ -404,7 +404,7 @@ class _UrdfReader:
         params = {}
         for child in elem:
             params.setdefault(child.tag, (child.text or '').strip())
-        return GazeboPlugin(name, filename, params, reference)
+        return GazeboPlugin(name, filename, params, reference, element=elem)
 
     def gazebo(self, elem):
         reference = elem.get('reference')

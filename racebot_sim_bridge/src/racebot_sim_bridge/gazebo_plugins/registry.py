@@ -13,6 +13,7 @@ from racebot_sim_bridge.gazebo_plugins.gazebo_ros_camera import CameraSensor
 from racebot_sim_bridge.gazebo_plugins.gazebo_ros_diff_drive import DiffDrive
 from racebot_sim_bridge.gazebo_plugins.gazebo_ros_elevator import Elevator
 from racebot_sim_bridge.gazebo_plugins.gazebo_ros_f3d import F3D
+from racebot_sim_bridge.gazebo_plugins.gazebo_ros_harness import Harness
 from racebot_sim_bridge.gazebo_plugins.gazebo_ros_force import Force
 from racebot_sim_bridge.gazebo_plugins.gazebo_ros_ft_sensor import FTSensor
 from racebot_sim_bridge.gazebo_plugins.gazebo_ros_imu import Imu
@@ -73,7 +74,7 @@ REGISTRY = Registry((
     # model plugins: plugin_manager.PluginManager
     DiffDrive, SkidSteerDrive, PlanarMove, P3D, JointStatePublisher, Imu, HectorGps, HectorImu, FTSensor,
     Force, F3D, Template,
-    MimicJointPlugin, Elevator,
+    MimicJointPlugin, Elevator, Harness,
     # sensor plugins: sensors/sensor_manager.SensorManager
     LaserSensor, CameraSensor, MultiCameraSensor, DepthCameraSensor, ImuSensor, RangeSensor, BumperSensor,
     # robot hardware: GazeboRosControlPlugin.attach hooks it into the simulator
