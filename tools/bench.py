@@ -45,7 +45,7 @@ FULL = {
     'modes': ['parallel', 'ackermann'],
     'determinism_s': 20.0,
     'profile_steps': 5000,
-    'fleet': dict(counts=[1, 2, 4, 8], rounds=3, window_s=4.0, warmup_s=1.5),
+    'fleet': dict(counts=[1, 2, 4, 8], rounds=3, window_s=4.0, warmup_s=1.5, profile_s=8.0),
 }
 QUICK = {
     'speed': dict(rounds=3, window_s=0.7, warmup_s=0.5, profile_s=0, memory_sim_s=10.0, memory_timeout_s=120),
@@ -233,6 +233,16 @@ def print_profiles(results):
         lines += ['  %5.1f %%  %s' % (pct, name) for name, pct in prof['inclusive_pct'][:10]]
     elif prof:
         lines.append('world server profile: %s' % prof.get('why'))
+    for n, entry in sorted((results.get('fleet') or {}).items()):
+        prof = entry.get('profile') or {}
+        if prof.get('available'):
+            lines.append('world server main thread with %s robots (py-spy, %d samples), self time:'
+                         % (n, prof['samples']))
+            lines += ['  %5.1f %%  %s' % (pct, name) for name, pct in prof['self_pct'][:10]]
+            lines.append('  inclusive:')
+            lines += ['  %5.1f %%  %s' % (pct, name) for name, pct in prof['inclusive_pct'][:15]]
+        elif prof:
+            lines.append('fleet world server profile: %s' % prof.get('why'))
     ip = results.get('inprocess') or {}
     if ip.get('profile_self_pct'):
         lines.append('Simulator.step in-process, no ROS (cProfile), self time:')
@@ -333,7 +343,8 @@ def main():
     missed = [r for r in rows if r[4] == 'NO']
     for line in report.notes(results):
         print('- ' + line)
-    if any('ceiling' in r[0] or 'CPU' in r[0] or 'real-time factor' in r[0] for r in missed) or args.quick:
+    if any('ceiling' in r[0] or 'CPU' in r[0] or 'real-time factor' in r[0] for r in missed) or args.quick or \
+            any((e or {}).get('profile') for e in (results.get('fleet') or {}).values()):
         lines = print_profiles(results)
         if lines:
             print('\n'.join(lines))

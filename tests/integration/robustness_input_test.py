@@ -279,7 +279,9 @@ class RobustnessInputTest(unittest.TestCase):
         self.assertIn('Invalid XML: ', text)  # spawn_model parses the XML before sending it, as upstream
         res = self.spawn_urdf('ghost', 'not xml at all', '', Pose(), '')
         self.assertFalse(res.success)
-        self.assertEqual(res.status_message, 'SpawnModel: Failure - entity format is invalid.')  # gazebo_ros's
+        # gazebo_ros's words, then why
+        self.assertEqual(res.status_message, 'SpawnModel: Failure - entity format is invalid. The model_xml is not '
+                                             'XML (syntax error: line 1, column 0)')
         self.assertNotIn('ghost', self.sim.world_properties().model_names)
         self.assert_survived()
 

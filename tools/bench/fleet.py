@@ -16,7 +16,7 @@ import time
 
 import numpy as np
 
-from . import common, stats
+from . import common, profiling, stats
 
 FIXTURES = os.path.join(common.REPO, 'tests', 'fixtures', 'robots')
 URDF_XACRO = os.path.join(FIXTURES, 'diffbot_plugins', 'urdf', 'diffbot_plugins.urdf.xacro')
@@ -162,6 +162,9 @@ def fleet(p, out):
                     entry['ratio'] = entry['rtf'] / entry['ceiling_rtf']
                     rounds.append(entry)
                 ceiling.close()
+                profile = None
+                if p.get('profile_s') and n == max(p['counts']):  # where the largest fleet's update goes
+                    profile = profiling.profile_world_server(pid, p['profile_s'], out, 'fleet%d_world_server' % n)
                 if not all(counts.values()):
                     raise common.BenchError('%d robots: topics that got nothing: %s'
                                             % (n, sorted(t for t, c in counts.items() if not c)))
@@ -169,6 +172,8 @@ def fleet(p, out):
                 results[str(n)] = {'robots': n, 'rounds': rounds, 'spread': spread,
                                    'ratio': spread['ratio']['median'], 'bridge_rtf': spread['rtf']['median'],
                                    'ceiling_rtf': spread['ceiling_rtf']['median'], 'messages': dict(counts)}
+                if profile is not None:
+                    results[str(n)]['profile'] = profile
             finally:
                 for handle in keep:
                     handle.unregister()

@@ -10,13 +10,11 @@ costs the simulator what we are measuring. So the bench node starts before the l
 import json
 import math
 import os
-import shutil
 import struct
-import subprocess
 import threading
 import time
 
-from . import common, stats
+from . import common, profiling, stats
 from .common import BenchError
 from .ros_node import WORLD_SERVER, World, init_node, measure_window, node_pid, wait_controllers
 
@@ -48,7 +46,7 @@ def speed(p, out):
         time.sleep(p['warmup_s'])
         result['plain'] = _rounds(world, ceiling, pid, p['rounds'], p['window_s'], step)
         if p.get('profile_s'):
-            result['profile'] = profile_world_server(pid, p['profile_s'], out)
+            result['profile'] = profiling.profile_world_server(pid, p['profile_s'], out)
         result['sensors'] = _with_sensors(world, ceiling, pid, p, step)
         result['rss_after_sensors_bytes'] = common.rss_bytes(pid)
         result['sim_after_sensors_s'] = world.time()
@@ -137,53 +135,6 @@ def _with_sensors(world, ceiling, pid, p, step):
         for s in subs:
             s.unregister()
     return result
-
-
-def pyspy():
-    here = os.path.join(os.path.dirname(common.python()), 'py-spy')
-    return here if os.path.exists(here) else shutil.which('py-spy')
-
-
-def profile_world_server(pid, seconds, out):
-    """Where the world server's update loop spends its time: py-spy (if installed) on the running
-    process, its main thread, by function (self time) and by our functions (inclusive)."""
-    exe = pyspy()
-    if exe is None:
-        return {'available': False, 'why': 'py-spy is not installed (.venv/bin/pip install py-spy)'}
-    raw = os.path.join(out, 'world_server.pyspy.txt')
-    cmd = [exe, 'record', '--nonblocking', '--threads', '-r', '200', '-d', str(int(math.ceil(seconds))), '-p', str(pid),
-           '-f', 'raw', '-o', raw]
-    run = subprocess.run(cmd, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, timeout=seconds + 60)
-    if run.returncode != 0 or not os.path.exists(raw):
-        return {'available': False, 'why': 'py-spy failed: %s' % run.stdout.decode(errors='replace')[-300:]}
-    return dict(summarize_stacks(raw, 'MainThread'), available=True, tool='py-spy', raw=os.path.basename(raw))
-
-
-def summarize_stacks(path, thread):
-    """py-spy raw (collapsed) stacks -> shares of the thread's samples by leaf and by frame."""
-    leaf, inclusive, total = {}, {}, 0
-    with open(path) as f:
-        for line in f:
-            stack, _, n = line.rstrip('\n').rpartition(' ')
-            frames = stack.split(';')
-            if thread not in frames[0]:
-                continue
-            n = int(n)
-            total += n
-            name = _frame_name(frames[-1])
-            leaf[name] = leaf.get(name, 0) + n
-            for fr in set(_frame_name(x) for x in frames[1:]):
-                inclusive[fr] = inclusive.get(fr, 0) + n
-    top = lambda d, k: [(name, round(100.0 * v / total, 1)) for name, v in sorted(d.items(), key=lambda x: -x[1])[:k]]
-    return {'samples': total, 'self_pct': top(leaf, 12) if total else [],
-            'inclusive_pct': [x for x in top(inclusive, 40) if 'racebot_sim_bridge' in x[0] or 'rospy' in x[0]][:15]
-            if total else []}
-
-
-def _frame_name(frame):
-    """'Simulator.step (racebot_sim_bridge/simulator.py:184)' -> 'Simulator.step (racebot_sim_bridge/simulator.py)'."""
-    name, _, where = frame.partition(' (')
-    return '%s (%s)' % (name, where.rsplit(':', 1)[0]) if where else name
 
 
 # -- real time: the product launch ------------------------------------------------------------------

@@ -33,6 +33,9 @@ gzserver options, ignored with a log line] WORLD_FILE`. `-u` starts paused; `-e`
                                  controller command arrives and when an update first applies it
                                  (controllers.CommandTrace, the controllers' observer); '' = off:
                                  one attribute test per update
+  ~load_check_timeout (s, 60)    each URDF is loaded in a helper process first (engine/load_trial.py);
+                                 one that crashes it or loads longer than this is refused, the world
+                                 goes on. 0: no check (one load less per spawn)
 Services and topics live under the node's own name, as gazebo_ros's (node `gazebo`: /gazebo/...).
 /use_sim_time is set true when nobody has set it (gazebo_ros does). This node drives ROS time, so
 it does not subscribe to its own /clock (init_clock_source) and rospy's timers cannot pace it:
@@ -51,6 +54,7 @@ from racebot_sim_bridge.description import model_path, sdf_reader
 from racebot_sim_bridge.ros_controllers import CommandTrace, RosIO
 from racebot_sim_bridge.gazebo_ros_api.services import GazeboServices
 from racebot_sim_bridge.gazebo_ros_api.performance_metrics import PerformanceMetricsPublisher
+from racebot_sim_bridge.engine.load_trial import DEFAULT_TIMEOUT, LoadTrial
 from racebot_sim_bridge.engine.physics import PhysicsError
 from racebot_sim_bridge.gazebo_plugins.plugin_manager import PluginManager
 from racebot_sim_bridge.gazebo_ros_control.gazebo_ros_control_plugin import GazeboRosControlPlugin
@@ -179,6 +183,9 @@ class WorldServer:
             rospy.logwarn('command trace on (~command_trace): every controller command is logged to %s; '
                           'for measurements only' % trace_path)
         self.sim = Simulator(spec, io, RospyLog, self._get_param)
+        # every URDF is loaded in a helper first: its PyBullet, not this one, meets what crashes or spins
+        load_check = self._seconds_param('~load_check_timeout', DEFAULT_TIMEOUT)
+        self.sim.world.load_trial = LoadTrial(load_check) if load_check > 0 else None
         self.sim.node_namespace = rospy.get_namespace()  # plugins' relative robotNamespaces resolve here
         self.windows = AttachedWindows(self.sim.world, RospyLog)  # gzclient attaches here
         rospy.set_param('~gzclient_address', self.windows.address)

@@ -103,7 +103,7 @@ def spawn(tmp_path, urdf):
 
 
 def test_a_library_not_simulated_is_warned_about_once_wherever_it_sits(tmp_path):
-    model_level = ('<gazebo><plugin name="gripper" filename="libgazebo_ros_vacuum_gripper.so"/>'
+    model_level = ('<gazebo><plugin name="gripper" filename="libacme_vacuum_gripper.so"/>'
                    '<plugin name="laser_here" filename="libgazebo_ros_laser.so"/>'
                    '<plugin name="control" filename="libgazebo_ros_control.so"/></gazebo>')
     in_a_sensor = '<plugin name="odometry" filename="libgazebo_ros_p3d.so"/></sensor>'
@@ -111,7 +111,7 @@ def test_a_library_not_simulated_is_warned_about_once_wherever_it_sits(tmp_path)
     urdf = urdf.replace('</plugin>\n    </sensor>', '</plugin>\n    ' + in_a_sensor, 1)  # the sonar's
     sim, warnings = spawn(tmp_path, urdf)
     try:
-        for library, where in (('libgazebo_ros_vacuum_gripper.so', "plugin 'gripper'"),
+        for library, where in (('libacme_vacuum_gripper.so', "plugin 'gripper'"),
                                ('libgazebo_ros_laser.so', "plugin 'laser_here'"),  # a sensor plugin, in no sensor
                                ('libgazebo_ros_p3d.so', "sensor 'sonar' (type ray): plugin 'odometry'"),
                                ('libgazebo_ros_block_laser.so', "sensor 'block_laser' (type ray)")):

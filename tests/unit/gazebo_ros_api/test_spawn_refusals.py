@@ -310,3 +310,25 @@ def test_a_mutated_sdf_is_spawned_or_refused_and_leaves_nothing(world, tmp_path_
             break
     text = text if text is not None else ET.tostring(root, encoding='unicode')
     spawn_and_check(sim, services, services.spawn_sdf_model, 'mutant', text)
+
+
+@pytest.mark.parametrize('spawn, xml, words, reason', [
+    ('spawn_urdf_model', '', 'SpawnModel: Failure - entity format is invalid.', 'The model_xml is empty'),
+    ('spawn_urdf_model', '<robot name="x"><link name="a"></robot',
+     'SpawnModel: Failure - entity format is invalid.', 'The model_xml is not XML (unclosed token: line 1'),
+    ('spawn_urdf_model', '<sdf version="1.6"><model name="m"/></sdf>',
+     'SpawnModel: Failure - entity format is invalid.', 'The root element is <sdf>; a URDF has <robot> (for SDF, '
+                                                        'call spawn_sdf_model)'),
+    ('spawn_sdf_model', '  ', 'GazeboRosApiPlugin SpawnModel Failure: input model_xml not SDF or URDF, or cannot be '
+                              'converted to Gazebo compatible format.', 'The model_xml is empty'),
+    ('spawn_sdf_model', '<world/>', 'GazeboRosApiPlugin SpawnModel Failure: input model_xml not SDF or URDF, or '
+                                    'cannot be converted to Gazebo compatible format.',
+     'The root element is <world>; SDF has <sdf> (or <gazebo>), URDF <robot>'),
+])
+def test_a_document_of_the_wrong_format_is_refused_with_upstreams_words_and_what_it_is(world, spawn, xml, words,
+                                                                                        reason):
+    sim, services = world
+    res = getattr(services, spawn)(_request('ghost', xml))
+    assert not res.success
+    assert res.status_message.startswith(words + ' ' + reason), res.status_message
+    assert 'ghost' not in sim.world.bodies

@@ -29,6 +29,19 @@ def parse(xml: str | bytes) -> ET.Element | None:
         return None
 
 
+def format_problem(xml: str | bytes, root: ET.Element | None, wanted: str) -> str:
+    """Why `xml` (parsed as `root`, None when it is not XML) is not a document of the `wanted` kind: the
+    parser's words, or the root element it has."""
+    if root is None:
+        if not (xml.strip() if isinstance(xml, (str, bytes)) else xml):
+            return 'The model_xml is empty'
+        try:
+            ET.fromstring(strip_xml_declaration(xml) if isinstance(xml, str) else xml)
+        except (ET.ParseError, ValueError, TypeError) as err:
+            return 'The model_xml is not XML (%s)' % err
+    return 'The root element is <%s>; %s' % (root.tag, wanted)
+
+
 def root_tag(xml: str | bytes | ET.Element) -> str | None:
     """The root element's tag (of the text, or of its parsed root element), or None when the text is not XML."""
     root = xml if isinstance(xml, ET.Element) else parse(xml)

@@ -179,6 +179,8 @@ class PhysicsWorld:
         # (body id, link index) -> [fx, fy, fz, tx, ty, tz] applied since the last step: Gazebo's Link force and
         # torque accumulators (ODE clears them after each step, as PyBullet its external forces), for f3d
         self.applied = {}
+        # a LoadTrial (engine/load_trial.py) that loads each URDF in a helper first: the world server's world
+        self.load_trial = None
 
     # -- world --------------------------------------------------------------------------------
     def load_world(self, world: World, warn: Callable[[str], None] | None = None) -> list[str]:
@@ -387,6 +389,10 @@ class PhysicsWorld:
             path = os.path.join(tmp, 'robot.urdf')
             with open(path, 'w') as f:
                 f.write(bullet_urdf)
+            trouble = self.load_trial.check(path, flags, fixed) if self.load_trial is not None else None
+            if trouble is not None:
+                raise PhysicsError("'%s' is not loaded: %s; the world goes on without it. Report the URDF to "
+                                   'racebot with this message' % (name, trouble))
             try:
                 body_id = self.client.loadURDF(path, basePosition=position, baseOrientation=orientation,
                                                flags=flags, useFixedBase=fixed)
@@ -601,6 +607,8 @@ class PhysicsWorld:
         self.client.resetDebugVisualizerCamera(distance, yaw, pitch, pos)
 
     def close(self) -> None:
+        if self.load_trial is not None:
+            self.load_trial.close()
         self.client.close()
 
 

@@ -69,6 +69,9 @@ class Simulator:
         self.steps = 0
         self._epoch = (0, 0.0)  # (steps, time) when the step size last changed: time = t0 + (steps - s0) * step
         self.paused = False
+        # World::SetPhysicsEnabled: False, the world updates (time, hooks) without a physics step
+        # (gazebo_ros_joint_pose_trajectory turns it off while it plays a trajectory)
+        self.physics_enabled = True
         self.robots = {}
         self._controls = []  # the robots' control loops (Robot.control), in spawn order: what step() runs
         self.world_models = self.world.load_world(world_spec, warn=lambda m: self.log.warn('world: %s' % m))
@@ -230,7 +233,8 @@ class Simulator:
             t_next = self._time_at(self.steps + 1)  # the time this step ends at, computed once
             for hook in self.before_physics:
                 hook(t_next)
-            world.step()
+            if self.physics_enabled:
+                world.step()
             self.steps += 1
             self.time = t_next
             for hook in self.after_step:

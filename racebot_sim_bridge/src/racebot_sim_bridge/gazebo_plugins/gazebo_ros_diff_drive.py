@@ -21,15 +21,13 @@ import math
 
 from racebot_sim_bridge.kinematics import differential as kin
 from racebot_sim_bridge.gazebo_plugins.plugin_namespace import model_plugin_namespace, name_in
-from racebot_sim_bridge.kinematics.rotations import conjugate, quaternion_multiply, rotate_back, yaw_of
+from racebot_sim_bridge.kinematics.rotations import yaw_of
 from racebot_sim_bridge.engine.sim_time import NS, to_ns
-from racebot_sim_bridge.gazebo_plugins.model_plugin import ModelPlugin, PluginError
-from racebot_sim_bridge.gazebo_plugins.link_motion import link_motion
+from racebot_sim_bridge.gazebo_plugins.gazebo_ros_utils import GazeboRosPlugin
+from racebot_sim_bridge.gazebo_plugins.link_motion import link_motion, model_relative_pose
 from racebot_sim_bridge.gazebo_plugins.odometry_output import odometry, tf_prefix, tf_resolve, transform
 from racebot_sim_bridge.gazebo_plugins.update_timing import FixedPeriod
 
-ODOMETRY_SOURCES = ('encoder', 'world')
-LOG_LEVELS = ('debug', 'info', 'warn', 'error', 'fatal')  # rosDebugLevel's values, any case
 # GazeboRos logs every parameter left out, with the default it takes (ROS_WARN upstream; one info line here)
 DEFAULTS = (('commandTopic', 'cmd_vel'), ('odometryTopic', 'odom'), ('odometryFrame', 'odom'),
             ('robotBaseFrame', 'base_footprint'), ('publishWheelTF', 'false'), ('publishOdomTF', 'true'),
@@ -39,19 +37,14 @@ DEFAULTS = (('commandTopic', 'cmd_vel'), ('odometryTopic', 'odom'), ('odometryFr
 ZERO_COVARIANCE = [0.0] * 36
 
 
-class DiffDrive(ModelPlugin):
+class DiffDrive(GazeboRosPlugin):
     libraries = ('libgazebo_ros_diff_drive.so',)
 
     def __init__(self, ctx, robot, spec):
-        super().__init__(ctx, robot, spec)
+        super().__init__(ctx, robot, spec, DEFAULTS)
         p = self.params
-        level = p.string('rosDebugLevel', 'na').strip().lower()  # read first, as GazeboRos does
-        self.log_level = LOG_LEVELS.index(level) if level in LOG_LEVELS else LOG_LEVELS.index('info')
-        missing = ['<%s> %s' % (tag, value) for tag, value in DEFAULTS if not p.has(tag)]
-        if missing:
-            self.info('defaults used for the parameters not given: %s' % ', '.join(missing))
-        self.right = self._wheel('rightJoint', 'right_joint', 'right')
-        self.left = self._wheel('leftJoint', 'left_joint', 'left')
+        self.right = self.named_joint('rightJoint', 'right_joint', 'right wheel')
+        self.left = self.named_joint('leftJoint', 'left_joint', 'left wheel')
         self.indices = [self.left.index, self.right.index]
         self.separation = p.number('wheelSeparation', 0.34, minimum=0, exclusive=True)
         self.diameter = p.number('wheelDiameter', 0.15, minimum=0, exclusive=True)
@@ -59,7 +52,7 @@ class DiffDrive(ModelPlugin):
         self.torque = p.number('wheelTorque', 5.0, minimum=0)
         self.rate = p.number('updateRate', 100.0)
         self.clock = FixedPeriod(self.rate, ctx.sim.time)
-        self.encoder = self._odometry_source() == 'encoder'
+        self.encoder = self.odometry_source() == 'encoder'
         self.publish_odometry = p.boolean('publishTf', True)
         self.publish_odom_tf = p.boolean('publishOdomTF', True)
         self.publish_wheel_tf = p.boolean('publishWheelTF', False)
@@ -93,35 +86,6 @@ class DiffDrive(ModelPlugin):
         self.subscriber(name_in(ns, p.string('commandTopic', 'cmd_vel')), Twist, self._on_cmd_vel)
         self.odom_pub = (self.publisher(name_in(ns, p.string('odometryTopic', 'odom')), Odometry)
                          if self.publish_odometry else None)
-
-    # -- parameters ----------------------------------------------------------------------------
-    def _wheel(self, tag, default, side):
-        if self.params.has(tag):
-            return self.joint(tag)
-        joint = self.robot.body.joints.get(default)
-        if joint is None:
-            raise PluginError("<%s> is missing and the default %s wheel joint '%s' is not a movable joint of the "
-                              "robot: name the %s wheel's joint (its joints: %s)"
-                              % (tag, side, default, side, ', '.join(sorted(self.robot.body.joints)) or 'none'))
-        return joint
-
-    def _odometry_source(self):
-        text = self.params.string('odometrySource', 'world')
-        if text in ODOMETRY_SOURCES:
-            return text
-        hint = (' (gazebo_plugins noetic matches the names only, not the enum numbers 0 and 1)'
-                if text.strip() in ('0', '1') else '')
-        self.warn('<odometrySource>%s</odometrySource> must be encoder or world%s; using world' % (text, hint))
-        return 'world'
-
-    # -- logging at rosDebugLevel ----------------------------------------------------------------
-    def warn(self, message):
-        if self.log_level <= LOG_LEVELS.index('warn'):
-            super().warn(message)
-
-    def info(self, message):
-        if self.log_level <= LOG_LEVELS.index('info'):
-            super().info(message)
 
     # -- ROS and life cycle ----------------------------------------------------------------------
     def _on_cmd_vel(self, msg):
@@ -184,12 +148,8 @@ class DiffDrive(ModelPlugin):
                                        angular, kin.pose_covariance(), ZERO_COVARIANCE))
 
     def _publish_wheel_tf(self, stamp):
-        body, root = self.robot.body, self.robot.model.root_link
-        model_position, model_orientation, _, _ = link_motion(self.world, body, root)
         for parent_frame, child_frame, link in self.wheel_frames:
-            position, orientation, _, _ = link_motion(self.world, body, link)
-            relative = rotate_back(model_orientation, tuple(position[i] - model_position[i] for i in range(3)))
-            turn = quaternion_multiply(conjugate(model_orientation), orientation)
+            relative, turn = model_relative_pose(self.world, self.robot.body, self.robot.model.root_link, link)
             self.tf_pub.publish(transform(stamp, parent_frame, child_frame, relative, turn))
 
     def _publish_joint_state(self, stamp, states):

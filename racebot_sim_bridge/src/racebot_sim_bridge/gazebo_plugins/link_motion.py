@@ -1,5 +1,6 @@
 """A link's world pose and motion as Gazebo's Link reports them: WorldPose is the link's frame and
 WorldLinearVel the velocity of the frame's origin, while PyBullet gives the centre of mass's. No rospy."""
+from racebot_sim_bridge.kinematics.rotations import conjugate, quaternion_multiply, rotate_back
 
 
 def point_velocity(com_velocity, angular, com, point):
@@ -24,3 +25,12 @@ def link_motion(world, body, link):
         com_position, position, orientation, linear, angular = s[0], s[4], s[5], s[6], s[7]
     return (tuple(position), tuple(orientation), point_velocity(linear, angular, com_position, position),
             tuple(angular))
+
+
+def model_relative_pose(world, body, root, link):
+    """(position, quaternion xyzw) of link `link`'s frame in the model's frame (the frame of its root link
+    `root`): Gazebo's Link::RelativePose, what the drive plugins' wheel TFs send."""
+    model_position, model_orientation, _, _ = link_motion(world, body, root)
+    position, orientation, _, _ = link_motion(world, body, link)
+    relative = rotate_back(model_orientation, tuple(position[i] - model_position[i] for i in range(3)))
+    return relative, quaternion_multiply(conjugate(model_orientation), orientation)

@@ -13,11 +13,13 @@ from racebot_sim_bridge.gazebo_plugins.gazebo_ros_camera import CameraSensor
 from racebot_sim_bridge.gazebo_plugins.gazebo_ros_diff_drive import DiffDrive
 from racebot_sim_bridge.gazebo_plugins.gazebo_ros_elevator import Elevator
 from racebot_sim_bridge.gazebo_plugins.gazebo_ros_f3d import F3D
-from racebot_sim_bridge.gazebo_plugins.gazebo_ros_harness import Harness
 from racebot_sim_bridge.gazebo_plugins.gazebo_ros_force import Force
 from racebot_sim_bridge.gazebo_plugins.gazebo_ros_ft_sensor import FTSensor
+from racebot_sim_bridge.gazebo_plugins.gazebo_ros_hand_of_god import HandOfGod
+from racebot_sim_bridge.gazebo_plugins.gazebo_ros_harness import Harness
 from racebot_sim_bridge.gazebo_plugins.gazebo_ros_imu import Imu
 from racebot_sim_bridge.gazebo_plugins.gazebo_ros_imu_sensor import ImuSensor
+from racebot_sim_bridge.gazebo_plugins.gazebo_ros_joint_pose_trajectory import JointPoseTrajectory
 from racebot_sim_bridge.gazebo_plugins.gazebo_ros_joint_state_publisher import JointStatePublisher
 from racebot_sim_bridge.gazebo_plugins.gazebo_ros_laser import LaserSensor
 from racebot_sim_bridge.gazebo_plugins.gazebo_ros_multicamera import MultiCameraSensor
@@ -27,6 +29,8 @@ from racebot_sim_bridge.gazebo_plugins.gazebo_ros_planar_move import PlanarMove
 from racebot_sim_bridge.gazebo_plugins.gazebo_ros_range import RangeSensor
 from racebot_sim_bridge.gazebo_plugins.gazebo_ros_skid_steer_drive import SkidSteerDrive
 from racebot_sim_bridge.gazebo_plugins.gazebo_ros_template import Template
+from racebot_sim_bridge.gazebo_plugins.gazebo_ros_tricycle_drive import TricycleDrive
+from racebot_sim_bridge.gazebo_plugins.gazebo_ros_vacuum_gripper import VacuumGripper
 from racebot_sim_bridge.gazebo_plugins.gazebo_ros_wheel_slip import WheelSlip
 from racebot_sim_bridge.gazebo_plugins.hector_gazebo_ros_gps import HectorGps
 from racebot_sim_bridge.gazebo_plugins.hector_gazebo_ros_imu import HectorImu
@@ -75,6 +79,8 @@ REGISTRY = Registry((
     # model plugins: plugin_manager.PluginManager
     DiffDrive, SkidSteerDrive, PlanarMove, P3D, JointStatePublisher, Imu, HectorGps, HectorImu, FTSensor,
     Force, F3D, Template,
+    TricycleDrive,
+    HandOfGod, VacuumGripper, JointPoseTrajectory,
     MimicJointPlugin, Elevator, Harness, WheelSlip,
     # sensor plugins: sensors/sensor_manager.SensorManager
     LaserSensor, CameraSensor, MultiCameraSensor, DepthCameraSensor, ImuSensor, RangeSensor, BumperSensor,

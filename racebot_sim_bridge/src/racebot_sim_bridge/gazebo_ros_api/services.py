@@ -137,9 +137,8 @@ class GazeboServices:
         root = spawn_xml.parse(req.model_xml)
         if not spawn_xml.is_urdf(root):
             # upstream also fails the call itself (returns false); rospy cannot send a response with that
-            self.rospy.logerr('%s The model_xml must be a URDF document (root element <robot>); for SDF call '
-                              'spawn_sdf_model' % SPAWN_INVALID_URDF)
-            return srv.SpawnModelResponse(False, SPAWN_INVALID_URDF)
+            return srv.SpawnModelResponse(False, self._err('%s %s' % (SPAWN_INVALID_URDF, spawn_xml.format_problem(
+                req.model_xml, root, 'a URDF has <robot> (for SDF, call spawn_sdf_model)'))))
         for package in spawn_xml.referenced_packages(req.model_xml):  # upstream checks these before all else
             if model_path.package_dir(package) is None:
                 self.rospy.logerr("SpawnModel: %s names package://%s/..., and '%s' is not on the ROS package path; "
@@ -167,8 +166,8 @@ class GazeboServices:
             elif spawn_xml.is_urdf(root):
                 spawn = self._spawn_urdf
             else:
-                self.rospy.logerr('GazeboRosApiPlugin SpawnModel Failure: input xml format not recognized')
-                return srv.SpawnModelResponse(False, SPAWN_NOT_SDF_OR_URDF)
+                problem = spawn_xml.format_problem(req.model_xml, root, 'SDF has <sdf> (or <gazebo>), URDF <robot>')
+                return srv.SpawnModelResponse(False, self._err('%s %s' % (SPAWN_NOT_SDF_OR_URDF, problem)))
             if name and name in self.sim.world.bodies:
                 self.rospy.logerr('SpawnModel: Failure - model name %s already exist. Delete it first (rosservice '
                                   'call %s/delete_model %s) or spawn with another -model name' % (name, self.ns, name))
