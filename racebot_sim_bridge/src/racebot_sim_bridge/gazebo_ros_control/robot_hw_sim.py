@@ -102,9 +102,10 @@ class DefaultRobotHWSim(RobotHW):
         for h in self.joint_handles:
             if h.name in body.mimics:
                 c = body.mimics[h.name]
-                self.warnings.append("joint '%s' is a URDF <mimic> of '%s' (racebot holds it at %g * %s %+g; Gazebo "
+                self.warnings.append("joint '%s' is a URDF <mimic> of '%s' (racebot holds it at %g * %s %s %g; Gazebo "
                                      "ignores <mimic>): its state is read, the commands its controller writes are "
-                                     "not applied" % (h.name, c.leader, c.multiplier, c.leader, c.offset))
+                                     "not applied" % (h.name, c.leader, c.multiplier, c.leader,
+                                                      '-' if c.offset < 0 else '+', abs(c.offset)))
         commanded = [h for h in self.joint_handles if h.name not in body.mimics]
         self.effort_handles = [h for h in commanded if h.interface == EFFORT]
         self.effort_idx = [body.joints[h.name].index for h in self.effort_handles]
