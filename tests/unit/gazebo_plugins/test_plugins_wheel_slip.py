@@ -26,9 +26,9 @@ PLUGIN = """<plugin name="wheel_slip" filename="libgazebo_ros_wheel_slip.so">%s
 </plugin>"""
 
 
-def spawn(tmp_path, plugin):
+def spawn(tmp_path, plugin, namespace='/'):
     w = PluginWorld(tmp_path)
-    return w, w.spawn('cart', ROBOT % plugin, pose=(0.0, 0.0, 0.16))
+    return w, w.spawn('cart', ROBOT % plugin, namespace, pose=(0.0, 0.0, 0.16))
 
 
 def roll(w, robot, seconds=1.0):
@@ -82,6 +82,11 @@ def test_namespace_and_bad_wheels(tmp_path):
         assert w.errors('There should be 1 parent joint for link named [base] in model [cart], but 0 were found')
         assert w.errors('Could not find link named [nowhere]')
         assert len(w.manager.plugins['cart'][0].wheels) == 2
+    finally:
+        w.close()
+    w, robot = spawn(tmp_path, PLUGIN % '', namespace='/fleet')  # spawn_model -robot_namespace /fleet
+    try:
+        assert list(w.servers) == ['/cart/fleet']  # upstream: NodeHandle('cart//fleet/')
     finally:
         w.close()
     w, robot = spawn(tmp_path, '<plugin name="s" filename="libgazebo_ros_wheel_slip.so"><wheel link_name="left"/>'

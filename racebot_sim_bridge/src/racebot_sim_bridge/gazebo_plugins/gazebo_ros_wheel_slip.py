@@ -7,8 +7,9 @@ one cylinder or sphere collision); a wheel without link_name, naming no link, wh
 collision or one parent joint, or without a positive radius or normal force, is skipped with upstream's error; no
 wheel left refuses the plugin ("No ODE links and surfaces found, plugin is disabled"). The ROS side
 (GazeboRosWheelSlip): a dynamic_reconfigure server (gazebo_plugins' WheelSlip.cfg: slip_compliance_unitless_lateral
-and slip_compliance_unitless_longitudinal, default -1, -1 to 20) under `<model>/<robotNamespace>/` (`wheel_slip/`
-when none, empty or '/'); a value >= 0 sets that compliance of every wheel, with upstream's info line.
+and slip_compliance_unitless_longitudinal, default -1, -1 to 20) under `<model>/<robotNamespace>/` (the spawn's
+robot_namespace when the plugin has none; `wheel_slip/` when that is none, empty or '/'); a value >= 0 sets that
+compliance of every wheel, with upstream's info line.
 
 Not simulated: the slip itself. ODE turns each compliance into the contact's force-dependent slip (slip1, slip2 =
 radius * |spin rate| / wheel_normal_force * compliance, every update), letting the contact slide at a speed
@@ -20,7 +21,7 @@ not offered.
 import xml.etree.ElementTree as ET
 
 from racebot_sim_bridge.gazebo_plugins.model_plugin import ModelPlugin, PluginError
-from racebot_sim_bridge.gazebo_plugins.plugin_namespace import resolve
+from racebot_sim_bridge.gazebo_plugins.plugin_namespace import after_spawn, resolve
 
 # name, type, level, description, default, min, max (gazebo_plugins noetic-devel cfg/WheelSlip.cfg)
 WHEEL_SLIP_PARAMETERS = [
@@ -70,7 +71,7 @@ class WheelSlip(ModelPlugin):
                 self.ctx.rospy.logerr('%s: %s' % (self.label, err))
         if not self.wheels:
             raise PluginError('No ODE links and surfaces found, plugin is disabled')
-        text = spec.params.get('robotNamespace')
+        text = after_spawn(spec.params.get('robotNamespace'), robot.spawn_namespace)  # spawn's walk fills it in
         ns = '' if text is None else text + '/'
         if ns in ('', '/', '//'):
             ns = 'wheel_slip/'
