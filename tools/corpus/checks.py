@@ -263,6 +263,9 @@ def check_trajectory(check, row):
     client = actionlib.SimpleActionClient(check['action'], FollowJointTrajectoryAction)
     if not client.wait_for_server(rospy.Duration(60.0)):
         raise CheckFailed('action server %s not up in 60 s' % check['action'])
+    # settle_s: sim seconds to let the robot come to rest first (an effort-driven arm falls until its controller
+    # starts; a goal sent while it still moves starts with path errors nobody's robot would have at rest)
+    sim_sleep(float(check.get('settle_s', 0.0)))
     now = joint_positions(check['joint_states'])
     target = {j: float(v) + (now.get(j, 0.0) if check.get('relative') else 0.0) for j, v in check['target'].items()}
     goal = FollowJointTrajectoryGoal()

@@ -110,6 +110,8 @@ def _check_errors(check):
     for key in ('tolerance', 'seconds', 'duration'):
         if key in check and not (_is_number(check[key]) and check[key] > 0):
             problems.append('%s check: %s must be a positive number' % (kind, key))
+    if 'settle_s' in check and not (_is_number(check['settle_s']) and check['settle_s'] >= 0):
+        problems.append('%s check: settle_s must be a number of sim seconds, 0 or more' % kind)
     has_number = any(_is_number(n) for n in numbers)
     if not has_number:
         problems.append('%s check: no number to judge by (%s)' % (kind, ', '.join(NUMERIC[kind]) or 'running'))

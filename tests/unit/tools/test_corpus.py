@@ -63,6 +63,8 @@ def test_a_good_row_validates():
     (lambda r: r['checks'][0].pop('from'), 'without from'),
     (lambda r: r['checks'][0].update(kind='vibes'), 'no known kind'),
     (lambda r: r['checks'][0].update(tolerance=0), 'positive number'),
+    (lambda r: r['checks'][0].update(settle_s=-1), 'settle_s must be'),
+    (lambda r: r['checks'][0].update(settle_s='3 s'), 'settle_s must be'),
     (lambda r: r['checks'][0].update(expect_speed='fast', tolerance='some'), 'no check with a number'),
     (lambda r: r.update(blacklist={'bot_plugins': ''}), 'without a reason'),
     (lambda r: r.update(name='Bot-1'), 'lower_case'),

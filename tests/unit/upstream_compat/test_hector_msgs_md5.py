@@ -1,8 +1,9 @@
-"""upstream_compat/geographic_msgs and upstream_compat/hector_gazebo_plugins are wire-identical to upstream's.
+"""upstream_compat/geographic_msgs, hector_gazebo_plugins and hector_uav_msgs are wire-identical to upstream's.
 
 The sums are upstream's: genmsg's md5 of geographic_msgs' own GeoPoint.msg and GeoPose.msg
 (ros-geographic-info/geographic_info master, bc73c05) and of hector_gazebo_plugins' srv/SetBias.srv and
-srv/SetReferenceGeoPose.srv (tu-darmstadt-ros-pkg/hector_gazebo melodic-devel), with geometry_msgs from Debian.
+srv/SetReferenceGeoPose.srv (tu-darmstadt-ros-pkg/hector_gazebo melodic-devel), and of hector_uav_msgs'
+msg/Altimeter.msg (tu-darmstadt-ros-pkg/hector_quadrotor), with geometry_msgs and std_msgs from Debian.
 A client built against the real packages (rosservice call .../set_accel_bias, a Husky's calibration script)
 talks to racebot's hector plugins only if these are equal.
 """
@@ -19,6 +20,7 @@ UPSTREAM_MD5 = {
     'hector_gazebo_plugins/SetReferenceGeoPose': 'fe903ca95d0210defda73a1629604439',
     'hector_gazebo_plugins/SetReferenceGeoPoseRequest': 'fe903ca95d0210defda73a1629604439',
     'hector_gazebo_plugins/SetReferenceGeoPoseResponse': 'd41d8cd98f00b204e9800998ecf8427e',
+    'hector_uav_msgs/Altimeter': 'c785451e2f67a76b902818138e9b53c6',
 }
 
 
@@ -40,7 +42,7 @@ def test_md5_equals_upstream(type_name):
     assert (cls._type, cls._md5sum) == (type_name, UPSTREAM_MD5[type_name])
 
 
-@pytest.mark.parametrize('package', ['geographic_msgs', 'hector_gazebo_plugins'])
+@pytest.mark.parametrize('package', ['geographic_msgs', 'hector_gazebo_plugins', 'hector_uav_msgs'])
 def test_no_type_beyond_upstream(package):
     """Nothing of our own invention under their names."""
     ours = set()

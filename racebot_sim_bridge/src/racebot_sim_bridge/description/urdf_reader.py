@@ -431,6 +431,9 @@ class _UrdfReader:
                 self.model.plugins.append(self.plugin(child, what, reference))
             elif child.tag in REDUCED_ELEMENTS:
                 self.model.gazebo_elements.append(GazeboElement(reference, child))
+            elif child.tag == 'visual':  # a visual plugin (gazebo_ros_video): run with the model's plugins
+                for plugin in child.findall('plugin'):
+                    self.model.plugins.append(self.plugin(plugin, what + ' <visual>', reference))
             elif len(child) == 0:
                 text = _extension_text(child)
                 if child.tag in EXTENSION_FLAGS:

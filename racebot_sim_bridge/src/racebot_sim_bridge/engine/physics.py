@@ -43,6 +43,7 @@ from racebot_sim_bridge.engine.bullet_urdf import (NEGLIGIBLE_INERTIA, NEGLIGIBL
                                                   joint_friction, link_friction, link_laser_retro,
                                                   prepare_urdf_for_bullet)
 from racebot_sim_bridge.engine import mimic_joints
+from racebot_sim_bridge.engine.joint_damping import ImplicitDampers, implicit_joints
 from racebot_sim_bridge.engine.pybullet_client import PybulletClient
 from racebot_sim_bridge.kinematics.rotations import Quat, Vec3, as_transform
 
@@ -179,6 +180,10 @@ class PhysicsWorld:
         # (body id, link index) -> [fx, fy, fz, tx, ty, tz] applied since the last step: Gazebo's Link force and
         # torque accumulators (ODE clears them after each step, as PyBullet its external forces), for f3d
         self.applied = {}
+        # body id -> ImplicitDampers of its <implicitSpringDamper> joints; (body id, joint index) -> effort applied to
+        # such a body's joint for the coming step (what the damper's prediction needs)
+        self.implicit_dampers = {}
+        self.joint_efforts = {}
         # a LoadTrial (engine/load_trial.py) that loads each URDF in a helper first: the world server's world
         self.load_trial = None
 
@@ -424,10 +429,17 @@ class PhysicsWorld:
         for joint_name, joint in body.joints.items():
             # PyBullet's default velocity motors off; in their place the URDF <dynamics friction>, which Gazebo
             # applies as Coulomb friction: a motor holding velocity 0 with at most that force. (<dynamics damping>
-            # PyBullet's URDF importer applies itself.) A joint a controller drives by velocity or position
-            # gets the hardware's motor instead (DefaultRobotHWSim.write_sim).
+            # PyBullet's URDF importer applies itself, explicitly as Gazebo does, but for an implicitSpringDamper
+            # joint: joint_damping.py.) A joint a controller drives by velocity or position gets the hardware's
+            # motor instead (DefaultRobotHWSim.write_sim).
             self.client.setJointMotorControl2(body_id, joint.index, pb.VELOCITY_CONTROL, targetVelocity=0.0,
                                               force=joint_friction(urdf_model, joint_name))
+        implicit = implicit_joints(urdf_model, body.joints)
+        if implicit:
+            for index, *_ in implicit:
+                self.client.changeDynamics(body_id, index, jointDamping=0.0)
+            self.implicit_dampers[body_id] = ImplicitDampers(self.client, body_id, urdf_model.root_link == 'world',
+                                                             implicit)
         body.mimics = mimic_joints.couple(self.client, body_id, body.joints, urdf_model)
         return body
 
@@ -444,6 +456,7 @@ class PhysicsWorld:
         for _, extra in body.extra_bodies:
             self.client.removeBody(extra)
         gone = {body.id} | {extra for _, extra in body.extra_bodies}
+        self.implicit_dampers.pop(body.id, None)
         self.laser_retro = {k: v for k, v in self.laser_retro.items() if k[0] not in gone}
 
     # -- state ----------------------------------------------------------------------------------
@@ -460,6 +473,9 @@ class PhysicsWorld:
     def apply_efforts(self, body: Body, indices: Sequence[int], efforts: Sequence[float]) -> None:
         """Torques (or forces) for one step: PyBullet clears them after every stepSimulation."""
         self.client.setJointMotorControlArray(body.id, indices, pb.TORQUE_CONTROL, forces=efforts)
+        if body.id in self.implicit_dampers:
+            for index, effort in zip(indices, efforts):
+                self.joint_efforts[(body.id, index)] = self.joint_efforts.get((body.id, index), 0.0) + effort
 
     def drive_velocities(self, body: Body, indices: Sequence[int], velocities: Sequence[float],
                          max_forces: Sequence[float]) -> None:
@@ -507,8 +523,7 @@ class PhysicsWorld:
         self.client.resetBaseVelocity(body_id, list(linear), list(angular))
 
     def apply_joint_effort(self, body: Body, joint_name: str, effort: float) -> None:
-        joint = body.joints[joint_name]
-        self.client.setJointMotorControl2(body.id, joint.index, pb.TORQUE_CONTROL, force=effort)
+        self.apply_efforts(body, [body.joints[joint_name].index], [effort])
 
     # -- dynamics and external forces (gazebo_ros's properties and force services) ----------------
     # A link is addressed (PyBullet body id, link index): an SDF model's extra link is a body of its own.
@@ -557,7 +572,10 @@ class PhysicsWorld:
                            lower: float | None = None, upper: float | None = None) -> None:
         """A joint's viscous damping and position limits (None: unchanged)."""
         joint = body.joints[joint_name]
-        if damping is not None:
+        dampers = self.implicit_dampers.get(body.id)
+        if damping is not None and dampers is not None and joint.index in dampers.joints:
+            dampers.set_damping(joint.index, damping)  # Gazebo's SetDamping keeps an implicit joint implicit
+        elif damping is not None:
             self.client.changeDynamics(body.id, joint.index, jointDamping=damping)
         if lower is not None or upper is not None:
             self.client.changeDynamics(body.id, joint.index, jointLowerLimit=joint.lower if lower is None else lower,
@@ -584,6 +602,13 @@ class PhysicsWorld:
         return tuple(total[:3]), tuple(total[3:])
 
     def step(self) -> None:
+        for body_id, dampers in self.implicit_dampers.items():
+            applied = {index: e for (b, index), e in self.joint_efforts.items() if b == body_id}
+            indices, torques = dampers.torques(self.step_size, applied)
+            if indices:
+                self.client.setJointMotorControlArray(body_id, indices, pb.TORQUE_CONTROL, forces=torques)
+        if self.joint_efforts:
+            self.joint_efforts = {}
         self.client.stepSimulation()
         if self.applied:
             self.applied = {}

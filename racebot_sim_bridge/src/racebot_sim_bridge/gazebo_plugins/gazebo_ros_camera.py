@@ -84,20 +84,20 @@ class CameraSensor(Sensor, libraries=('libgazebo_ros_camera.so',), sensor_types=
     def capture(self, time, stamp, wanted, want_depth):
         """A frame of the world at sim `time`, published as `wanted` roles when it is ready: from the
         render worker when there is one, else rendered here within the render budget. A frame
-        that cannot be taken is skipped (counted)."""
+        that cannot be taken is skipped (counted): False, else True (the triggered cameras count on it)."""
         manager = self.manager
         if manager.worker_expected():
             worker = manager.worker
             if not worker.ready or not self.in_worker.take():
                 self.meter.skip()  # starting, restarting, or this camera's frames not rendered yet
-                return
+                return False
             if self.buffers is None:
                 self.buffers = FrameBuffers(self.camera.width, self.camera.height, FRAMES_IN_WORKER + 1)
             slot = self.buffers.take()
             if slot is None:  # every buffer still being rendered or published
                 self.in_worker.give_back()
                 self.meter.skip()
-                return
+                return False
             position, orientation = self.mount.pose()
             buffers = self.buffers
 
@@ -119,11 +119,12 @@ class CameraSensor(Sensor, libraries=('libgazebo_ros_camera.so',), sensor_types=
                 self.in_worker.give_back()
                 buffers.give_back(slot)
                 self.meter.skip()
-            return
+                return False
+            return True
         budget = manager.budget
         if not budget.allow(self):
             self.meter.skip()
-            return
+            return False
         start = walltime.perf_counter()
         planes = manager.scene_colours().planes
         position, orientation = self.mount.pose()
@@ -131,6 +132,7 @@ class CameraSensor(Sensor, libraries=('libgazebo_ros_camera.so',), sensor_types=
                                       want_depth)
         budget.spend(walltime.perf_counter() - start)
         self.publish_frame(stamp, wanted, rgb, depth)
+        return True
 
     def update(self, time, stamp):
         if not self.listened('image'):

@@ -35,6 +35,23 @@ def update_due(time, period, step):
     return 0.0 <= fraction < step
 
 
+def sensor_model(params, rng, prefix='', scalar=False):
+    """hector's SensorModel_::Load(sdf, prefix) as an ErrorModel: offset, drift, driftFrequency, gaussianNoise,
+    scaleError (with a prefix: prefixOffset, prefixDrift, ...), 3-vectors (SensorModel3); `scalar`: SensorModel's
+    single numbers, in axis 0 (the other axes at the defaults, unused)."""
+    defaults = {'offset': 0.0, 'drift': 0.0, 'driftFrequency': 1.0 / 3600.0, 'gaussianNoise': 0.0,
+                'scaleError': 1.0}
+    values = {}
+    for name, default in defaults.items():
+        tag = prefix + name[0].upper() + name[1:] if prefix else name
+        if scalar:
+            values[name] = (params.number(tag, default), default, default)
+        else:
+            values[name] = params.vector(tag, 3, (default,) * 3)
+    return ErrorModel(rng, values['offset'], values['drift'], values['driftFrequency'], values['gaussianNoise'],
+                      values['scaleError'])
+
+
 class HectorGps(ModelPlugin):
     libraries = ('libhector_gazebo_ros_gps.so',)
 
@@ -53,8 +70,8 @@ class HectorGps(ModelPlugin):
         self.status = p.integer('status', 0)
         self.service_bits = p.integer('service', 0)
         self.rng = rng or random.Random()
-        self.position_error = self._error_model('')
-        self.velocity_error = self._error_model('velocity')
+        self.position_error = sensor_model(p, self.rng)
+        self.velocity_error = sensor_model(p, self.rng, 'velocity')
         rate = p.number('updateRate', 4.0, minimum=0.0)
         self.period = 1.0 / rate if rate > 0 else 0.0
         if p.has('updatePeriod') and not p.has('updateRate'):
@@ -72,10 +89,10 @@ class HectorGps(ModelPlugin):
         from hector_gazebo_plugins.srv import SetReferenceGeoPose, SetReferenceGeoPoseResponse
         self.SetReferenceGeoPoseResponse = SetReferenceGeoPoseResponse
         self.service(self.fix_topic + '/set_reference_geopose', SetReferenceGeoPose, self._set_geopose)
-        sensor_model, gnss = hector_reconfigure.config_types()
-        self.reconfigure_server(self.fix_topic + '/position', sensor_model,
+        model_config, gnss = hector_reconfigure.config_types()
+        self.reconfigure_server(self.fix_topic + '/position', model_config,
                                 hector_reconfigure.sensor_model_callback(self.position_error))
-        self.reconfigure_server(self.fix_topic + '/velocity', sensor_model,
+        self.reconfigure_server(self.fix_topic + '/velocity', model_config,
                                 hector_reconfigure.sensor_model_callback(self.velocity_error))
         self.reconfigure_server(self.fix_topic + '/status', gnss, hector_reconfigure.gnss_callback(self))
 
@@ -87,17 +104,6 @@ class HectorGps(ModelPlugin):
                                                   math.pi / 2.0 - yaw_of((q.x, q.y, q.z, q.w)), p.altitude)
             self.reset()
         return self.SetReferenceGeoPoseResponse()
-
-    def _error_model(self, prefix):
-        def tag(name):
-            return prefix + name[0].upper() + name[1:] if prefix else name
-        defaults = {'offset': 0.0, 'drift': 0.0, 'driftFrequency': 1.0 / 3600.0, 'gaussianNoise': 0.0,
-                    'scaleError': 1.0}
-        values = {}
-        for name, default in defaults.items():
-            values[name] = self.params.vector(tag(name), 3, (default,) * 3)
-        return ErrorModel(self.rng, values['offset'], values['drift'], values['driftFrequency'],
-                          values['gaussianNoise'], values['scaleError'])
 
     def reset(self):
         self.last_update = 0.0  # hector's updateTimer.Reset()

@@ -18,13 +18,12 @@ drift from now on); with a topic, dynamic_reconfigure servers `<topic>/accel`, `
 import math
 import random
 
-from racebot_sim_bridge.kinematics.navsat import ErrorModel
 from racebot_sim_bridge.gazebo_plugins.plugin_namespace import model_plugin_namespace, name_in
 from racebot_sim_bridge.kinematics.rotations import (conjugate, quaternion_multiply, rotate, rotate_back,
                                                      rpy_to_quaternion)
 from racebot_sim_bridge.gazebo_plugins import hector_reconfigure
 from racebot_sim_bridge.gazebo_plugins.model_plugin import ModelPlugin
-from racebot_sim_bridge.gazebo_plugins.hector_gazebo_ros_gps import update_due
+from racebot_sim_bridge.gazebo_plugins.hector_gazebo_ros_gps import sensor_model, update_due
 from racebot_sim_bridge.gazebo_plugins.link_motion import link_motion
 
 
@@ -57,9 +56,9 @@ class HectorImu(ModelPlugin):
         bias_topic = p.string('biasTopicName', topic + '/bias' if topic else '')
         service = p.string('serviceName', topic + '/calibrate')
         self.rng = rng or random.Random()
-        self.accel_model = self._model('accel')
-        self.rate_model = self._model('rate')
-        self.yaw_model = self._model('yaw', scalar=True)
+        self.accel_model = sensor_model(p, self.rng, 'accel')
+        self.rate_model = sensor_model(p, self.rng, 'rate')
+        self.yaw_model = sensor_model(p, self.rng, 'yaw', scalar=True)
         noise = p.number('gaussianNoise', 0.0)
         if noise != 0.0:
             for m in (self.accel_model, self.rate_model):
@@ -85,22 +84,11 @@ class HectorImu(ModelPlugin):
         for name, model in (('set_accel_bias', self.accel_model), ('set_rate_bias', self.rate_model)):
             self.service(name_in(ns, topic + '/' + name), SetBias, lambda req, model=model: self._set_bias(model, req))
         if topic:
-            sensor_model, _ = hector_reconfigure.config_types()
+            model_config, _ = hector_reconfigure.config_types()
             for name, model in (('accel', self.accel_model), ('rate', self.rate_model), ('yaw', self.yaw_model)):
-                self.reconfigure_server(name_in(ns, topic + '/' + name), sensor_model,
+                self.reconfigure_server(name_in(ns, topic + '/' + name), model_config,
                                         hector_reconfigure.sensor_model_callback(model, scalar=name == 'yaw'))
         self.reset()
-
-    def _model(self, prefix, scalar=False):
-        names = {'Offset': 0.0, 'Drift': 0.0, 'DriftFrequency': 1.0 / 3600.0, 'GaussianNoise': 0.0, 'ScaleError': 1.0}
-        values = {}
-        for name, default in names.items():
-            if scalar:
-                values[name] = (self.params.number(prefix + name, default), default, default)
-            else:
-                values[name] = self.params.vector(prefix + name, 3, (default,) * 3)
-        return ErrorModel(self.rng, values['Offset'], values['Drift'], values['DriftFrequency'],
-                          values['GaussianNoise'], values['ScaleError'])
 
     def _set_bias(self, model, req):
         """SetAccelBiasCallback / SetRateBiasCallback: the model's reset(bias), its drift set."""

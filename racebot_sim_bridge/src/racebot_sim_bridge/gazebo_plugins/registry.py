@@ -26,14 +26,21 @@ from racebot_sim_bridge.gazebo_plugins.gazebo_ros_multicamera import MultiCamera
 from racebot_sim_bridge.gazebo_plugins.gazebo_ros_openni_kinect import DepthCameraSensor
 from racebot_sim_bridge.gazebo_plugins.gazebo_ros_p3d import P3D
 from racebot_sim_bridge.gazebo_plugins.gazebo_ros_planar_move import PlanarMove
+from racebot_sim_bridge.gazebo_plugins.gazebo_ros_projector import Projector
+from racebot_sim_bridge.gazebo_plugins.gazebo_ros_prosilica import ProsilicaCameraSensor
 from racebot_sim_bridge.gazebo_plugins.gazebo_ros_range import RangeSensor
 from racebot_sim_bridge.gazebo_plugins.gazebo_ros_skid_steer_drive import SkidSteerDrive
 from racebot_sim_bridge.gazebo_plugins.gazebo_ros_template import Template
 from racebot_sim_bridge.gazebo_plugins.gazebo_ros_tricycle_drive import TricycleDrive
+from racebot_sim_bridge.gazebo_plugins.gazebo_ros_triggered_camera import TriggeredCameraSensor
+from racebot_sim_bridge.gazebo_plugins.gazebo_ros_triggered_multicamera import TriggeredMultiCameraSensor
 from racebot_sim_bridge.gazebo_plugins.gazebo_ros_vacuum_gripper import VacuumGripper
+from racebot_sim_bridge.gazebo_plugins.gazebo_ros_video import Video
 from racebot_sim_bridge.gazebo_plugins.gazebo_ros_wheel_slip import WheelSlip
+from racebot_sim_bridge.gazebo_plugins.hector_gazebo_ros_baro import HectorBaro
 from racebot_sim_bridge.gazebo_plugins.hector_gazebo_ros_gps import HectorGps
 from racebot_sim_bridge.gazebo_plugins.hector_gazebo_ros_imu import HectorImu
+from racebot_sim_bridge.gazebo_plugins.hector_gazebo_ros_magnetic import HectorMagnetic
 from racebot_sim_bridge.gazebo_plugins.roboticsgroup_upatras_gazebo_mimic_joint_plugin import MimicJointPlugin
 from racebot_sim_bridge.gazebo_ros_control.gazebo_ros_control_plugin import GazeboRosControlPlugin
 from racebot_sim_bridge.supported_table import WHERE as SUPPORTED_TABLE
@@ -78,12 +85,12 @@ class Registry:
 REGISTRY = Registry((
     # model plugins: plugin_manager.PluginManager
     DiffDrive, SkidSteerDrive, PlanarMove, P3D, JointStatePublisher, Imu, HectorGps, HectorImu, FTSensor,
-    Force, F3D, Template,
-    TricycleDrive,
-    HandOfGod, VacuumGripper, JointPoseTrajectory,
+    Force, F3D, Template, TricycleDrive, HandOfGod, VacuumGripper, JointPoseTrajectory, HectorMagnetic, HectorBaro,
+    Video, Projector,
     MimicJointPlugin, Elevator, Harness, WheelSlip,
     # sensor plugins: sensors/sensor_manager.SensorManager
     LaserSensor, CameraSensor, MultiCameraSensor, DepthCameraSensor, ImuSensor, RangeSensor, BumperSensor,
+    TriggeredCameraSensor, TriggeredMultiCameraSensor, ProsilicaCameraSensor,
     # robot hardware: GazeboRosControlPlugin.attach hooks it into the simulator
     GazeboRosControlPlugin,
 ))

@@ -160,6 +160,8 @@ def sensor_config(spec, spawn_namespace='', model_name='', node_namespace='/'):
             config.topics['image'] = join_topic(ns, params.get('imageTopicName') or 'image_raw')
             config.topics['info'] = join_topic(ns, params.get('cameraInfoTopicName') or 'camera_info')
             config.params['set_camera_info'] = join_topic(ns, 'set_camera_info')  # camera_info_manager's service
+            # gazebo_ros_camera_utils reads it for every camera; only the triggered cameras subscribe to it
+            config.params['trigger_topic'] = join_topic(ns, params.get('triggerTopicName') or 'image_trigger')
         else:
             config.topics['image'] = join_topic(ns, params.get('imageTopicName') or 'ir/image_raw')
             config.topics['info'] = join_topic(ns, params.get('cameraInfoTopicName') or 'ir/camera_info')

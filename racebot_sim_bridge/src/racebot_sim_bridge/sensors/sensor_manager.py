@@ -177,6 +177,12 @@ class SensorManager:
             wakes[i] = sensor.wake_time() - TIME_EPS  # UpdateSchedule.due: due from next - TIME_EPS on
         self._next_due = min(wakes, default=math.inf)
 
+    def wake(self):
+        """Asks every sensor's wake time again at the next step (any thread): a sensor whose wake time an
+        outside event moved earlier (a triggered camera's trigger) is then stepped. One assignment, so a wake
+        that comes while after_step runs is seen at the step after."""
+        self._due_for = None
+
     # -- cameras ------------------------------------------------------------------------------
     def _start_rendering(self):
         if self.worker is not None or self.renderer is not None:
