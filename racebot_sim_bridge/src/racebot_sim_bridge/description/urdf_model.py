@@ -23,7 +23,7 @@ from racebot_sim_bridge.gazebo_plugins import library_key
 from racebot_sim_bridge.kinematics.rotations import Transform, compose
 
 __all__ = [
-    'UrdfError', 'RobotModel', 'Link', 'Inertial', 'Geometry', 'Joint', 'Limit', 'Dynamics',
+    'UrdfError', 'RobotModel', 'Link', 'Inertial', 'Geometry', 'Joint', 'Limit', 'Dynamics', 'Mimic',
     'Transmission', 'GazeboPlugin', 'GazeboElement', 'Rewrite', 'SensorSpec', 'RaySpec', 'CameraSpec', 'ImuSpec',
     'normalise_interface', 'JOINT_TYPES', 'KEEP_FIXED_JOINT',
 ]
@@ -119,6 +119,14 @@ class Dynamics:
 
 
 @dataclass
+class Mimic:
+    """A joint's URDF <mimic>: its position is ``multiplier * position of joint + offset`` (urdfdom's defaults)."""
+    joint: str
+    multiplier: float = 1.0
+    offset: float = 0.0
+
+
+@dataclass
 class Joint:
     name: str
     type: str
@@ -129,6 +137,7 @@ class Joint:
     axis: tuple = (1.0, 0.0, 0.0)
     limit: Limit = None
     dynamics: Dynamics = None
+    mimic: Mimic = None  # as written; RobotModel.mimics() gives the ones racebot drives
 
 
 @dataclass
@@ -153,13 +162,15 @@ class Rewrite:
 @dataclass
 class GazeboPlugin:
     """A <plugin>: ``params`` maps each child tag to its text (the first one wins).
-    ``reference`` is the link of the enclosing <gazebo reference> (the link it was lumped into, if it was), or
+    ``element`` is the <plugin> element itself, for plugins that read nested elements. ``reference`` is the link
+    of the enclosing <gazebo reference> (the link it was lumped into, if it was), or
     None. ``rewrites``: what sdformat's fixed-joint reduction changed (sdf_reduction)."""
     name: str
     filename: str
     params: dict = field(default_factory=dict)
     reference: str = None
     rewrites: list = field(default_factory=list)
+    element: ET.Element = field(default=None, repr=False, compare=False)  # as written: nested blocks (a harness's)
 
     @property
     def robot_namespace(self) -> str | None:
@@ -277,6 +288,15 @@ class RobotModel:
     root_link: str = None
     materials: dict = field(default_factory=dict)
     warnings: list = field(default_factory=list)
+
+    def mimics(self) -> dict[str, Mimic]:
+        """{joint: its Mimic} of the <mimic> joints racebot drives (beyond Gazebo 11, which ignores <mimic>): both
+        the joint and the one it mimics move (not fixed, floating or planar). urdf_reader warns of the others and
+        refuses loops."""
+        movable = ('revolute', 'continuous', 'prismatic')
+        return {j.name: j.mimic for j in self.joints.values()
+                if j.mimic is not None and j.type in movable and j.mimic.joint in self.joints
+                and self.joints[j.mimic.joint].type in movable}
 
     def child_joints(self, link: str) -> list[Joint]:
         """Joints whose parent is ``link``, in document order."""

@@ -19,7 +19,8 @@ from racebot_sim_bridge.description import sdf_reduction, xml_values
 from racebot_sim_bridge.description.geometry import ShapeKind
 from racebot_sim_bridge.description.urdf_model import (
     JOINT_TYPES, KEEP_FIXED_JOINT, CameraSpec, Dynamics, GazeboElement, GazeboPlugin, Geometry, ImuSpec, Inertial,
-    Joint, Limit, Link, RaySpec, RobotModel, SensorSpec, Transmission, UrdfError, normalise_interface, read_value)
+    Joint, Limit, Link, Mimic, RaySpec, RobotModel, SensorSpec, Transmission, UrdfError, normalise_interface,
+    read_value)
 from racebot_sim_bridge.description.urdf_model import number as _number
 
 __all__ = ['parse_urdf', 'urdf_root']
@@ -143,6 +144,7 @@ class _UrdfReader:
                     raise UrdfError("%s '%s' is defined twice; %s names must be unique" % (tag, item.name, tag))
                 named[item.name] = item
         self.tree()
+        self.mimics()
         for elem in root.findall('transmission'):
             self.model.transmissions.append(self.transmission(elem))
         for elem in root.findall('gazebo'):
@@ -273,7 +275,43 @@ class _UrdfReader:
             where = what + ' <dynamics>'
             joint.dynamics = Dynamics(_attr_number(dynamics, 'damping', where, 0.0),
                                       _attr_number(dynamics, 'friction', where, 0.0))
+        mimic = elem.find('mimic')
+        if mimic is not None:
+            where = what + ' <mimic>'
+            if not mimic.get('joint'):
+                raise UrdfError('%s has no joint attribute; add joint="the joint it follows"' % where)
+            joint.mimic = Mimic(mimic.get('joint'), _attr_number(mimic, 'multiplier', where, 1.0),
+                                _attr_number(mimic, 'offset', where, 0.0))
         return joint
+
+    def mimics(self):
+        """Checks the <mimic> joints racebot drives (Gazebo 11 ignores them): one it cannot drive is warned
+        about; a loop of them is refused, as no position satisfies it."""
+        joints = self.model.joints
+        for joint in joints.values():
+            if joint.mimic is None:
+                continue
+            leader = joints.get(joint.mimic.joint)
+            if leader is None:
+                self.warn("joint '%s' <mimic joint='%s'>: the URDF has no such joint; the joint moves freely, as "
+                          "in Gazebo" % (joint.name, joint.mimic.joint))
+            elif joint.name not in self.model.mimics():
+                self.warn("joint '%s' (%s) <mimic joint='%s'> (%s): racebot drives a <mimic> only between revolute, "
+                          "continuous or prismatic joints; it is ignored, as Gazebo ignores it"
+                          % (joint.name, joint.type, leader.name, leader.type))
+        mimics = self.model.mimics()
+        for start in mimics:
+            path = [start]
+            while path[-1] in mimics:
+                path.append(mimics[path[-1]].joint)
+                if path[-1] in path[:-1]:
+                    loop = path[path.index(path[-1]):]
+                    if start == loop[0]:
+                        raise UrdfError(
+                            'the <mimic> joints form a loop (%s): racebot drives each <mimic> joint from the joint it '
+                            'names (Gazebo 11 ignores <mimic>), and no position satisfies a loop; let one of them '
+                            'mimic none' % ' mimics '.join("'%s'" % n for n in loop))
+                    break
 
     def tree(self):
         links, joints = self.model.links, self.model.joints
@@ -366,7 +404,7 @@ class _UrdfReader:
         params = {}
         for child in elem:
             params.setdefault(child.tag, (child.text or '').strip())
-        return GazeboPlugin(name, filename, params, reference)
+        return GazeboPlugin(name, filename, params, reference, element=elem)
 
     def gazebo(self, elem):
         reference = elem.get('reference')

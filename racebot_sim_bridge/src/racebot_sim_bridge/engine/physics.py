@@ -42,6 +42,7 @@ from racebot_sim_bridge.description.geometry import ShapeKind
 from racebot_sim_bridge.engine.bullet_urdf import (NEGLIGIBLE_INERTIA, NEGLIGIBLE_MASS,  # noqa: F401 (re-exported)
                                                   joint_friction, link_friction, link_laser_retro,
                                                   prepare_urdf_for_bullet)
+from racebot_sim_bridge.engine import mimic_joints
 from racebot_sim_bridge.engine.joint_damping import ImplicitDampers, implicit_joints
 from racebot_sim_bridge.engine.pybullet_client import PybulletClient
 from racebot_sim_bridge.kinematics.rotations import Quat, Vec3, as_transform
@@ -112,6 +113,7 @@ class Body:
         self._inertial = (tuple(dyn[3]), tuple(dyn[4]))  # base inertial frame in the link frame
         self.spawn_pose = self.pose()
         self.initial_joint_positions = {}
+        self.mimics = {}  # URDF <mimic> joints held to their leaders: {joint: mimic_joints.Coupling}
         base_name = client.getBodyInfo(body_id)[0].decode()
         self.link_index = {base_name: -1}
         self.joints = {}
@@ -438,6 +440,7 @@ class PhysicsWorld:
                 self.client.changeDynamics(body_id, index, jointDamping=0.0)
             self.implicit_dampers[body_id] = ImplicitDampers(self.client, body_id, urdf_model.root_link == 'world',
                                                              implicit)
+        body.mimics = mimic_joints.couple(self.client, body_id, body.joints, urdf_model)
         return body
 
     def add_copy(self, name: str, source: BodySource) -> Body:
@@ -487,6 +490,8 @@ class PhysicsWorld:
     def set_joint_position(self, body: Body, joint_name: str, position: float, velocity: float = 0.0) -> None:
         joint = body.joints[joint_name]
         self.client.resetJointState(body.id, joint.index, position, velocity)
+        if body.mimics:
+            mimic_joints.settle(self.client, body.id, body.joints, body.mimics)
 
     def set_pose(self, body: Body, position: Vec3, orientation: Quat, linear: Vec3 = (0, 0, 0),
                  angular: Vec3 = (0, 0, 0)) -> None:
@@ -616,6 +621,7 @@ class PhysicsWorld:
             self.set_base_state(extra, pos, orn)
         for joint in body.joints.values():
             self.client.resetJointState(body.id, joint.index, body.initial_joint_positions.get(joint.name, 0.0), 0.0)
+        mimic_joints.settle(self.client, body.id, body.joints, body.mimics)
 
     def follow_with_camera(self, body: Body, distance: float = 1.5, yaw_offset: float = 0.0,
                            pitch: float = -30.0) -> None:

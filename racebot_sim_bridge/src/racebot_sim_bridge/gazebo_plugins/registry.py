@@ -12,10 +12,12 @@ from racebot_sim_bridge.gazebo_plugins.gazebo_ros_block_laser import BlockLaserS
 from racebot_sim_bridge.gazebo_plugins.gazebo_ros_bumper import BumperSensor
 from racebot_sim_bridge.gazebo_plugins.gazebo_ros_camera import CameraSensor
 from racebot_sim_bridge.gazebo_plugins.gazebo_ros_diff_drive import DiffDrive
+from racebot_sim_bridge.gazebo_plugins.gazebo_ros_elevator import Elevator
 from racebot_sim_bridge.gazebo_plugins.gazebo_ros_f3d import F3D
 from racebot_sim_bridge.gazebo_plugins.gazebo_ros_force import Force
-from racebot_sim_bridge.gazebo_plugins.gazebo_ros_hand_of_god import HandOfGod
 from racebot_sim_bridge.gazebo_plugins.gazebo_ros_ft_sensor import FTSensor
+from racebot_sim_bridge.gazebo_plugins.gazebo_ros_hand_of_god import HandOfGod
+from racebot_sim_bridge.gazebo_plugins.gazebo_ros_harness import Harness
 from racebot_sim_bridge.gazebo_plugins.gazebo_ros_imu import Imu
 from racebot_sim_bridge.gazebo_plugins.gazebo_ros_imu_sensor import ImuSensor
 from racebot_sim_bridge.gazebo_plugins.gazebo_ros_joint_pose_trajectory import JointPoseTrajectory
@@ -31,10 +33,12 @@ from racebot_sim_bridge.gazebo_plugins.gazebo_ros_range import RangeSensor
 from racebot_sim_bridge.gazebo_plugins.gazebo_ros_skid_steer_drive import SkidSteerDrive
 from racebot_sim_bridge.gazebo_plugins.gazebo_ros_template import Template
 from racebot_sim_bridge.gazebo_plugins.gazebo_ros_tricycle_drive import TricycleDrive
-from racebot_sim_bridge.gazebo_plugins.gazebo_ros_vacuum_gripper import VacuumGripper
 from racebot_sim_bridge.gazebo_plugins.gazebo_ros_triggered_camera import TriggeredCameraSensor
 from racebot_sim_bridge.gazebo_plugins.gazebo_ros_triggered_multicamera import TriggeredMultiCameraSensor
+from racebot_sim_bridge.gazebo_plugins.gazebo_ros_vacuum_gripper import VacuumGripper
 from racebot_sim_bridge.gazebo_plugins.gazebo_ros_video import Video
+from racebot_sim_bridge.gazebo_plugins.gazebo_ros_wheel_slip import WheelSlip
+from racebot_sim_bridge.gazebo_plugins.hector_gazebo_ros_baro import HectorBaro
 from racebot_sim_bridge.gazebo_plugins.hector_gazebo_ros_gps import HectorGps
 from racebot_sim_bridge.gazebo_plugins.hector_gazebo_ros_imu import HectorImu
 from racebot_sim_bridge.gazebo_plugins.hector_gazebo_ros_magnetic import HectorMagnetic
@@ -43,6 +47,7 @@ from racebot_sim_bridge.gazebo_plugins.ridgeback_ros_force_based_move import Rid
 from racebot_sim_bridge.gazebo_plugins.gazebo_ros_velodyne_gpu_laser import VelodyneGpuLaser
 from racebot_sim_bridge.gazebo_plugins.gazebo_ros_velodyne_laser import VelodyneLaser
 from racebot_sim_bridge.gazebo_plugins.hector_gazebo_ros_sonar import HectorSonar
+from racebot_sim_bridge.gazebo_plugins.roboticsgroup_upatras_gazebo_mimic_joint_plugin import MimicJointPlugin
 from racebot_sim_bridge.gazebo_ros_control.gazebo_ros_control_plugin import GazeboRosControlPlugin
 from racebot_sim_bridge.supported_table import WHERE as SUPPORTED_TABLE
 
@@ -87,7 +92,7 @@ REGISTRY = Registry((
     # model plugins: plugin_manager.PluginManager
     DiffDrive, SkidSteerDrive, PlanarMove, P3D, JointStatePublisher, Imu, HectorGps, HectorImu, FTSensor,
     Force, F3D, Template, TricycleDrive, HandOfGod, VacuumGripper, JointPoseTrajectory, HectorMagnetic, HectorBaro,
-    Video, Projector, RidgebackForceBasedMove,
+    Video, Projector, RidgebackForceBasedMove, MimicJointPlugin, Elevator, Harness, WheelSlip,
     # sensor plugins: sensors/sensor_manager.SensorManager
     LaserSensor, CameraSensor, MultiCameraSensor, DepthCameraSensor, ImuSensor, RangeSensor, BumperSensor,
     TriggeredCameraSensor, TriggeredMultiCameraSensor, ProsilicaCameraSensor,

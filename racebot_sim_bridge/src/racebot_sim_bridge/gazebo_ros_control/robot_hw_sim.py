@@ -98,15 +98,24 @@ class DefaultRobotHWSim(RobotHW):
         self.body = body
         self.joint_handles = [self.handles[n] for n in self.names]
         self.indices = [body.joints[h.name].index for h in self.joint_handles]
-        self.effort_idx = [i for i, h in zip(self.indices, self.joint_handles) if h.interface == EFFORT]
-        self.effort_handles = [h for h in self.joint_handles if h.interface == EFFORT]
+        # A URDF <mimic> joint follows its leader (engine/mimic_joints.py): read, never commanded.
+        for h in self.joint_handles:
+            if h.name in body.mimics:
+                c = body.mimics[h.name]
+                self.warnings.append("joint '%s' is a URDF <mimic> of '%s' (racebot holds it at %g * %s %s %g; Gazebo "
+                                     "ignores <mimic>): its state is read, the commands its controller writes are "
+                                     "not applied" % (h.name, c.leader, c.multiplier, c.leader,
+                                                      '-' if c.offset < 0 else '+', abs(c.offset)))
+        commanded = [h for h in self.joint_handles if h.name not in body.mimics]
+        self.effort_handles = [h for h in commanded if h.interface == EFFORT]
+        self.effort_idx = [body.joints[h.name].index for h in self.effort_handles]
         gains = gains or {}
         # POSITION_PID / VELOCITY_PID joints: effort = PID(error), clamped to the effort limit, applied
         # as a force (writeSim, every world update).
-        self.pid_joints = [(h, gains[h.name], body.joints[h.name].index) for h in self.joint_handles
+        self.pid_joints = [(h, gains[h.name], body.joints[h.name].index) for h in commanded
                            if h.interface in (POSITION, VELOCITY) and h.name in gains]
-        velocity = [h for h in self.joint_handles if h.interface == VELOCITY and h.name not in gains]
-        position = [h for h in self.joint_handles if h.interface == POSITION and h.name not in gains]
+        velocity = [h for h in commanded if h.interface == VELOCITY and h.name not in gains]
+        position = [h for h in commanded if h.interface == POSITION and h.name not in gains]
         # What write_sim passes every step, built once.
         self._drives = [(hs, drive, [body.joints[h.name].index for h in hs], [h.max_effort or 1e3 for h in hs])
                         for hs, drive in ((velocity, 'drive_velocities'), (position, 'drive_positions')) if hs]
