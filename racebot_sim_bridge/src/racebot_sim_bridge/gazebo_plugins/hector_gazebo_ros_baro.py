@@ -16,7 +16,7 @@ the PointStamped's, as upstream copies it: without a height topic its stamp stay
 import random
 
 from racebot_sim_bridge.gazebo_plugins import hector_reconfigure
-from racebot_sim_bridge.gazebo_plugins.hector_gazebo_ros_gps import sensor_model, update_due
+from racebot_sim_bridge.gazebo_plugins.hector_gazebo_ros_gps import UpdateTimer, sensor_model
 from racebot_sim_bridge.gazebo_plugins.hector_gazebo_ros_magnetic import update_period
 from racebot_sim_bridge.gazebo_plugins.link_motion import link_motion
 from racebot_sim_bridge.gazebo_plugins.model_plugin import ModelPlugin
@@ -44,7 +44,7 @@ class HectorBaro(ModelPlugin):
         self.qnh = p.number('qnh', DEFAULT_QNH)
         self.rng = rng or random.Random()
         self.model = sensor_model(p, self.rng, scalar=True)
-        self.period = update_period(p)
+        self.timer = UpdateTimer(update_period(p))
         ns = model_plugin_namespace('planar_move', p.string('robotNamespace', None), robot.spawn_namespace,
                                     robot.name, ctx.sim.node_namespace)
         from geometry_msgs.msg import PointStamped
@@ -59,14 +59,13 @@ class HectorBaro(ModelPlugin):
         self.reset()
 
     def reset(self):
-        self.last_update = 0.0  # hector's updateTimer.Reset()
+        self.timer.reset()
         self.model.reset()
 
     def before_physics(self, time):
-        if not update_due(time, self.period, self.ctx.sim.step_size):
+        dt = self.timer.tick(time, self.ctx.sim.step_size)
+        if dt is None:
             return
-        # UpdateTimer::getTimeSinceLastUpdate: 0 until a first update (last update time 0 is "none")
-        dt, self.last_update = (time - self.last_update if self.last_update != 0.0 else 0.0), time
         position, _, _, _ = link_motion(self.world, self.robot.body, self.body_name)
         height = self.model.apply((position[2], 0.0, 0.0), dt)[0]
         if self.height_pub is not None:

@@ -35,6 +35,25 @@ def update_due(time, period, step):
     return 0.0 <= fraction < step
 
 
+class UpdateTimer:
+    """hector's UpdateTimer on the world's clock: checkUpdate, getTimeSinceLastUpdate and Reset in one."""
+
+    def __init__(self, period):
+        self.period = period
+        self.last_update = 0.0
+
+    def reset(self):
+        self.last_update = 0.0
+
+    def tick(self, time, step):
+        """None when no update is due at `time`; else the time since the last update (0 until a first: last
+        update time 0 is "none"), and `time` becomes the last update."""
+        if not update_due(time, self.period, step):
+            return None
+        dt, self.last_update = (time - self.last_update if self.last_update != 0.0 else 0.0), time
+        return dt
+
+
 def sensor_model(params, rng, prefix='', scalar=False):
     """hector's SensorModel_::Load(sdf, prefix) as an ErrorModel: offset, drift, driftFrequency, gaussianNoise,
     scaleError (with a prefix: prefixOffset, prefixDrift, ...), 3-vectors (SensorModel3); `scalar`: SensorModel's
@@ -73,10 +92,10 @@ class HectorGps(ModelPlugin):
         self.position_error = sensor_model(p, self.rng)
         self.velocity_error = sensor_model(p, self.rng, 'velocity')
         rate = p.number('updateRate', 4.0, minimum=0.0)
-        self.period = 1.0 / rate if rate > 0 else 0.0
+        period = 1.0 / rate if rate > 0 else 0.0
         if p.has('updatePeriod') and not p.has('updateRate'):
-            self.period = p.number('updatePeriod', self.period, minimum=0.0)
-        self.last_update = 0.0
+            period = p.number('updatePeriod', period, minimum=0.0)
+        self.timer = UpdateTimer(period)
         ns = model_plugin_namespace('planar_move', p.string('robotNamespace', None), robot.spawn_namespace,
                                     robot.name, ctx.sim.node_namespace)
         from geometry_msgs.msg import Vector3Stamped
@@ -106,15 +125,14 @@ class HectorGps(ModelPlugin):
         return self.SetReferenceGeoPoseResponse()
 
     def reset(self):
-        self.last_update = 0.0  # hector's updateTimer.Reset()
+        self.timer.reset()
         self.position_error.reset()
         self.velocity_error.reset()
 
     def before_physics(self, time):
-        if not update_due(time, self.period, self.ctx.sim.step_size):
+        dt = self.timer.tick(time, self.ctx.sim.step_size)
+        if dt is None:
             return
-        # UpdateTimer::getTimeSinceLastUpdate: 0 until a first update (last update time 0 is "none")
-        dt, self.last_update = (time - self.last_update if self.last_update != 0.0 else 0.0), time
         position, _, linear, _ = link_motion(self.world, self.robot.body, self.body_name)
         velocity = self.velocity_error.apply(linear, dt)
         position = self.position_error.apply(position, dt)

@@ -23,7 +23,7 @@ from racebot_sim_bridge.kinematics.rotations import (conjugate, quaternion_multi
                                                      rpy_to_quaternion)
 from racebot_sim_bridge.gazebo_plugins import hector_reconfigure
 from racebot_sim_bridge.gazebo_plugins.model_plugin import ModelPlugin
-from racebot_sim_bridge.gazebo_plugins.hector_gazebo_ros_gps import sensor_model, update_due
+from racebot_sim_bridge.gazebo_plugins.hector_gazebo_ros_gps import UpdateTimer, sensor_model
 from racebot_sim_bridge.gazebo_plugins.link_motion import link_motion
 
 
@@ -65,7 +65,7 @@ class HectorImu(ModelPlugin):
                 m.gaussian_noise = (noise,) * 3
         self.offset = rpy_to_quaternion(*p.vector('rpyOffset', 3, (0.0, 0.0, 0.0)))
         rate = p.number('updateRate', 0.0, minimum=0.0)
-        self.period = 1.0 / rate if rate > 0 else 0.0
+        self.timer = UpdateTimer(1.0 / rate if rate > 0 else 0.0)
         gravity = ctx.sim.world.gravity
         self.gravity = tuple(gravity)
         self.gravity_length = math.sqrt(sum(g * g for g in gravity))
@@ -101,7 +101,7 @@ class HectorImu(ModelPlugin):
         return self.EmptyResponse()
 
     def reset(self):
-        self.last_update = 0.0
+        self.timer.reset()
         self.orientation = (0.0, 0.0, 0.0, 1.0)
         self.velocity = (0.0, 0.0, 0.0)
         self.accel = (0.0, 0.0, 0.0)
@@ -110,10 +110,9 @@ class HectorImu(ModelPlugin):
             m.reset()
 
     def before_physics(self, time):
-        if not update_due(time, self.period, self.ctx.sim.step_size):
+        dt = self.timer.tick(time, self.ctx.sim.step_size)
+        if dt is None:
             return
-        # UpdateTimer::getTimeSinceLastUpdate: 0 until a first update (last update time 0 is "none")
-        dt, self.last_update = (time - self.last_update if self.last_update != 0.0 else 0.0), time
         _, pose_rot, velocity, _ = link_motion(self.world, self.robot.body, self.body_name)
         rot = _normalized(quaternion_multiply(self.offset, pose_rot))
         if dt > 0.0:

@@ -18,7 +18,7 @@ import math
 import random
 
 from racebot_sim_bridge.gazebo_plugins import hector_reconfigure
-from racebot_sim_bridge.gazebo_plugins.hector_gazebo_ros_gps import sensor_model, update_due
+from racebot_sim_bridge.gazebo_plugins.hector_gazebo_ros_gps import UpdateTimer, sensor_model
 from racebot_sim_bridge.gazebo_plugins.link_motion import link_motion
 from racebot_sim_bridge.gazebo_plugins.model_plugin import ModelPlugin
 from racebot_sim_bridge.gazebo_plugins.plugin_namespace import model_plugin_namespace, name_in
@@ -58,7 +58,7 @@ class HectorMagnetic(ModelPlugin):
                                  math.radians(p.number('inclination', DEFAULT_INCLINATION)))
         self.rng = rng or random.Random()
         self.model = sensor_model(p, self.rng)
-        self.period = update_period(p)
+        self.timer = UpdateTimer(update_period(p))
         topic = p.string('topicName', 'magnetic')
         ns = model_plugin_namespace('planar_move', p.string('robotNamespace', None), robot.spawn_namespace,
                                     robot.name, ctx.sim.node_namespace)
@@ -73,14 +73,13 @@ class HectorMagnetic(ModelPlugin):
         self.reset()
 
     def reset(self):
-        self.last_update = 0.0  # hector's updateTimer.Reset()
+        self.timer.reset()
         self.model.reset()
 
     def before_physics(self, time):
-        if not update_due(time, self.period, self.ctx.sim.step_size):
+        dt = self.timer.tick(time, self.ctx.sim.step_size)
+        if dt is None:
             return
-        # UpdateTimer::getTimeSinceLastUpdate: 0 until a first update (last update time 0 is "none")
-        dt, self.last_update = (time - self.last_update if self.last_update != 0.0 else 0.0), time
         _, rotation, _, _ = link_motion(self.world, self.robot.body, self.body_name)
         field = self.model.apply(rotate_back(rotation, self.field), dt)
         msg = self.message()

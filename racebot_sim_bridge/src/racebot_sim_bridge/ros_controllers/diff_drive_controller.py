@@ -17,6 +17,18 @@ from racebot_sim_bridge.ros_control.controller_interface import Controller, Cont
 from racebot_sim_bridge.supported_table import WHERE as SUPPORTED_TABLE
 
 
+def covariance_diagonal(params, param_ns, key):
+    """A pose/twist_covariance_diagonal parameter: six finite numbers; absent: zeros (upstream's XmlRpc reads an
+    absent list as zeros)."""
+    value = params.get(key)
+    if value is None:
+        return (0.0,) * 6
+    if not isinstance(value, list) or len(value) != 6 or not all(
+            isinstance(v, (int, float)) and not isinstance(v, bool) and math.isfinite(v) for v in value):
+        raise ControllerInitError('%s/%s must be a list of 6 numbers, got %r' % (param_ns, key, value))
+    return tuple(float(v) for v in value)
+
+
 class OdometryDriveController(Controller):
     """What diff_drive_controller and ackermann_steering_controller share (the latter is derived from the
     former upstream): cmd_vel with its timeout and limits, the odometry published at publish_rate with
@@ -83,14 +95,7 @@ class OdometryDriveController(Controller):
         return lim
 
     def _covariance(self, key):
-        """Six diagonal entries; absent: zeros (upstream's XmlRpc reads an absent list as zeros)."""
-        value = self.params.get(key)
-        if value is None:
-            return (0.0,) * 6
-        if not isinstance(value, list) or len(value) != 6 or not all(
-                isinstance(v, (int, float)) and not isinstance(v, bool) and math.isfinite(v) for v in value):
-            raise ControllerInitError('%s/%s must be a list of 6 numbers, got %r' % (self.param_ns, key, value))
-        return tuple(float(v) for v in value)
+        return covariance_diagonal(self.params, self.param_ns, key)
 
     # -- ROS ------------------------------------------------------------------------------------
     def _on_cmd_vel(self, msg):

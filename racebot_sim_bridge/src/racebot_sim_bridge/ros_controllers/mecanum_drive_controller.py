@@ -21,6 +21,7 @@ from racebot_sim_bridge.kinematics.controller_odometry import wheel_params_from_
 from racebot_sim_bridge.ros_control import hardware_interface as hardware
 from racebot_sim_bridge.ros_control.controller_interface import Controller, ControllerInitError
 from racebot_sim_bridge.ros_control.hardware_interface import VELOCITY
+from racebot_sim_bridge.ros_controllers.diff_drive_controller import covariance_diagonal
 
 WHEELS = ('front_left_wheel_joint', 'back_left_wheel_joint', 'back_right_wheel_joint', 'front_right_wheel_joint')
 AXES = ('linear/x', 'linear/y', 'angular/z')
@@ -83,8 +84,8 @@ class MecanumDriveController(Controller):
         self.enable_odom_tf = self._flag('enable_odom_tf', True)
         self.limiters = [self._limiter(axis) for axis in AXES]
         self.k, self.radius = self._geometry(names)
-        self.pose_cov = self._covariance('pose_covariance_diagonal')
-        self.twist_cov = self._covariance('twist_covariance_diagonal')
+        self.pose_cov = covariance_diagonal(self.params, self.param_ns, 'pose_covariance_diagonal')
+        self.twist_cov = covariance_diagonal(self.params, self.param_ns, 'twist_covariance_diagonal')
         self.odom_pub = self._pub(self.topic('odom'), OdometryMsg, 100)
         self.tf_pub = self._pub('/tf', TFMessage, 100) if self.enable_odom_tf else None
         self.command = (0.0, 0.0, 0.0, -math.inf)  # (x, y, yaw rate, stamp): swapped whole
@@ -102,16 +103,6 @@ class MecanumDriveController(Controller):
                                                                                     False),
                        max_v, self._number(axis + '/min_velocity', -max_v), max_a,
                        self._number(axis + '/min_acceleration', -max_a))
-
-    def _covariance(self, key):
-        """Six diagonal entries; absent: zeros."""
-        value = self.params.get(key)
-        if value is None:
-            return (0.0,) * 6
-        if not isinstance(value, list) or len(value) != 6 or not all(
-                isinstance(v, (int, float)) and not isinstance(v, bool) and math.isfinite(v) for v in value):
-            raise ControllerInitError('%s/%s must be a list of 6 numbers, got %r' % (self.param_ns, key, value))
-        return tuple(float(v) for v in value)
 
     def _geometry(self, names):
         sx, sy = self._lookup('wheel_separation_x'), self._lookup('wheel_separation_y')
