@@ -3,16 +3,15 @@ filename="libgazebo_ros_diff_drive.so"; gazebo_ros_laser.py also answers libgaze
 
   registry.py            REGISTRY: library name -> the class that answers it, for every kind of plugin; the one
                          warning about a library racebot does not simulate
-  model plugins          gazebo_ros_diff_drive, _skid_steer_drive, _planar_move, _p3d, _joint_state_publisher, _imu,
-                         hector_gazebo_ros_gps, hector_gazebo_ros_imu (gazebo_plugins noetic-devel,
-                         hector_gazebo_plugins); their base model_plugin.py, built and run by plugin_manager.py
-  sensor plugins         gazebo_ros_laser, _camera, _multicamera, _openni_kinect, _imu_sensor, _range, _bumper,
-                         _block_laser, _velodyne_laser, _velodyne_gpu_laser, hector_gazebo_ros_sonar; their
-                         base sensor_plugin.py, built and run by ../sensors/sensor_manager.py with the pipeline
-                         stages in ../sensors/
+  model plugins          gazebo_plugins' (noetic-devel), hector_gazebo_plugins', velodyne's, roboticsgroup's mimic
+                         joint, ridgeback's: subclasses of model_plugin.py, built and run by plugin_manager.py
+  sensor plugins         subclasses of sensor_plugin.py, built and run by ../sensors/sensor_manager.py with the
+                         pipeline stages in ../sensors/
+                         (every library by name: REGISTRY in registry.py, and docs/SUPPORTED.md)
   robot hardware         gazebo_ros_control: ../gazebo_ros_control/, hooked into the simulator at spawn
   shared                 plugin_namespace.py (where a plugin's topics go), odometry_output.py, link_motion.py,
-                         update_timing.py, hector_reconfigure.py
+                         update_timing.py, hector_reconfigure.py, gazebo_ros_utils.py, gazebo_pid.py,
+                         polled_camera_types.py
 
 A new plugin is a module here named after its library, with one class that lists its `libraries`, added to
 registry.py. This package's own namespace holds only what the description needs too (no ROS, no PyBullet):
