@@ -50,6 +50,7 @@ import time
 import rospy
 from rosgraph_msgs.msg import Clock
 
+from racebot_sim_bridge import queued_publishing
 from racebot_sim_bridge.description import model_path, sdf_reader
 from racebot_sim_bridge.ros_controllers import CommandTrace, RosIO
 from racebot_sim_bridge.gazebo_ros_api.services import GazeboServices
@@ -391,6 +392,7 @@ def main(argv=None, debugger=False, fallback_to_empty=False):
     gzserver sets it); racebot's own world_server keeps it fatal."""
     argv = rospy.myargv(argv if argv is not None else sys.argv)[1:]
     init_clock_source('gazebo')
+    queued_publishing.install()  # before any publisher: no thread switch per message from the update loop
     if not rospy.has_param('/use_sim_time'):  # gazebo_ros sets it when nobody has
         rospy.set_param('/use_sim_time', True)
     if debugger:
