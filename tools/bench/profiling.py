@@ -1,5 +1,5 @@
-"""Where the world server spends its time while a bench part runs: py-spy (optional: `.venv/bin/pip install
-py-spy`) on the running process, summarized by function (self time) and by racebot's frames (inclusive)."""
+"""Where the world server spends its time while a bench part runs: py-spy (tools/requirements.txt) on the running
+process, summarized by function (self time) and by racebot's frames (inclusive)."""
 import math
 import os
 import shutil
@@ -22,8 +22,11 @@ def profile_world_server(pid, seconds, out, name='world_server'):
     raw = os.path.join(out, name + '.pyspy.txt')
     cmd = [exe, 'record', '--nonblocking', '--threads', '-r', '200', '-d', str(int(math.ceil(seconds))), '-p', str(pid),
            '-f', 'raw', '-o', raw]
+    if os.path.exists(raw):
+        os.remove(raw)  # a file left by an earlier run must not stand for this one
     run = subprocess.run(cmd, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, timeout=seconds + 60)
-    if run.returncode != 0 or not os.path.exists(raw):
+    # py-spy 0.4 may panic while it shuts its sampler down, after it wrote the samples: those still count
+    if not os.path.exists(raw) or os.path.getsize(raw) == 0:
         return {'available': False, 'why': 'py-spy failed: %s' % run.stdout.decode(errors='replace')[-300:]}
     return dict(summarize_stacks(raw, 'MainThread'), available=True, tool='py-spy', raw=os.path.basename(raw))
 
