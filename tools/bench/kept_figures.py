@@ -9,7 +9,8 @@ the tree would be dirty after each bench, and a slow drift would only ever be co
 previous step.
 
 A figure is {'label', 'unit', 'fmt', 'better' ('higher', 'lower' or None), 'tolerance' (relative),
-'median', 'min', 'max', 'n'}: min-max is the spread over its n repeats (n 1: one measurement).
+'resolution' (absolute, in its unit; 0 if absent), 'median', 'min', 'max', 'n'}: min-max is the spread over its
+n repeats (n 1: one measurement).
 """
 import json
 import math
@@ -28,10 +29,11 @@ def key_figures(r):
     """The figures worth keeping, from the results dictionary of tools/bench.py: {key: figure}."""
     out = {}
 
-    def add(key, label, value, unit='', better=None, fmt='%.2f', tolerance=TOLERANCE):
+    def add(key, label, value, unit='', better=None, fmt='%.2f', tolerance=TOLERANCE, resolution=0.0):
         s = stats.spread([value]) if value is None or isinstance(value, (int, float)) else value
         if s is not None:
-            out[key] = dict(s, label=label, unit=unit, fmt=fmt, better=better, tolerance=tolerance)
+            out[key] = dict(s, label=label, unit=unit, fmt=fmt, better=better, tolerance=tolerance,
+                            resolution=resolution)
 
     sp = r.get('speed')
     if sp:
@@ -90,7 +92,7 @@ def key_figures(r):
         for c in ((r.get('fidelity') or {}).get(mode) or {}).get('circles', []):
             add('fidelity.%s.radius_error_%.1f' % (mode, c['steering_rad']),
                 'turning radius error, %s, %.1f rad' % (mode, c['steering_rad']), c['error_pct'], ' %', 'lower',
-                '%.1f', 0.10)
+                '%.1f', 0.10, resolution=0.5)  # 0.07 -> 0.1 % is +40 % of a figure that is nil
     return out
 
 
@@ -148,11 +150,12 @@ def change(new, old):
 
 def verdict(new, old):
     """'same', 'better', 'worse, within spread', REGRESSION, ... for one figure against its kept one.
-    A change counts beyond the figure's tolerance; a worse median is a REGRESSION when, in addition,
-    the two spreads do not overlap (a noisy figure moving inside its own spread is reported, not flagged)."""
+    A change counts beyond the figure's tolerance (relative) and its resolution (absolute); a worse median is a
+    REGRESSION when, in addition, the two spreads do not overlap (a noisy figure moving inside its own spread is
+    reported, not flagged)."""
     better = new.get('better')
     now, was = new['median'], old['median']
-    if abs(now - was) <= new.get('tolerance', TOLERANCE) * abs(was):
+    if abs(now - was) <= max(new.get('tolerance', TOLERANCE) * abs(was), new.get('resolution', 0.0)):
         return 'same'
     if better is None:
         return 'changed (not judged)'

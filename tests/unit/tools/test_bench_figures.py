@@ -121,6 +121,9 @@ def test_noise_inside_the_spread_is_reported_not_flagged():
     (fig(2.0, n=1), fig(3.0, n=1), 'lower', 'better'),   # lower is better: a shorter start-up
     (fig(3.5, n=1), fig(3.0, n=1), 'lower', kept_figures.REGRESSION),  # one measurement: no spread to hide in
     (fig(12.0), fig(10.0), None, 'changed (not judged)'),  # the ceiling: the machine's figure
+    # a turning radius 0.07 % off, then 0.1 %: +40 % of a nil error, below the figure's 0.5-point resolution
+    (dict(fig(0.1, n=1), resolution=0.5), fig(0.07, n=1), 'lower', 'same'),
+    (dict(fig(1.2, n=1), resolution=0.5), fig(0.07, n=1), 'lower', kept_figures.REGRESSION),
 ])
 def test_verdicts(new, kept, better, expected):
     new['better'] = better
