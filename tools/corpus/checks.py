@@ -288,8 +288,10 @@ def check_trajectory(check, row):
         if not err <= worst:
             worst, worst_joint = err, joint
     numbers = 'error_code %s, max |error| %.4f rad (%s), %d joints' % (code, worst, worst_joint, len(target))
-    if code != 0:
-        raise CheckFailed('error_code %s (%s); %s' % (code, result.error_string if result else 'no result', numbers))
+    if code != 0:  # where the goal started from: a failure is read against the robot's pose then
+        start = ', '.join('%s %.3f' % (j, now[j]) for j in target if j in now)
+        raise CheckFailed('error_code %s (%s); %s; started from %s'
+                          % (code, result.error_string if result else 'no result', numbers, start))
     if bad:
         raise CheckFailed('; '.join(bad), numbers)
     return numbers
