@@ -29,6 +29,32 @@ def covariance_diagonal(params, param_ns, key):
     return tuple(float(v) for v in value)
 
 
+def publish_odometry(controller, stamp, pose, twist):
+    """nav_msgs/Odometry of a planar base on the controller's odom_pub, and its odom -> base transform on tf_pub when
+    it publishes one: pose (x, y, heading) in the odom frame, twist (vx, vy, wz) in the base frame, the covariance
+    diagonals pose_cov and twist_cov (the drive controllers' publishing step, upstream's realtime publishers)."""
+    x, y, heading = pose
+    qz, qw = math.sin(heading / 2.0), math.cos(heading / 2.0)
+    msg = OdometryMsg()
+    msg.header.stamp = stamp
+    msg.header.frame_id = controller.odom_frame_id
+    msg.child_frame_id = controller.base_frame_id
+    msg.pose.pose.position.x, msg.pose.pose.position.y = x, y
+    msg.pose.pose.orientation.z, msg.pose.pose.orientation.w = qz, qw
+    msg.twist.twist.linear.x, msg.twist.twist.linear.y, msg.twist.twist.angular.z = twist
+    msg.pose.covariance = _diagonal(controller.pose_cov)
+    msg.twist.covariance = _diagonal(controller.twist_cov)
+    controller.odom_pub.publish(msg)
+    if controller.tf_pub is not None:
+        t = TransformStamped()
+        t.header.stamp = stamp
+        t.header.frame_id = controller.odom_frame_id
+        t.child_frame_id = controller.base_frame_id
+        t.transform.translation.x, t.transform.translation.y = x, y
+        t.transform.rotation.z, t.transform.rotation.w = qz, qw
+        controller.tf_pub.publish(TFMessage(transforms=[t]))
+
+
 class OdometryDriveController(Controller):
     """What diff_drive_controller and ackermann_steering_controller share (the latter is derived from the
     former upstream): cmd_vel with its timeout and limits, the odometry published at publish_rate with
@@ -151,26 +177,7 @@ class OdometryDriveController(Controller):
 
     def _publish_odometry(self, time):
         odo = self.odometry
-        stamp = self.io.stamp(time)
-        qz, qw = math.sin(odo.heading / 2.0), math.cos(odo.heading / 2.0)
-        msg = OdometryMsg()
-        msg.header.stamp = stamp
-        msg.header.frame_id = self.odom_frame_id
-        msg.child_frame_id = self.base_frame_id
-        msg.pose.pose.position.x, msg.pose.pose.position.y = odo.x, odo.y
-        msg.pose.pose.orientation.z, msg.pose.pose.orientation.w = qz, qw
-        msg.twist.twist.linear.x, msg.twist.twist.angular.z = odo.linear, odo.angular
-        msg.pose.covariance = _diagonal(self.pose_cov)
-        msg.twist.covariance = _diagonal(self.twist_cov)
-        self.odom_pub.publish(msg)
-        if self.tf_pub is not None:
-            t = TransformStamped()
-            t.header.stamp = stamp
-            t.header.frame_id = self.odom_frame_id
-            t.child_frame_id = self.base_frame_id
-            t.transform.translation.x, t.transform.translation.y = odo.x, odo.y
-            t.transform.rotation.z, t.transform.rotation.w = qz, qw
-            self.tf_pub.publish(TFMessage(transforms=[t]))
+        publish_odometry(self, self.io.stamp(time), (odo.x, odo.y, odo.heading), (odo.linear, 0.0, odo.angular))
 
 
 class DiffDriveController(OdometryDriveController):

@@ -13,7 +13,7 @@ from __future__ import annotations
 
 import math
 
-from geometry_msgs.msg import TransformStamped, Twist
+from geometry_msgs.msg import Twist
 from nav_msgs.msg import Odometry as OdometryMsg
 from tf2_msgs.msg import TFMessage
 
@@ -21,7 +21,7 @@ from racebot_sim_bridge.kinematics.controller_odometry import wheel_params_from_
 from racebot_sim_bridge.ros_control import hardware_interface as hardware
 from racebot_sim_bridge.ros_control.controller_interface import Controller, ControllerInitError
 from racebot_sim_bridge.ros_control.hardware_interface import VELOCITY
-from racebot_sim_bridge.ros_controllers.diff_drive_controller import covariance_diagonal
+from racebot_sim_bridge.ros_controllers.diff_drive_controller import covariance_diagonal, publish_odometry
 
 WHEELS = ('front_left_wheel_joint', 'back_left_wheel_joint', 'back_right_wheel_joint', 'front_right_wheel_joint')
 AXES = ('linear/x', 'linear/y', 'angular/z')
@@ -192,34 +192,7 @@ class MecanumDriveController(Controller):
                      heading)
 
     def _publish(self, time):
-        x, y, heading = self.pose
-        stamp = self.io.stamp(time)
-        qz, qw = math.sin(heading / 2.0), math.cos(heading / 2.0)
-        msg = OdometryMsg()
-        msg.header.stamp = stamp
-        msg.header.frame_id = self.odom_frame_id
-        msg.child_frame_id = self.base_frame_id
-        msg.pose.pose.position.x, msg.pose.pose.position.y = x, y
-        msg.pose.pose.orientation.z, msg.pose.pose.orientation.w = qz, qw
-        msg.twist.twist.linear.x, msg.twist.twist.linear.y, msg.twist.twist.angular.z = self.twist
-        msg.pose.covariance = _diagonal(self.pose_cov)
-        msg.twist.covariance = _diagonal(self.twist_cov)
-        self.odom_pub.publish(msg)
-        if self.tf_pub is not None:
-            t = TransformStamped()
-            t.header.stamp = stamp
-            t.header.frame_id = self.odom_frame_id
-            t.child_frame_id = self.base_frame_id
-            t.transform.translation.x, t.transform.translation.y = x, y
-            t.transform.rotation.z, t.transform.rotation.w = qz, qw
-            self.tf_pub.publish(TFMessage(transforms=[t]))
-
-
-def _diagonal(values):
-    cov = [0.0] * 36
-    for i, v in enumerate(values):
-        cov[i * 7] = v
-    return cov
+        publish_odometry(self, self.io.stamp(time), self.pose, self.twist)
 
 
 TYPES = (MecanumDriveController,)
