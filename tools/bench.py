@@ -161,7 +161,9 @@ def part_sensors(cfg, out, results):
     """Every sensor subscribed in real time: the old rendering path (TinyRenderer in the physics
     thread) and the new (render worker, EGL when it loads), one after the other in this run."""
     from bench import plot, report
+    from bench import camera_budget
     sens = results['sensors'] = {}
+    results['camera_budget'] = camera_budget.run(os.path.join(out, 'tmp', 'camera_budget.json'))
     for path in ('old', 'new'):
         sens[path] = run_scenario('sensors', dict(cfg['sensors'], path=path), out, timeout=600)
     plot.sensor_rates(os.path.join(out, 'sensor_rates.png'), report.sensor_rate_rows(sens),
@@ -336,6 +338,7 @@ def main():
     print()
     if results.get('sensors'):
         print(report.sensor_table(results['sensors']))
+        print('\n'.join(report.camera_budget(results.get('camera_budget'), results['sensors'], results.get('realtime'))))
         print()
     print('machine: %s, %s cores; 1-min load average during the run %s..%s (%s cores are shared with '
           'whatever else runs)' % (results['machine'].get('cpu'), os.cpu_count(), min(loads, default='-'),

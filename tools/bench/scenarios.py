@@ -209,6 +209,7 @@ def sensors_realtime(p, out):
         time.sleep(p['settle_s'])  # the worker starts with the first frame wanted
         before, s0, w0 = dict(counts), world.time(), time.perf_counter()
         c0 = {q: common.cpu_seconds(q) for q in [pid] + common.child_pids(pid)}
+        p0, pw0 = time.process_time(), time.perf_counter()  # this process is the subscriber
         time.sleep(p['window_s'])
         after, s1, w1 = dict(counts), world.time(), time.perf_counter()
         c1 = {q: common.cpu_seconds(q) for q in c0 if os.path.exists('/proc/%d' % q)}
@@ -217,10 +218,14 @@ def sensors_realtime(p, out):
                       topics={t: {'type': topics[t], 'wall_hz': (after[t] - before[t]) / wall} for t in sorted(topics)},
                       cpu_world_server=(c1[pid] - c0[pid]) / wall,
                       cpu_children=sum(c1[q] - c0[q] for q in c1 if q != pid) / wall)
-        try:
-            result['renderer'] = master.getParam(WORLD_SERVER + '/sensors/rates').get('renderer')
+        try:  # the world server's own count over its last report period (5 s): frames made, frames skipped
+            rates = master.getParam(WORLD_SERVER + '/sensors/rates')
+            result['renderer'] = rates.get('renderer')
+            result['published'] = {r['topic']: {'wall_hz': r['wall_hz'], 'skipped_per_s': r['skipped'] / 5.0}
+                                   for r in rates.get('topics', [])}
         except Exception:  # no report yet
             result['renderer'] = None
+        result['cpu_subscriber'] = (time.process_time() - p0) / (time.perf_counter() - pw0)
         for s in subs:
             s.unregister()
     finally:

@@ -17,6 +17,7 @@ import pytest
 
 from racebot_sim_bridge.gazebo_plugins import gazebo_ros_camera
 from racebot_sim_bridge.sensors import render_worker
+from racebot_sim_bridge.sensors.frame_publisher import FramePublisher
 from racebot_sim_bridge.sensors.schedule import RateMeter
 
 WAIT = 120.0  # wall seconds before a test gives up waiting (the machine is shared)
@@ -219,7 +220,8 @@ def camera_sensor(worker):
                            mount=types.SimpleNamespace(pose=lambda: (np.zeros(3), (0.0, 0.0, 0.0, 1.0))),
                            camera=types.SimpleNamespace(width=4, height=4), worker_camera=(4, 4),
                            publishers={}, failed=False, buffers=None,
-                           in_worker=render_worker.InFlight(gazebo_ros_camera.FRAMES_IN_WORKER))
+                           in_worker=render_worker.InFlight(gazebo_ros_camera.FRAMES_IN_WORKER),
+                           publisher=FramePublisher('camera'))
     return sensor
 
 

@@ -13,6 +13,7 @@ from sensor_msgs.srv import SetCameraInfo
 from racebot_sim_bridge.gazebo_plugins.sensor_plugin import Sensor, SensorKind
 from racebot_sim_bridge.sensors import messages as msgs
 from racebot_sim_bridge.sensors.camera import PinholeCamera
+from racebot_sim_bridge.sensors.frame_publisher import FramePublisher
 from racebot_sim_bridge.sensors.imu_reading import quaternion_to_matrix
 from racebot_sim_bridge.sensors.noise import make_noise
 from racebot_sim_bridge.sensors.render import TINY, CameraFrames
@@ -23,6 +24,8 @@ from racebot_sim_bridge.sensors.schedule import FrameThrottle
 # until the camera's next due time; with two, the next frame already waits in its queue (measured:
 # 11.7 -> 12.5 Hz for the 800 x 800 camera). Each frame is still of the sim time it is stamped with.
 FRAMES_IN_WORKER = 2
+# Frame buffers: those in the worker, one being published and one rendered, waiting for it.
+FRAME_BUFFERS = FRAMES_IN_WORKER + 2
 
 
 def _serialized(msg):
@@ -53,6 +56,7 @@ class CameraSensor(Sensor, libraries=('libgazebo_ros_camera.so',), sensor_types=
                               self.camera.far, noise.mean if noise else 0.0, noise.stddev if noise else None)
         self.buffers = None  # FrameBuffers shared with the worker, made for the first frame it renders
         self.in_worker = InFlight(FRAMES_IN_WORKER)  # frames sent to the worker, not rendered yet
+        self.publisher = FramePublisher('camera %s' % spec.name, manager.rospy.logerr)  # the worker's frames
         self.throttle = FrameThrottle(config.params.get('update_rate', 0.0))
         self.advertise('image', Image, 2)
         self.advertise('info', CameraInfo, 2)
@@ -92,7 +96,7 @@ class CameraSensor(Sensor, libraries=('libgazebo_ros_camera.so',), sensor_types=
                 self.meter.skip()  # starting, restarting, or this camera's frames not rendered yet
                 return False
             if self.buffers is None:
-                self.buffers = FrameBuffers(self.camera.width, self.camera.height, FRAMES_IN_WORKER + 1)
+                self.buffers = FrameBuffers(self.camera.width, self.camera.height, FRAME_BUFFERS)
             slot = self.buffers.take()
             if slot is None:  # every buffer still being rendered or published
                 self.in_worker.give_back()
@@ -101,12 +105,15 @@ class CameraSensor(Sensor, libraries=('libgazebo_ros_camera.so',), sensor_types=
             position, orientation = self.mount.pose()
             buffers = self.buffers
 
-            def done(rgb, depth):
-                self.in_worker.give_back()
+            def publish(rgb, depth):
                 try:
                     self.publish_frame(stamp, wanted, rgb, depth)
                 finally:
                     buffers.give_back(slot)
+
+            def done(rgb, depth):  # on the reader thread: hand the frame to this camera's publisher thread
+                self.in_worker.give_back()
+                self.publisher.run(lambda: publish(rgb, depth), cancel=lambda: buffers.give_back(slot))
 
             def failed(reason):
                 self.in_worker.give_back()
@@ -145,6 +152,7 @@ class CameraSensor(Sensor, libraries=('libgazebo_ros_camera.so',), sensor_types=
 
     def close(self):
         super().close()
+        self.publisher.close()
         service, self.service = self.service, None
         if service is not None:
             service.shutdown()

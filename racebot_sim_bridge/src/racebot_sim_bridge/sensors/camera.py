@@ -116,6 +116,27 @@ class PinholeCamera:
             t = np.float32(height) / denom
         return np.where(t > 0, t, np.float32(np.inf))
 
+    def plane_inverse_depth(self, position, rotation, plane_point, plane_normal):
+        """(height, width) float32: 1 / the depth along the optical axis at which each pixel's ray meets a
+        plane, <= 0 where it does not meet it in front of the camera (plane_depth, as its reciprocal). 1 / depth
+        is affine in the pixel's column and row, so this is one outer sum: no per-pixel rays."""
+        world_from_optical = np.asarray(rotation, dtype=np.float64) @ OPTICAL_FROM_SENSOR.T
+        m = world_from_optical.T @ np.asarray(plane_normal, dtype=np.float64)  # the normal, optical frame
+        height = float(np.dot(plane_normal, np.asarray(plane_point, dtype=np.float64) - np.asarray(position)))
+        if height == 0.0 or not math.isfinite(height):  # the camera on the plane sees it edge-on: nowhere
+            return np.zeros((self.height, self.width), dtype=np.float32)
+        # a pixel's ray (x/z, y/z, 1) reaches the plane at depth t with t (ray . m) = height
+        columns = ((np.arange(self.width) - self.cx) / self.f * (m[0] / height)).astype(np.float32)
+        rows = ((np.arange(self.height) - self.cy) / self.f * (m[1] / height) + m[2] / height).astype(np.float32)
+        return rows[:, None] + columns[None, :]
+
+    def depth_buffer_of_inverse(self, inverse_depth, out=None):
+        """The OpenGL depth-buffer value (projection_matrix) of points at 1 / `inverse_depth` along the optical
+        axis: linear_depth's inverse, affine in 1 / depth; < 0 nearer than `near`, > 1 beyond `far` or behind."""
+        n, f = self.near, self.far
+        scale = f * n / (f - n)
+        return np.multiply(np.float32(1.0 / n) - inverse_depth, np.float32(scale), out=out)
+
     def points(self, depth, rays=None):
         """(height, width, 3) float32 points in the optical frame for a depth image (metres
         along the optical axis); NaN depth gives NaN points."""

@@ -41,6 +41,13 @@ EGL_SURFACE = (1024, 768)
 def render(world, width, height, view_matrix, projection_matrix, renderer=TINY):
     """(rgb uint8 height x width x 3, depth buffer float32 height x width). No segmentation mask.
     An EGL frame bigger than the plugin's surface is rendered in tiles that fit it."""
+    rgba, depth = render_rgba(world, width, height, view_matrix, projection_matrix, renderer)
+    return rgba[:, :, :3], depth
+
+
+def render_rgba(world, width, height, view_matrix, projection_matrix, renderer=TINY):
+    """render() with the renderer's own 4 bytes a pixel (rgba, an array of its own): a pixel is one uint32,
+    which numpy overwrites under a mask ~40 times faster than 3 separate bytes (ground planes)."""
     if renderer == EGL and (width > EGL_SURFACE[0] or height > EGL_SURFACE[1]):
         return render_tiled(world, width, height, view_matrix, projection_matrix, renderer, *EGL_SURFACE)
     return _render(world, width, height, view_matrix, projection_matrix, renderer)
@@ -50,8 +57,20 @@ def _render(world, width, height, view_matrix, projection_matrix, renderer):
     w, h, rgba, depth, _ = world.client.getCameraImage(width, height, view_matrix, projection_matrix, shadow=0,
                                                        renderer=RENDERER_FLAGS[renderer],
                                                        flags=pb.ER_NO_SEGMENTATION_MASK)
-    rgb = np.asarray(rgba, dtype=np.uint8).reshape(h, w, 4)[:, :, :3]
-    return rgb, np.asarray(depth, dtype=np.float32).reshape(h, w)
+    rgba = np.asarray(rgba, dtype=np.uint8).reshape(h, w, 4)
+    return rgba, np.asarray(depth, dtype=np.float32).reshape(h, w)
+
+
+# rgba -> packed rgb: the first 3 bytes of each 4 as one 3-byte item (one memcpy per pixel, ~3 times faster
+# than numpy's copy of the strided [:, :, :3] view: 1.3 against 3.5 ms for 800 x 800)
+_RGB_OF_RGBA = np.dtype({'names': ['rgb'], 'formats': ['V3'], 'offsets': [0], 'itemsize': 4})
+
+
+def packed_rgb(rgba):
+    """height x width x 3 uint8, contiguous, of a contiguous height x width x 4 rgba."""
+    rgba = np.ascontiguousarray(rgba, dtype=np.uint8)
+    height, width = rgba.shape[:2]
+    return np.ascontiguousarray(rgba.view(_RGB_OF_RGBA)['rgb']).view(np.uint8).reshape(height, width, 3)
 
 
 def tile_projection(projection_matrix, width, height, x0, x1, y0, y1):
@@ -69,8 +88,8 @@ def tile_projection(projection_matrix, width, height, x0, x1, y0, y1):
 
 
 def render_tiled(world, width, height, view_matrix, projection_matrix, renderer, tile_width, tile_height):
-    """render() of a width x height frame in tiles of at most tile_width x tile_height pixels."""
-    rgb = np.empty((height, width, 3), dtype=np.uint8)
+    """render_rgba() of a width x height frame in tiles of at most tile_width x tile_height pixels."""
+    rgba = np.empty((height, width, 4), dtype=np.uint8)
     depth = np.empty((height, width), dtype=np.float32)
     columns = -(-width // tile_width)
     rows = -(-height // tile_height)
@@ -79,8 +98,8 @@ def render_tiled(world, width, height, view_matrix, projection_matrix, renderer,
     for y0, y1 in zip(ys, ys[1:]):
         for x0, x1 in zip(xs, xs[1:]):
             part = tile_projection(projection_matrix, width, height, x0, x1, y0, y1)
-            rgb[y0:y1, x0:x1], depth[y0:y1, x0:x1] = _render(world, x1 - x0, y1 - y0, view_matrix, part, renderer)
-    return rgb, depth
+            rgba[y0:y1, x0:x1], depth[y0:y1, x0:x1] = _render(world, x1 - x0, y1 - y0, view_matrix, part, renderer)
+    return rgba, depth
 
 
 def load_egl(client):
@@ -178,27 +197,51 @@ class CameraFrames:
         self.camera = camera
         self.projection = camera.projection_matrix()
         self.noise = noise
-        self.rays3 = None  # per-pixel rays, made on the first frame that needs them
         self.image_noise = None  # its sample pool (MBs) is made on the first frame
 
     def make(self, world, renderer, planes, position, rotation, want_depth=True):
         """(rgb, depth or None) seen from the sensor frame at `position` with world `rotation`
-        (3 x 3). Depth is worked out only when `want_depth` (or planes need it to hide behind)."""
+        (3 x 3). Depth is worked out only when `want_depth`."""
+        rgba, buffer = self.render(world, renderer, position, rotation)
+        return self.finish(rgba, buffer, planes, position, rotation, want_depth)
+
+    def render(self, world, renderer, position, rotation):
+        """The renderer's part of a frame: (rgba, depth buffer), read back."""
         camera = self.camera
-        view = camera.view_matrix(position, rotation)
-        rgb, buffer = render(world, camera.width, camera.height, view, self.projection, renderer)
-        depth = camera.linear_depth(buffer).astype(np.float32) if want_depth or planes else None
-        if planes:
-            rgb = rgb.copy()
-            if self.rays3 is None:
-                self.rays3 = camera.rays_optical_3d()
-            for plane in planes:
-                t = camera.plane_depth(self.rays3, position, rotation, plane.point, plane.normal)
-                nearer = (t >= camera.near) & (t < depth)
-                rgb[nearer] = plane.rgb
-                np.copyto(depth, t, where=nearer)  # no temporary t[nearer] (0.3 -> 0.1 ms at 800 x 800)
+        return render_rgba(world, camera.width, camera.height, camera.view_matrix(position, rotation),
+                           self.projection, renderer)
+
+    def finish(self, rgba, buffer, planes, position, rotation, want_depth):
+        """The rest of make(): ground planes, packed rgb, depth in metres, noise."""
+        drawn = self.draw_planes(rgba, buffer, planes, position, rotation) if planes else []
+        rgb = packed_rgb(rgba)
+        depth = None
+        if want_depth:
+            depth = self.camera.linear_depth(buffer).astype(np.float32)
+            for inverse, nearer in drawn:  # the plane's exact depth, not its depth-buffer value
+                np.divide(np.float32(1.0), inverse, out=depth, where=nearer)
         if self.noise is not None:
             if self.image_noise is None:
                 self.image_noise = ImageNoise.from_noise(self.noise, rgb.size)
             rgb = self.image_noise.apply(rgb)
-        return rgb, (depth if want_depth else None)
+        return rgb, depth
+
+    def draw_planes(self, rgba, buffer, planes, position, rotation):
+        """Draws each ground plane (scene.GroundPlane) into `rgba` and `buffer` where it is nearer than what is
+        there, comparing depth-buffer values as OpenGL's depth test does. Returns [(1 / depth, drawn mask)] per
+        plane in drawing order (a later plane drawn over an earlier one)."""
+        camera = self.camera
+        pixels = rgba.view(np.uint32).reshape(rgba.shape[:2])  # one uint32 a pixel
+        plane_buffer = np.empty(buffer.shape, dtype=np.float32)
+        drawn = []
+        for plane in planes:
+            inverse = camera.plane_inverse_depth(position, rotation, plane.point, plane.normal)
+            camera.depth_buffer_of_inverse(inverse, out=plane_buffer)
+            # at or beyond `near` (buffer >= 0) and nearer than what is drawn (a buffer <= 1: not beyond `far`,
+            # not behind the camera)
+            nearer = (plane_buffer >= 0.0) & (plane_buffer < buffer)
+            colour = np.frombuffer(bytes(plane.rgb[:3]) + b'\xff', dtype=np.uint32)[0]
+            np.copyto(pixels, colour, where=nearer)
+            np.copyto(buffer, plane_buffer, where=nearer)
+            drawn.append((inverse, nearer))
+        return drawn

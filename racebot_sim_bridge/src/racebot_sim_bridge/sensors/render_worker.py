@@ -32,11 +32,15 @@ SHM_DIR = '/dev/shm' if os.path.isdir('/dev/shm') else None
 
 
 def llvmpipe_threads(cpus):
-    """Mesa llvmpipe's rasteriser threads (LP_NUM_THREADS; a GPU driver ignores it), leaving one core
-    to the physics thread. Measured on 2 cores, 800 x 800, with the plugin's shadow pass on: 0
-    (rasterise in the worker's own thread) ~45-58 ms a frame, 1 ~50-63 ms, 2 as fast alone but the
-    physics then lost real time. With the pass off (egl_shadow_map) 0, 1 and 2 all take ~20 ms."""
-    return str(0 if cpus <= 2 else cpus - 1)
+    """Mesa llvmpipe's rasteriser threads (LP_NUM_THREADS; a GPU driver ignores it): every core on two, one core
+    left to the physics thread on more (one core: 0, rasterise in the worker's own thread). Measured on 2 cores,
+    racebot.launch with every sensor subscribed in real time: 0 threads 23.3 / 19.5 Hz (800 x 800 camera / depth
+    camera), 1 thread 24.6 / 19.7, 2 threads 28.7 / 20.0, real time kept in all three (with the shadow-map pass on,
+    before egl_shadow_map, 2 threads had cost the physics real time). A niced worker (5) kept real time too but
+    got 19.5 / 17.7 Hz: the physics needs ~15 % of a core and gets it at equal priority."""
+    if cpus <= 1:
+        return '0'
+    return str(cpus if cpus == 2 else cpus - 1)
 
 
 class FrameBuffers:
