@@ -338,7 +338,8 @@ def main():
     print()
     if results.get('sensors'):
         print(report.sensor_table(results['sensors']))
-        print('\n'.join(report.camera_budget(results.get('camera_budget'), results['sensors'], results.get('realtime'))))
+        budget = report.camera_budget(results.get('camera_budget'), results['sensors'], results.get('realtime'))
+        print('\n'.join(budget))
         print()
     print('machine: %s, %s cores; 1-min load average during the run %s..%s (%s cores are shared with '
           'whatever else runs)' % (results['machine'].get('cpu'), os.cpu_count(), min(loads, default='-'),
