@@ -307,7 +307,7 @@ def run(cfg, out, run_scenario):
               'conversion': conversion, 'loadavg': common.loadavg()}
     for cache in ('cold', 'warm'):
         these = [r for r in runs if r['cache'] == cache]
-        result[cache] = {k: stats.spread([r[k] for r in these]) for k in ('clock_s', 'models_s', 'cpu_s')}
+        result[cache] = {k: stats.spread([r[k] for r in these]) for k in ('master_s', 'clock_s', 'models_s', 'cpu_s')}
         result[cache]['rss_mb'] = stats.spread([r['rss_bytes'] / 1048576.0 for r in these])
     result['cold_minus_warm_s'] = result['cold']['models_s']['median'] - result['warm']['models_s']['median']
     # what the empty cache costs the world server: its CPU time to all models in, cold minus warm

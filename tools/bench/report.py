@@ -127,6 +127,9 @@ def rows(r):
         add('big world, empty mesh cache: roslaunch -> all models / first /clock', '%s / %s' % (
             stats.with_spread(c['models_s'], unit=' s'), stats.with_spread(c['clock_s'], unit=' s')), '-',
             'reported', '-')
+        add('big world, warm: of it, roslaunch -> master up / world server CPU time to all models in', '%s / %s' % (
+            stats.with_spread(w['master_s'], unit=' s'), stats.with_spread(w['cpu_s'], unit=' s')), '-', 'reported',
+            '-')
         add('big world: mesh conversion in a cold start, world server CPU cold - warm; %d meshes alone' % conv['files'],
             '%.2f of %.2f s; alone %.2f s CPU (%.2f s wall)' % (
                 bw['cold_minus_warm_cpu_s'], c['cpu_s']['median'], conv['cpu_s'], conv['wall_s']),
