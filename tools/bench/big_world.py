@@ -201,8 +201,8 @@ def house(env=os.environ):
     package = command[1]
     check = next(c for c in row['checks'] if c['kind'] == 'world')
     world_file = check['world'].replace('$(find %s)' % package, tree)
-    return {'kind': 'house', 'name': 'AWS small house (corpus row %s, %s at %s)' % (
-                HOUSE_ROW, repo['repo'], repo['commit'][:7]),
+    return {'kind': 'house', 'name': 'AWS small house (corpus row %s, %s at %s%s)' % (
+                HOUSE_ROW, repo['repo'], repo['commit'][:7], '; ' + note if note else ''),
             'launch': command[1:] + ['gui:=false'], 'package_path': tree, 'world_file': world_file,
             'models': world_models(world_file), 'note': note}, None
 
