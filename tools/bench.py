@@ -46,6 +46,7 @@ FULL = {
     'determinism_s': 20.0,
     'profile_steps': 5000,
     'fleet': dict(counts=[1, 2, 4, 8], rounds=3, window_s=4.0, warmup_s=1.5, profile_s=8.0),
+    'big_world': dict(runs=3, world='auto', models=90, timeout_s=300),
 }
 QUICK = {
     'speed': dict(rounds=3, window_s=0.7, warmup_s=0.5, profile_s=0, memory_sim_s=10.0, memory_timeout_s=120),
@@ -59,6 +60,7 @@ QUICK = {
     'determinism_s': 2.0,
     'profile_steps': 500,
     'fleet': dict(counts=[1, 2], rounds=3, window_s=0.5, warmup_s=0.3),
+    'big_world': dict(runs=1, world='generated', models=90, timeout_s=120),
 }
 SCENARIO_TIMEOUT_S = 1800
 
@@ -201,9 +203,15 @@ def part_fleet(cfg, out, results):
     plot.fleet(os.path.join(out, 'fleet.png'), results['fleet'])
 
 
+def part_big_world(cfg, out, results):
+    """~90 mesh models: roslaunch to /clock and to all models, mesh cache cold and warm (bench/big_world.py)."""
+    from bench import big_world
+    results['big_world'] = big_world.run(cfg['big_world'], out, run_scenario)
+
+
 PARTS = (('inprocess', part_inprocess), ('determinism', part_determinism), ('speed', part_speed),
          ('realtime', part_realtime), ('sensors', part_sensors), ('startup', part_startup), ('fidelity', part_fidelity),
-         ('fleet', part_fleet))
+         ('fleet', part_fleet), ('big_world', part_big_world))
 
 
 def machine():

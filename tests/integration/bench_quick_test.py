@@ -119,6 +119,21 @@ class BenchQuickTest(unittest.TestCase):
             self.assertTrue(all(c > 0 for c in f['messages'].values()), f['messages'])
         self.assertIn('fleet of 2: racebot / bare PyBullet', [r[0] for r in self.results['compared']['rows']])
 
+    def test_big_world_starts_cold_and_warm(self):
+        bw = self.results['big_world']
+        self.assertEqual(bw['world_kind'], 'generated')  # quick: the world the bench writes, no corpus clone
+        self.assertEqual(bw['models'], 91)  # 90 mesh models and the ground plane
+        for run in bw['runs']:
+            self.assertEqual(run['models'], 91, run)
+            self.assertEqual(run['cached_meshes'], 90, run)  # every mesh converted, none skipped
+            for key in ('master_s', 'clock_s', 'models_s'):
+                self.assertTrue(finite(run[key]) and 0 < run[key] < 120, (key, run))
+            self.assertGreater(run['rss_bytes'], 10e6)
+        self.assertEqual(sorted(r['cache'] for r in bw['runs']), ['cold', 'warm'])
+        self.assertEqual((bw['conversion']['files'], bw['conversion']['triangles'] > 0), (90, True))
+        self.assertIn('big world (generated): roslaunch -> all models, warm',
+                      [r[0] for r in self.results['compared']['rows']])
+
     def test_plots_are_png_files(self):
         for name in ('turning_circles.png', 'hinge_step.png', 'sensor_rates.png', 'fleet.png'):
             with open(os.path.join(OUT, name), 'rb') as f:

@@ -80,6 +80,16 @@ def key_figures(r):
     if su and su.get('cold_runs'):
         add('startup.cold_s', 'start-up, cold, to 7 controllers running', stats.spread(su['cold_runs']), ' s',
             'lower', tolerance=0.10)
+    bw = r.get('big_world')
+    if bw:  # keyed by the world: the house and the generated world are different figures
+        key, name = 'big_world.%s.' % bw['world_kind'], 'big world (%s)' % bw['world_kind']
+        for cache in ('warm', 'cold'):
+            add(key + cache + '_models_s', '%s: roslaunch -> all models, %s' % (name, cache),
+                bw[cache]['models_s'], ' s', 'lower', tolerance=0.10, resolution=0.1)
+        add(key + 'warm_clock_s', '%s: roslaunch -> first /clock, warm' % name, bw['warm']['clock_s'], ' s', 'lower',
+            tolerance=0.10, resolution=0.1)
+        add(key + 'rss_mb', '%s: world server RSS, all models in, warm' % name, bw['warm']['rss_mb'], ' MB', 'lower',
+            '%.0f', 0.10)
     ip = r.get('inprocess')
     if ip:
         add('inprocess.sim_rtf', 'simulator in-process, no ROS: real-time factor',

@@ -15,6 +15,8 @@ SENSOR_PATH_NAMES = {'old': 'old: TinyRenderer in the physics thread', 'new': 'n
 # server in real time with no sensor subscribed, its CPU share of one core.
 RATIO_TARGET = 0.85
 REALTIME_CPU_TARGET = 0.20
+# Issue 30: a world of ~90 mesh models, roslaunch to all of them in, mesh cache warm (bench/big_world.py)
+BIG_WORLD_TARGET_S = 5.0
 
 
 def _fmt(value, spec='%.2f', missing='-'):
@@ -113,6 +115,31 @@ def rows(r):
         add('start-up with the master already running', '%.2f s' % rt['startup_warm_s'], '-',
             '<= 5 s' if not (su and su.get('cold_s')) else '-',
             _met(rt['startup_warm_s'] <= 5.0) if not (su and su.get('cold_s')) else '-')
+
+    bw = r.get('big_world')
+    if bw:
+        w, c, conv = bw['warm'], bw['cold'], bw['conversion']
+        add('big world, %s, %d models: roslaunch -> all models listed, warm mesh cache' % (
+            bw['world_kind'], bw['models']), stats.with_spread(w['models_s'], unit=' s'),
+            'Gazebo: minutes (gazebo_ros_pkgs#680)', '<= %g s' % BIG_WORLD_TARGET_S,
+            _met(w['models_s']['median'] <= BIG_WORLD_TARGET_S))
+        add('big world: roslaunch -> first /clock, warm', stats.with_spread(w['clock_s'], unit=' s'), '-',
+            '<= %g s' % BIG_WORLD_TARGET_S, _met(w['clock_s']['median'] <= BIG_WORLD_TARGET_S))
+        add('big world, empty mesh cache: roslaunch -> all models / first /clock', '%s / %s' % (
+            stats.with_spread(c['models_s'], unit=' s'), stats.with_spread(c['clock_s'], unit=' s')), '-',
+            'reported', '-')
+        add('big world, warm: of it, roslaunch -> master up / world server CPU time to all models in', '%s / %s' % (
+            stats.with_spread(w['master_s'], unit=' s'), stats.with_spread(w['cpu_s'], unit=' s')), '-', 'reported',
+            '-')
+        add('big world: mesh conversion in a cold start, world server CPU cold - warm; %d meshes alone' % conv['files'],
+            '%.2f of %.2f s; alone %.2f s CPU (%.2f s wall)' % (
+                bw['cold_minus_warm_cpu_s'], c['cpu_s']['median'], conv['cpu_s'], conv['wall_s']),
+            '-', 'reported', '-')
+        add('big world: world server RSS, all models in, warm / cold', '%s / %s' % (
+            stats.with_spread(w['rss_mb'], '%.0f', ' MB'), stats.with_spread(c['rss_mb'], '%.0f', ' MB')), '-',
+            'reported', '-')
+    elif 'big_world' in errors:
+        add('big world (roslaunch -> all models)', 'ERROR', '-', '-', 'NO')
 
     fi = r.get('fidelity', {})
     par = fi.get('parallel')
@@ -275,6 +302,14 @@ def notes(r):
                    '%s cores; with the machine load up to %s they queue for the CPU. With the master running it took '
                    '%s s.' % (', '.join('%.2f' % x for x in su['cold_runs']), r.get('machine', {}).get('cpus'), load,
                               '%.2f' % rt['startup_warm_s'] if rt else '-'))
+    bw = r.get('big_world')
+    if bw:
+        out.append('big world: %s, started by `%s`%s.' % (bw['world'], bw['launch'], (
+            ' (not the corpus\'s house: %s)' % bw['why_not_house']) if bw.get('why_not_house') else ''))
+        if bw['warm']['models_s']['median'] > BIG_WORLD_TARGET_S:
+            out.append('big world above %g s warm (world server CPU to all models in: %.2f s; load up to %s): '
+                       'profile the start with py-spy (tools/bench/profiling.py).' % (
+                           BIG_WORLD_TARGET_S, bw['warm']['cpu_s']['median'], load))
     par = (r.get('fidelity') or {}).get('parallel')
     if par and any(c['error_pct'] > 10.0 for c in par['circles']):
         ack = (r.get('fidelity') or {}).get('ackermann')

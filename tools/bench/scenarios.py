@@ -504,6 +504,11 @@ def fleet(p, out):
     return run(p, out)
 
 
+def big_world(p, out):
+    from .big_world import scenario
+    return scenario(p, out)
+
+
 SCENARIOS = {'speed': speed, 'realtime': realtime, 'sensors': sensors_realtime, 'startup': startup,
              'fidelity': fidelity,
-             'determinism': determinism, 'fleet': fleet}
+             'determinism': determinism, 'fleet': fleet, 'big_world': big_world}

@@ -77,6 +77,22 @@ def head_commit(path):
     return done.stdout.strip() if done.returncode == 0 else None
 
 
+def _cache_paths(repo, commit, env):
+    """(the cache's bare clone of `repo`, its checkout at `commit`)."""
+    cache = cache_dir(env)
+    owner, name = repo.split('/')
+    return (os.path.join(cache, 'git', '%s+%s.git' % (owner, name)),
+            os.path.join(cache, 'src', '%s+%s' % (owner, name), commit[:12]))
+
+
+def cached(repo, commit, env=os.environ):
+    """True when the cache can give `repo` at `commit` without the network (a checkout or a clone holding it)."""
+    bare, tree = _cache_paths(repo, commit, env)
+    if head_commit(tree) == commit:
+        return True
+    return os.path.isdir(bare) and _git(['cat-file', '-e', commit + '^{commit}'], cwd=bare).returncode == 0
+
+
 def checkout(repo, commit, env=os.environ, log=None):
     """(path of a work tree of `repo` at `commit`, note): a checkout in the cache, or with
     RACEBOT_CORPUS_DIR the user's clone as it is (the note says when its HEAD is not the pinned commit)."""
@@ -87,10 +103,7 @@ def checkout(repo, commit, env=os.environ, log=None):
         head = head_commit(where)
         note = '' if head == commit else 'clone at %s, manifest pins %s' % ((head or '?')[:12], commit[:12])
         return where, note
-    cache = cache_dir(env)
-    owner, name = repo.split('/')
-    bare = os.path.join(cache, 'git', '%s+%s.git' % (owner, name))
-    tree = os.path.join(cache, 'src', '%s+%s' % (owner, name), commit[:12])
+    bare, tree = _cache_paths(repo, commit, env)
     if head_commit(tree) == commit:
         return tree, ''
     if not os.path.isdir(bare):

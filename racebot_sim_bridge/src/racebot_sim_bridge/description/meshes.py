@@ -85,7 +85,7 @@ def read_parts(path: str) -> tuple[list[tuple[np.ndarray, np.ndarray]], Rgba | N
     try:
         import trimesh
         scene = trimesh.load(path, file_type=FORMATS[ext], force='scene', process=False)
-        meshes = scene.dump(concatenate=False)
+        placed = _placed(scene)
         unit = _metres_per_unit(scene) if ext == '.dae' else 1.0
     except MeshError:
         raise
@@ -94,9 +94,9 @@ def read_parts(path: str) -> tuple[list[tuple[np.ndarray, np.ndarray]], Rgba | N
                         '(open it in Blender or MeshLab)' % (path, FORMATS[ext].upper(), type(err).__name__,
                                                               str(err)[:200]))
     parts, triangles = [], 0
-    for mesh in meshes:
-        vertices = np.asarray(getattr(mesh, 'vertices', ()), dtype=np.float64).reshape(-1, 3) * unit
-        faces = np.asarray(getattr(mesh, 'faces', ()), dtype=np.int64).reshape(-1, 3)
+    for vertices, faces, _ in placed:
+        vertices = np.asarray(vertices, dtype=np.float64).reshape(-1, 3) * unit
+        faces = np.asarray(faces, dtype=np.int64).reshape(-1, 3)
         if not len(faces):
             continue  # points or lines: nothing to collide with or draw
         if not np.isfinite(vertices).all():
@@ -112,7 +112,33 @@ def read_parts(path: str) -> tuple[list[tuple[np.ndarray, np.ndarray]], Rgba | N
         raise MeshError('mesh %s contains no triangles; export the surface as triangles' % path)
     if max(float(np.ptp(v, axis=0).max()) for v, _ in parts) <= 0.0:
         raise MeshError('mesh %s is degenerate (all vertices at one point)' % path)
-    return parts, _single_colour(meshes)
+    return parts, _single_colour([mesh for _, _, mesh in placed])
+
+
+def _placed(scene):
+    """[(vertices, faces, mesh)] of each instance of a triangle mesh in the scene, moved to its place as
+    trimesh's Scene.dump moves it (Trimesh.apply_transform: the same points; faces reversed where the transform
+    mirrors), without dump's copies: copying a mesh copies its visual, which decodes every texture image (40 % of
+    a cold start of a textured world), and racebot uses none. Points and paths (no faces) are left out."""
+    from trimesh import transformations, util
+    placed = []
+    for node in scene.graph.nodes_geometry:
+        transform, name = scene.graph[node]
+        mesh = scene.geometry[name]
+        if not hasattr(mesh, 'faces'):
+            continue
+        vertices, faces = mesh.vertices, mesh.faces
+        matrix = np.asanyarray(transform, order='C', dtype=np.float64)
+        if not util.allclose(matrix, _IDENTITY4, 1e-8):
+            vertices = transformations.transform_points(vertices, matrix=matrix)
+            if not util.allclose(matrix[:3, :3], _IDENTITY4[:3, :3], atol=1e-6) and \
+                    transformations.flips_winding(matrix):
+                faces = np.fliplr(faces)
+        placed.append((vertices, faces, mesh))
+    return placed
+
+
+_IDENTITY4 = np.eye(4)
 
 
 def _metres_per_unit(scene):
