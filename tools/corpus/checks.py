@@ -327,8 +327,8 @@ def check_trajectory(check, row):
             worst, worst_joint = err, joint
     numbers = 'error_code %s, max |error| %.4f rad (%s), %d joints' % (code, worst, worst_joint, len(target))
     if held is not None and held[0] > HELD_NOTE_RAD:
-        numbers += ('; at rest the controller held %.3f rad (%s) away (started while the arm moved), so it was '
-                    'made to hold the rest pose first' % held)
+        numbers += ("; after settle_s the controller's hold was %.3f rad (%s) from the joints; made to hold where they "
+                    'rest first' % held)
     if code != 0:  # where the goal started from: a failure is read against the robot's pose then
         start = ', '.join('%s %.3f' % (j, now[j]) for j in target if j in now)
         raise CheckFailed('error_code %s (%s); %s; started from %s'
