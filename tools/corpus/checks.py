@@ -27,6 +27,7 @@ from corpus import sensors  # noqa: E402
 
 WALL_MARGIN_S = 60.0     # sim-time waits may take this much wall time beyond their length (RTF < 1)
 MESSAGE_TIMEOUT_S = 20.0
+HOLD_S = 0.5  # sim s: the hold command (hold_command) reaches the rest pose in this
 HELD_NOTE_RAD = 0.01  # a controller's hold this far from the rest pose is said in the numbers
 
 
@@ -255,9 +256,6 @@ def _goal_tolerance(check, joint):
         if value and value > 0:
             return float(value), param.format(joint=joint)
     return float(check['tolerance']), 'row'
-
-
-HOLD_S = 0.5  # sim s: the hold command (hold_command) reaches the rest pose in this
 
 
 def hold_command(state, seconds=HOLD_S):
