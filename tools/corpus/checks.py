@@ -27,6 +27,8 @@ from corpus import sensors  # noqa: E402
 
 WALL_MARGIN_S = 60.0     # sim-time waits may take this much wall time beyond their length (RTF < 1)
 MESSAGE_TIMEOUT_S = 20.0
+HOLD_S = 0.5  # sim s: the hold command (hold_command) reaches the rest pose in this
+HELD_NOTE_RAD = 0.01  # a controller's hold this far from the rest pose is said in the numbers
 
 
 class CheckFailed(Exception):
@@ -256,6 +258,36 @@ def _goal_tolerance(check, joint):
     return float(check['tolerance']), 'row'
 
 
+def hold_command(state, seconds=HOLD_S):
+    """A trajectory_msgs/JointTrajectory for a JointTrajectoryController's `command` topic taking its desired
+    state from where it is to where the joints are (`state`: its control_msgs/JointTrajectoryControllerState)
+    in `seconds`. Upstream follows a command from the topic without path tolerances, and a goal sent after it
+    starts from its end: from where the joints rest."""
+    from trajectory_msgs.msg import JointTrajectory, JointTrajectoryPoint
+    msg = JointTrajectory(joint_names=list(state.joint_names))
+    msg.points = [JointTrajectoryPoint(positions=list(state.actual.positions), time_from_start=rospy.Duration(seconds))]
+    return msg
+
+
+def hold_where_resting(controller):
+    """Makes the trajectory controller under `controller` hold the joints where they rest (hold_command);
+    returns (largest |error| its hold had, its joint) before. A controller started while an effort-driven arm
+    still fell holds where its stop trajectory (stop_trajectory_duration) carries the fall on, beyond the
+    ground; upstream's JTC does the same, and a goal's first segment starts from that unreachable pose."""
+    from trajectory_msgs.msg import JointTrajectory
+    state = message(controller + '/state', 'control_msgs/JointTrajectoryControllerState')
+    pub = rospy.Publisher(controller + '/command', JointTrajectory, queue_size=1, latch=True)
+    deadline = time.time() + MESSAGE_TIMEOUT_S
+    while pub.get_num_connections() == 0:
+        if time.time() > deadline:
+            raise CheckFailed('%s/command has no subscriber after %.0f s' % (controller, MESSAGE_TIMEOUT_S))
+        time.sleep(0.02)
+    pub.publish(hold_command(state))
+    sim_sleep(2 * HOLD_S)
+    pub.unregister()
+    return max(zip((abs(e) for e in state.error.positions), state.joint_names), default=(0.0, '-'))
+
+
 def check_trajectory(check, row):
     import actionlib
     from control_msgs.msg import FollowJointTrajectoryAction, FollowJointTrajectoryGoal
@@ -264,8 +296,12 @@ def check_trajectory(check, row):
     if not client.wait_for_server(rospy.Duration(60.0)):
         raise CheckFailed('action server %s not up in 60 s' % check['action'])
     # settle_s: sim seconds to let the robot come to rest first (an effort-driven arm falls until its controller
-    # starts; a goal sent while it still moves starts with path errors nobody's robot would have at rest)
-    sim_sleep(float(check.get('settle_s', 0.0)))
+    # starts; a goal sent while it still moves starts with path errors nobody's robot would have at rest), then
+    # the controller is made to hold it where it rests (hold_where_resting)
+    held = None
+    if check.get('settle_s'):
+        sim_sleep(float(check['settle_s']))
+        held = hold_where_resting(check['action'].rsplit('/', 1)[0])
     now = joint_positions(check['joint_states'])
     target = {j: float(v) + (now.get(j, 0.0) if check.get('relative') else 0.0) for j, v in check['target'].items()}
     goal = FollowJointTrajectoryGoal()
@@ -288,6 +324,9 @@ def check_trajectory(check, row):
         if not err <= worst:
             worst, worst_joint = err, joint
     numbers = 'error_code %s, max |error| %.4f rad (%s), %d joints' % (code, worst, worst_joint, len(target))
+    if held is not None and held[0] > HELD_NOTE_RAD:
+        numbers += ("; after settle_s the controller's hold was %.3f rad (%s) from the joints; made to hold where they "
+                    'rest first' % held)
     if code != 0:  # where the goal started from: a failure is read against the robot's pose then
         start = ', '.join('%s %.3f' % (j, now[j]) for j in target if j in now)
         raise CheckFailed('error_code %s (%s); %s; started from %s'
