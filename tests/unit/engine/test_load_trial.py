@@ -73,13 +73,15 @@ def test_a_urdf_that_crashes_pybullet_is_named_and_the_next_check_has_a_new_help
 
 
 def test_a_load_that_does_not_finish_in_time_is_refused_and_its_helper_killed(files):
-    trial = LoadTrial(timeout=0.5)
+    trial = LoadTrial(timeout=20.0)  # a helper's start (importing PyBullet) may take a second on a loaded machine
     try:
         assert trial.check(files['root_first'], FLAGS, True) is None
         stalled = trial.process
         os.kill(stalled.pid, signal.SIGSTOP)
+        trial.timeout = 0.5
         assert trial.check(files['root_first'], FLAGS, True) == 'PyBullet did not finish loading it in 0.5 s'
         assert stalled.poll() is not None  # killed, not left stopped
+        trial.timeout = 20.0
         assert trial.check(files['root_first'], FLAGS, True) is None
     finally:
         trial.close()
@@ -92,16 +94,18 @@ def test_a_pybullet_error_is_left_to_the_live_load_which_says_it(trial, tmp_path
 
 def test_the_world_refuses_what_the_trial_could_not_load_and_keeps_nothing_of_it(files):
     world = PhysicsWorld()
-    world.load_trial = LoadTrial(timeout=0.5)
+    world.load_trial = LoadTrial(timeout=20.0)
     try:
         root = ET.fromstring(ROOT_FIRST)
         model = urdf_reader.parse_urdf(root)
         world.load_trial.check(files['root_first'], FLAGS, True)
         os.kill(world.load_trial.process.pid, signal.SIGSTOP)
+        world.load_trial.timeout = 0.5
         bodies = world.client.getNumBodies()
         with pytest.raises(PhysicsError, match="'arm' is not loaded: PyBullet did not finish loading it in 0.5 s"):
             world.spawn_urdf('arm', model, root)
         assert world.client.getNumBodies() == bodies and 'arm' not in world.bodies
+        world.load_trial.timeout = 20.0
         body = world.spawn_urdf('arm', urdf_reader.parse_urdf(ET.fromstring(ROOT_FIRST)), ROOT_FIRST)
         assert world.bodies['arm'] is body
     finally:
