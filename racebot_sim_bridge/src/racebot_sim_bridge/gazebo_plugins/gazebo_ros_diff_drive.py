@@ -13,8 +13,9 @@ Every world update (before the physics step), with encoder odometry the wheel jo
 integrated (kinematics.diff_drive.encoder_step). When more than one update period has passed (the
 last update time then moves on by exactly one period): odometry and the odom -> base TF, wheel TFs
 (each wheel link's pose relative to the model, from its joint's parent link), wheel joint states
-(right then left, positions only), then the wheels' target speeds from the latest cmd_vel, through
-the acceleration ramp. Stamps are the sim time; frames go under the tf_prefix parameter found
+(right then left, positions only), each only while subscribed (rospy sends nothing without a subscriber),
+then the wheels' target speeds from the latest cmd_vel, through the acceleration ramp. Stamps are the
+sim time; frames go under the tf_prefix parameter found
 upwards from the plugin's namespace (tf::resolve).
 """
 import math
@@ -118,13 +119,20 @@ class DiffDrive(GazeboRosPlugin):
         if states is None:
             states = self.world.joint_states_raw(self.robot.body, self.indices)
         velocities = (states[0][1], states[1][1])  # left, right (rad/s)
-        stamp = self.stamp(time)
-        if self.odom_pub is not None:
-            self._publish_odometry(stamp)
-        if self.publish_wheel_tf:
-            self._publish_wheel_tf(stamp)
-        if self.joint_state_pub is not None:
-            self._publish_joint_state(stamp, states)
+        # Only what somebody subscribes to is worked out: rospy sends nothing (and counts no seq) without a
+        # subscriber, so what a subscriber gets is the same.
+        tf_heard = self.tf_pub.get_num_connections() > 0
+        odom_heard = self.odom_pub is not None and (self.odom_pub.get_num_connections() > 0
+                                                    or (self.publish_odom_tf and tf_heard))
+        joints_heard = self.joint_state_pub is not None and self.joint_state_pub.get_num_connections() > 0
+        if odom_heard or (self.publish_wheel_tf and tf_heard) or joints_heard:
+            stamp = self.stamp(time)
+            if odom_heard:
+                self._publish_odometry(stamp, self.publish_odom_tf and tf_heard)
+            if self.publish_wheel_tf and tf_heard:
+                self._publish_wheel_tf(stamp)
+            if joints_heard:
+                self._publish_joint_state(stamp, states)
         targets = kin.wheel_speeds(self.command[0], self.command[1], self.separation)
         measured = tuple(kin.rim_speed(v, self.diameter) for v in velocities)
         speeds, self.commanded = kin.ramped_speeds(targets, measured, self.commanded, self.acceleration, since)
@@ -132,7 +140,7 @@ class DiffDrive(GazeboRosPlugin):
                                     [kin.joint_velocity(s, self.diameter) for s in speeds], [self.torque] * 2)
 
     # -- outputs --------------------------------------------------------------------------------
-    def _publish_odometry(self, stamp):
+    def _publish_odometry(self, stamp, send_tf):
         if self.encoder:
             x, y, theta = self.encoder_pose
             position, orientation = (x, y, 0.0), kin.yaw_quaternion(theta)
@@ -145,7 +153,7 @@ class DiffDrive(GazeboRosPlugin):
             vx, vy = world_linear[0], world_linear[1]
             c, s = math.cos(yaw), math.sin(yaw)
             linear, angular = (c * vx + s * vy, c * vy - s * vx, 0.0), (0.0, 0.0, world_angular[2])
-        if self.publish_odom_tf:
+        if send_tf:
             self.tf_pub.publish(transform(stamp, self.odom_frame, self.base_frame, position, orientation))
         self.odom_pub.publish(odometry(stamp, self.odom_frame, self.base_frame, position, orientation, linear,
                                        angular, kin.pose_covariance(), ZERO_COVARIANCE))
