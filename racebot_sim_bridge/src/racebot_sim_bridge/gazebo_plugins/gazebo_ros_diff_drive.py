@@ -18,6 +18,7 @@ then the wheels' target speeds from the latest cmd_vel, through the acceleration
 sim time; frames go under the tf_prefix parameter found
 upwards from the plugin's namespace (tf::resolve).
 """
+import functools
 import math
 
 from racebot_sim_bridge.kinematics import differential as kin
@@ -47,6 +48,8 @@ class DiffDrive(GazeboRosPlugin):
         self.right = self.named_joint('rightJoint', 'right_joint', 'right wheel')
         self.left = self.named_joint('leftJoint', 'left_joint', 'left wheel')
         self.indices = [self.left.index, self.right.index]
+        # both wheels' PyBullet joint states, read at every world update: one bound call (physics.joint_states_raw)
+        self._read_wheels = functools.partial(self.world.client.getJointStates, robot.body.id, self.indices)
         self.separation = p.number('wheelSeparation', 0.34, minimum=0, exclusive=True)
         self.diameter = p.number('wheelDiameter', 0.15, minimum=0, exclusive=True)
         self.acceleration = p.number('wheelAcceleration', 0.0, minimum=0)
@@ -105,7 +108,7 @@ class DiffDrive(GazeboRosPlugin):
         now = to_ns(time)
         states = None
         if self.encoder:  # integrated every world update, whatever the update rate
-            states = self.world.joint_states_raw(self.robot.body, self.indices)
+            states = self._read_wheels()
             dt = (now - self.last_encoder_ns) / float(NS)
             self.last_encoder_ns = now
             self.encoder_pose, self.encoder_twist = kin.encoder_step(self.encoder_pose, states[0][1], states[1][1],
@@ -117,7 +120,7 @@ class DiffDrive(GazeboRosPlugin):
         if not clock.due(time):
             return
         if states is None:
-            states = self.world.joint_states_raw(self.robot.body, self.indices)
+            states = self._read_wheels()
         velocities = (states[0][1], states[1][1])  # left, right (rad/s)
         # Only what somebody subscribes to is worked out: rospy sends nothing (and counts no seq) without a
         # subscriber, so what a subscriber gets is the same.
