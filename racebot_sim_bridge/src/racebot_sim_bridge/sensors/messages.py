@@ -35,7 +35,8 @@ def laser_scan(stamp, frame_id, geometry, ranges, intensities=None):
     """`geometry`: ray.ScanGeometry; `ranges`: the reported ranges (inf allowed); `intensities`: the
     laser_retro of what each ray hit (None: all 0). A LaserScan whose arrays are float32 numpy arrays,
     serialized with their bytes (rospy.numpy_msg: the same bytes as the list's, without a Python float per
-    beam); its class is a LaserScan, with LaserScan's type and md5sum."""
+    beam); its class is a LaserScan, with LaserScan's type and md5sum. (genpy's numpy serializer calls
+    ndarray.tostring, deprecated: numpy is pinned in tools/requirements.txt, and a unit test compares the bytes.)"""
     ranges = np.asarray(ranges, dtype=np.float32)
     intensities = (np.zeros(len(ranges), dtype=np.float32) if intensities is None
                    else np.asarray(intensities, dtype=np.float32))
