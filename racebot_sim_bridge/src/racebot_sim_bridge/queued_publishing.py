@@ -6,38 +6,101 @@ sends it at once. In the update loop that yield is a thread switch per message p
 lasers, IMUs, odometry and tf it was ~40 % of the loop (py-spy, tools/bench/profiling.py), ~70 us per message
 against ~13 us without it (measured on this machine, a publisher with 20 us of work between messages).
 
-roscpp, which Gazebo's plugins publish through, queues and lets its writer catch up without stopping the caller.
-install() gives QueuedConnection that behaviour: the message is queued and the writer woken as before, and the
-caller yields only once the queue is half full, so the writer sends a batch before the queue would drop anything.
-Drop-oldest stays what queue_size means (rospy's and roscpp's): only a subscriber that cannot keep up loses
-messages. A queue_size of 1 yields after every message, as before.
+roscpp, which Gazebo's plugins publish through, writes a message to the socket at once when nothing is waiting
+before it, and queues it for later only when the socket cannot take it. install() gives QueuedConnection that
+behaviour: when its queue is empty and its writer idle, the message goes to the socket from the caller's thread,
+without blocking (MSG_DONTWAIT); what the socket does not take (a subscriber that reads slowly) is queued for the
+writer as before, and the caller yields only once the queue is half full, so the writer sends a batch before the
+queue would drop anything. Drop-oldest stays what queue_size means (rospy's and roscpp's): only a subscriber that
+cannot keep up loses messages. A queue_size of 1 yields after every queued message, as rospy.
 """
+import socket
 import time
 
 _installed = []
 
 
+class _Rest(bytes):
+    """The part of a message the socket did not take: sent before anything else, never dropped (the stream would
+    be cut in the middle of a message)."""
+
+
+def _send_now(conn, data):
+    """Sends `data` on the connection's socket without blocking: the number of bytes the socket took (0 when it
+    took none, or cannot be written this way: the writer then meets what is wrong as rospy does)."""
+    sock = getattr(conn, 'socket', None)
+    if sock is None or getattr(conn, 'done', True):
+        return 0
+    try:
+        sent = sock.send(data, socket.MSG_DONTWAIT)
+    except OSError:  # EAGAIN (buffer full), or a connection error the writer reports
+        return 0
+    conn.stat_bytes += sent
+    if sent == len(data):
+        conn.stat_num_msg += 1
+    return sent
+
+
 def write_data(self, data):
-    """QueuedConnection.write_data, yielding only when the queue is half full (rospy 1.15's otherwise)."""
+    """QueuedConnection.write_data: straight to the socket when nothing is before it, else queued, yielding only
+    when the writer is behind (rospy 1.15's queues and yields every time)."""
     with self._lock:
         # if there was previously an error within the dispatch thread, raise it (as rospy)
         if self._error:
             error, self._error = self._error, None
             raise error
-        if self._queue_size > 0 and len(self._queue) == self._queue_size:
-            del self._queue[0]  # drop the oldest, as rospy
-        self._queue.append(data)
+        if not self._queue and not self._sending:
+            sent = _send_now(self._connection, data)
+            if sent:
+                if sent == len(data):
+                    return True
+                data = _Rest(data[sent:])
+        queue = self._queue
+        if self._queue_size > 0 and len(queue) >= self._queue_size:
+            for i, queued in enumerate(queue):
+                if not isinstance(queued, _Rest):
+                    del queue[i]  # drop the oldest, as rospy
+                    break
+        queue.append(data)
         self._cond_data_available.notify()
-        backlog = len(self._queue)
+        backlog = len(queue)
     if backlog * 2 >= (self._queue_size or 2):
         time.sleep(0)  # let the writer send what is queued before the queue would drop any of it
     return True
 
 
+def _run(self):
+    """QueuedConnection._run (rospy 1.15's), marking `_sending` while it relays, so that write_data sends
+    nothing past it."""
+    while not self._connection.done:
+        queue = []
+        with self._lock:
+            self._sending = False
+            # wait for available data
+            while not self._queue and not self._connection.done:
+                self._cond_data_available.wait()
+            # take all data from queue for processing outside of the lock
+            if self._queue:
+                queue = self._queue
+                self._queue = []
+                self._sending = True
+        # relay all data
+        for data in queue:
+            try:
+                self._connection.write_data(data)
+            except Exception as e:
+                with self._lock:
+                    self._error = e
+    with self._lock:
+        self._sending = False
+
+
 def install():
-    """Replaces rospy's QueuedConnection.write_data in this process (once); returns the class patched."""
+    """Replaces rospy's QueuedConnection.write_data and _run in this process (once); returns the class patched."""
     from rospy.impl.tcpros_pubsub import QueuedConnection
     if not _installed:
-        _installed.append(QueuedConnection.write_data)
+        _installed.append((QueuedConnection.write_data, QueuedConnection._run))
+        QueuedConnection._sending = False  # until the writer takes its first batch
         QueuedConnection.write_data = write_data
+        QueuedConnection._run = _run
     return QueuedConnection

@@ -149,3 +149,19 @@ def test_hooks_run_in_order_and_a_failing_plugin_is_stopped_while_the_others_go_
     for hook in sim.on_delete:
         hook(robot)
     assert ok.calls[-1] == ('close',) and m.plugins == {}
+
+
+class BeforeOnly(Recorder):
+    libraries = ('libgazebo_ros_before_only.so',)
+    after_step = ModelPlugin.after_step  # the base's no-op: nothing to do after the step
+
+
+def test_only_the_hooks_a_plugin_has_are_called_at_each_update():
+    log, sim = Log(), Sim()
+    m = PluginManager(log, sim, registry=Registry([BeforeOnly]))
+    m.made = []
+    for hook in sim.on_spawn:
+        hook(Robot([GazeboPlugin('b', 'libgazebo_ros_before_only.so')]))
+    assert sim.before_physics == [m.before_physics] and sim.after_step == []  # no call per update for nothing
+    sim.before_physics[0](0.001)
+    assert m.made[0].calls == [('before', 0.001)]

@@ -40,11 +40,17 @@ def urdf():
     return xacro.process_file(str(path), mappings={}).toxml()  # its xacro:arg needs an argument context
 
 
-def spawn(tmp_path, urdf, params=None, namespace='/'):
+def spawn(tmp_path, urdf, params=None, namespace='/', listen=True):
+    """The diffbot; with `listen`, the drive's topics (odometry, tf, joint states) have a subscriber: the drive
+    works out only what somebody subscribes to."""
     w = PluginWorld(tmp_path, params)
     w.fake = ServiceRospy(params)
     w.manager.rospy = w.fake
     robot = w.spawn('diffbot', urdf, namespace, (0.0, 0.0, 0.0))
+    if listen:
+        for topic, pub in w.fake.publishers.items():
+            if not topic.endswith('imu'):
+                pub.connections = 1
     return w, robot
 
 
@@ -97,6 +103,22 @@ def test_topics_at_the_root_and_no_warning(tmp_path, urdf):
         assert {'/cmd_vel'} == set(w.fake.subscribers)
         assert '/imu_service' in w.fake.services
         assert w.warnings() == [] and w.errors() == []
+    finally:
+        w.close()
+
+
+def test_unsubscribed_outputs_are_not_made_and_the_encoders_go_on_meanwhile(tmp_path, urdf):
+    w, robot = spawn(tmp_path, urdf, listen=False)
+    try:
+        command(w, 0.3, 0.5)
+        w.run(0.5)
+        assert [len(w.fake.publishers[t].messages) for t in ('/odom', '/tf', '/joint_states')] == [0, 0, 0]
+        assert max(abs(v) for v in wheel_velocities(w, robot)) > 1.0  # it drives all the same
+        w.fake.publishers['/odom'].connections = 1
+        w.run(0.1)
+        odom = w.fake.publishers['/odom'].messages
+        assert len(odom) == 5 and not w.fake.publishers['/tf'].messages  # 50 Hz; /tf still unsubscribed
+        assert odom[-1].pose.pose.position.x > 0.05  # integrated from the start, not from the subscription
     finally:
         w.close()
 

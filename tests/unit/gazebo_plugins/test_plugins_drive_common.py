@@ -1,11 +1,14 @@
 """What the drive, p3d and joint_state_publisher plugins share: their update clocks (Gazebo's whole
 nanoseconds), tf::resolve and tf_prefix, their namespaces (plugin_namespace), a point's velocity."""
+import copy
+
 import pytest
 
 from racebot_sim_bridge.gazebo_plugins.plugin_namespace import model_plugin_namespace, name_in
 from racebot_sim_bridge.gazebo_plugins.link_motion import point_velocity
 from racebot_sim_bridge.gazebo_plugins.odometry_output import tf_prefix, tf_resolve
 from racebot_sim_bridge.gazebo_plugins.update_timing import AtLeastPeriod, FixedPeriod, SincePublished
+from racebot_sim_bridge.engine.sim_time import to_ns
 
 STEP = 0.001
 
@@ -43,6 +46,28 @@ def test_since_published_drifts_by_one_step_per_period():
 def test_at_least_period_publishes_on_the_period():
     assert due_times(AtLeastPeriod(50.0, 0.0), 0.1) == [0.02, 0.04, 0.06, 0.08, 0.1]
     assert len(due_times(AtLeastPeriod(0.0, 0.0), 0.01)) == 10
+
+
+@pytest.mark.parametrize('make', [FixedPeriod, SincePublished, AtLeastPeriod])
+@pytest.mark.parametrize('rate, step', [(50.0, 0.001), (100.0, 0.001), (30.0, 0.001), (1000.0, 0.001), (7.0, 0.0003),
+                                        (0.0, 0.001)])
+def test_quiet_never_hides_a_due_update(make, rate, step):
+    # the plugins' shortcut (clock.quiet, inline in diff drive and imu) skips due()/since() only where neither fires
+    clock, times, skipped = make(rate, 0.0), [], 0
+    for i in range(1, 3000):
+        t = i * step
+        if clock.quiet(to_ns(t)):
+            skipped += 1
+            probe = copy.copy(clock)
+            due = probe.since(t) is not None if make is AtLeastPeriod else probe.due(t)
+            assert not (due[0] if isinstance(due, tuple) else due), (t, clock.last)
+            continue
+        due = clock.since(t) is not None if make is AtLeastPeriod else clock.due(t)
+        if (due[0] if isinstance(due, tuple) else due) and make is AtLeastPeriod:
+            clock.mark(t)
+        times.append(t)
+    assert skipped > 0 if rate and rate * step < 0.5 else skipped == 0
+    assert not clock.quiet(clock.last - 1)  # time gone back: due() / since() restart the clock
 
 
 def test_time_going_back_restarts_the_clock():

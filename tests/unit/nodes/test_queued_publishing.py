@@ -103,3 +103,87 @@ def test_a_writer_error_reaches_the_next_caller_once(connection):
     with pytest.raises(RuntimeError, match='connection lost'):
         conn.write_data(1)
     assert conn.write_data(2) is True
+
+
+class SocketTransport(RecordingTransport):
+    """A transport over a real socket pair, as rospy's TCPROSTransport: the writer sendall()s on `socket`."""
+
+    def __init__(self, hold=None):
+        super().__init__(hold)
+        import socket
+        self.socket, self.peer = socket.socketpair()
+        self.stat_bytes = self.stat_num_msg = 0
+
+    def write_data(self, data):
+        self.writing.set()
+        if self.hold is not None:
+            self.hold.wait(10.0)
+        self.socket.sendall(data)
+        self.stat_bytes += len(data)
+        self.stat_num_msg += 1
+
+    def received(self, count, timeout=5.0):
+        self.peer.settimeout(timeout)
+        got = b''
+        while len(got) < count:
+            got += self.peer.recv(count - len(got))
+        return got
+
+
+def socket_connection(queue_size, buffer=None):
+    import socket
+    transport = SocketTransport()
+    if buffer:
+        transport.socket.setsockopt(socket.SOL_SOCKET, socket.SO_SNDBUF, buffer)
+    return queued_publishing.install()(transport, queue_size), transport
+
+
+def close(conn, transport):
+    transport.done = True
+    conn._closed_connection_callback(transport)
+    conn._thread.join(5.0)
+
+
+def test_with_nothing_queued_a_message_goes_to_the_socket_from_the_caller(monkeypatch):
+    conn, transport = socket_connection(1)
+    yields, writes = [], []
+    monkeypatch.setattr(queued_publishing.time, 'sleep', lambda seconds: yields.append(seconds))
+    monkeypatch.setattr(transport, 'write_data', writes.append)  # the writer thread's way: not taken
+    try:
+        for i in range(100):
+            conn.write_data(b'message %03d;' % i)
+        assert transport.received(1200) == b''.join(b'message %03d;' % i for i in range(100))
+        assert yields == [] and writes == [] and conn._queue == []  # no thread switch, nothing queued or dropped
+        assert (transport.stat_num_msg, transport.stat_bytes) == (100, 1200)
+    finally:
+        monkeypatch.undo()
+        close(conn, transport)
+
+
+def test_a_busy_writer_keeps_the_order():
+    conn, transport = socket_connection(10)
+    try:
+        with conn._lock:
+            conn._sending = True  # the writer is relaying: nothing may pass it
+        conn.write_data(b'queued')
+        assert transport.received(6) == b'queued'  # sent by the writer
+    finally:
+        close(conn, transport)
+
+
+def test_what_the_socket_cannot_take_is_queued_and_its_rest_never_dropped():
+    conn, transport = socket_connection(1, buffer=4096)
+    hold = threading.Event()
+    sendall = transport.write_data
+    transport.write_data = lambda data: (hold.wait(10.0), sendall(data))
+    try:
+        big = bytes(range(256)) * 4096  # 1 MB: more than the socket buffers hold
+        conn.write_data(big)  # part goes at once, the rest is queued for the writer (held: busy)
+        assert 0 < transport.stat_bytes < len(big)
+        conn.write_data(b'dropped')
+        conn.write_data(b'last')  # a queue of one: 'dropped' goes, the rest of `big` must not
+        hold.set()
+        assert transport.received(len(big) + 4) == big + b'last'
+    finally:
+        hold.set()
+        close(conn, transport)

@@ -35,6 +35,24 @@ def test_laser_scan_fields_and_infinities():
     assert scan.ranges[3] == pytest.approx(2.5) and len(scan.intensities) == 5
 
 
+def test_laser_scan_bytes_are_those_of_the_plain_message():
+    # numpy arrays serialized by their bytes (numpy_msg): what a subscriber reads is what a list-filled LaserScan gives
+    from io import BytesIO
+    from sensor_msgs.msg import LaserScan
+    g = ScanGeometry(RaySpec(samples=5, min_angle=-1, max_angle=1, range_min=0.1, range_max=4))
+    ranges, retro = [1.0, math.inf, -math.inf, 2.5, 0.2], [0.0, 1.0, 0.0, 0.0, 0.5]
+    for intensities in (None, retro):
+        ours = msgs.laser_scan(STAMP, 'lidar', g, np.array(ranges), intensities)
+        assert isinstance(ours, LaserScan)  # a rospy publisher of LaserScan takes it
+        plain = LaserScan(header=ours.header, angle_min=g.angle_min, angle_max=g.angle_max,
+                          angle_increment=g.angle_increment, range_min=g.range_min, range_max=g.range_max,
+                          ranges=np.asarray(ranges, np.float32).tolist(), intensities=intensities or [0.0] * 5)
+        a, b = BytesIO(), BytesIO()
+        ours.serialize(a)
+        plain.serialize(b)
+        assert a.getvalue() == b.getvalue()
+
+
 def test_images_decode_to_what_was_rendered():
     rgb = np.arange(4 * 6 * 3, dtype=np.uint8).reshape(4, 6, 3)
     img = roundtrip(msgs.rgb_image(STAMP, 'camera', rgb))

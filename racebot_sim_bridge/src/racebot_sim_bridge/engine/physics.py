@@ -132,9 +132,10 @@ class Body:
         pos, orn = self.client.getBasePositionAndOrientation(self.id)
         return Pose(tuple(pos), tuple(orn))
 
-    def frame_pose(self) -> Pose:
-        """The pose of the root link's frame, as Gazebo reports a model's pose."""
-        pos, orn = self.pose()
+    def frame_pose(self, com: Pose | None = None) -> Pose:
+        """The pose of the root link's frame, as Gazebo reports a model's pose; `com`: the base's pose() when
+        already read (one PyBullet call fewer)."""
+        pos, orn = self.pose() if com is None else com
         inv_pos, inv_orn = pb.invertTransform(self._inertial[0], self._inertial[1])
         p, o = pb.multiplyTransforms(pos, orn, inv_pos, inv_orn)
         return Pose(tuple(p), tuple(o))

@@ -13,10 +13,12 @@ Every world update (before the physics step), with encoder odometry the wheel jo
 integrated (kinematics.diff_drive.encoder_step). When more than one update period has passed (the
 last update time then moves on by exactly one period): odometry and the odom -> base TF, wheel TFs
 (each wheel link's pose relative to the model, from its joint's parent link), wheel joint states
-(right then left, positions only), then the wheels' target speeds from the latest cmd_vel, through
-the acceleration ramp. Stamps are the sim time; frames go under the tf_prefix parameter found
+(right then left, positions only), each only while subscribed (rospy sends nothing without a subscriber),
+then the wheels' target speeds from the latest cmd_vel, through the acceleration ramp. Stamps are the
+sim time; frames go under the tf_prefix parameter found
 upwards from the plugin's namespace (tf::resolve).
 """
+import functools
 import math
 
 from racebot_sim_bridge.kinematics import differential as kin
@@ -46,6 +48,8 @@ class DiffDrive(GazeboRosPlugin):
         self.right = self.named_joint('rightJoint', 'right_joint', 'right wheel')
         self.left = self.named_joint('leftJoint', 'left_joint', 'left wheel')
         self.indices = [self.left.index, self.right.index]
+        # both wheels' PyBullet joint states, read at every world update: one bound call (physics.joint_states_raw)
+        self._read_wheels = functools.partial(self.world.client.getJointStates, robot.body.id, self.indices)
         self.separation = p.number('wheelSeparation', 0.34, minimum=0, exclusive=True)
         self.diameter = p.number('wheelDiameter', 0.15, minimum=0, exclusive=True)
         self.acceleration = p.number('wheelAcceleration', 0.0, minimum=0)
@@ -104,24 +108,34 @@ class DiffDrive(GazeboRosPlugin):
         now = to_ns(time)
         states = None
         if self.encoder:  # integrated every world update, whatever the update rate
-            states = self.world.joint_states_raw(self.robot.body, self.indices)
+            states = self._read_wheels()
             dt = (now - self.last_encoder_ns) / float(NS)
             self.last_encoder_ns = now
             self.encoder_pose, self.encoder_twist = kin.encoder_step(self.encoder_pose, states[0][1], states[1][1],
                                                                      self.diameter, self.separation, dt)
-        since = (now - self.clock.last) / float(NS)  # before due() moves the clock on
-        if not self.clock.due(time):
+        clock = self.clock
+        if 0 <= now - clock.last < clock.quiet_ns:  # clock.quiet(now), inline: most updates stop here
+            return
+        since = (now - clock.last) / float(NS)  # before due() moves the clock on
+        if not clock.due(time):
             return
         if states is None:
-            states = self.world.joint_states_raw(self.robot.body, self.indices)
+            states = self._read_wheels()
         velocities = (states[0][1], states[1][1])  # left, right (rad/s)
-        stamp = self.stamp(time)
-        if self.odom_pub is not None:
-            self._publish_odometry(stamp)
-        if self.publish_wheel_tf:
-            self._publish_wheel_tf(stamp)
-        if self.joint_state_pub is not None:
-            self._publish_joint_state(stamp, states)
+        # Only what somebody subscribes to is worked out: rospy sends nothing (and counts no seq) without a
+        # subscriber, so what a subscriber gets is the same.
+        tf_heard = self.tf_pub.get_num_connections() > 0
+        odom_heard = self.odom_pub is not None and (self.odom_pub.get_num_connections() > 0
+                                                    or (self.publish_odom_tf and tf_heard))
+        joints_heard = self.joint_state_pub is not None and self.joint_state_pub.get_num_connections() > 0
+        if odom_heard or (self.publish_wheel_tf and tf_heard) or joints_heard:
+            stamp = self.stamp(time)
+            if odom_heard:
+                self._publish_odometry(stamp, self.publish_odom_tf and tf_heard)
+            if self.publish_wheel_tf and tf_heard:
+                self._publish_wheel_tf(stamp)
+            if joints_heard:
+                self._publish_joint_state(stamp, states)
         targets = kin.wheel_speeds(self.command[0], self.command[1], self.separation)
         measured = tuple(kin.rim_speed(v, self.diameter) for v in velocities)
         speeds, self.commanded = kin.ramped_speeds(targets, measured, self.commanded, self.acceleration, since)
@@ -129,7 +143,7 @@ class DiffDrive(GazeboRosPlugin):
                                     [kin.joint_velocity(s, self.diameter) for s in speeds], [self.torque] * 2)
 
     # -- outputs --------------------------------------------------------------------------------
-    def _publish_odometry(self, stamp):
+    def _publish_odometry(self, stamp, send_tf):
         if self.encoder:
             x, y, theta = self.encoder_pose
             position, orientation = (x, y, 0.0), kin.yaw_quaternion(theta)
@@ -142,7 +156,7 @@ class DiffDrive(GazeboRosPlugin):
             vx, vy = world_linear[0], world_linear[1]
             c, s = math.cos(yaw), math.sin(yaw)
             linear, angular = (c * vx + s * vy, c * vy - s * vx, 0.0), (0.0, 0.0, world_angular[2])
-        if self.publish_odom_tf:
+        if send_tf:
             self.tf_pub.publish(transform(stamp, self.odom_frame, self.base_frame, position, orientation))
         self.odom_pub.publish(odometry(stamp, self.odom_frame, self.base_frame, position, orientation, linear,
                                        angular, kin.pose_covariance(), ZERO_COVARIANCE))

@@ -24,6 +24,7 @@ from racebot_sim_bridge.kinematics.rotations import quaternion_multiply, rotate,
 from racebot_sim_bridge.gazebo_plugins.model_plugin import ModelPlugin
 from racebot_sim_bridge.gazebo_plugins.link_motion import link_motion
 from racebot_sim_bridge.gazebo_plugins.update_timing import AtLeastPeriod
+from racebot_sim_bridge.engine.sim_time import to_ns
 
 DEFAULT_NAME = '/default_imu'  # upstream's topic and service when not given
 
@@ -77,7 +78,7 @@ class Imu(ModelPlugin):
             self.service(name_in(ns, self.service_name), Empty, lambda request: EmptyResponse())
 
     def before_physics(self, time):
-        if self.pub is None:
+        if self.pub is None or 0 <= to_ns(time) - self.clock.last < self.clock.quiet_ns:  # clock.quiet, inline
             return
         since = self.clock.since(time)
         if since is None or self.pub.get_num_connections() == 0:

@@ -17,7 +17,8 @@ def link_motion(world, body, link):
     axes, of the PyBullet link `link` (a name in body.link_index; the root link is the base)."""
     index = body.link_index[link]
     if index < 0:
-        frame, com = body.frame_pose(), body.pose()
+        com = body.pose()
+        frame = body.frame_pose(com)
         linear, angular = body.twist()
         position, orientation, com_position = frame.position, frame.orientation, com.position
     else:

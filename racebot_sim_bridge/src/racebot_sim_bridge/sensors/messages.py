@@ -25,7 +25,10 @@ import numpy as np
 from gazebo_msgs.msg import ContactState, ContactsState
 from geometry_msgs.msg import Vector3, Wrench
 from sensor_msgs.msg import CameraInfo, Image, Imu, LaserScan, PointCloud2, PointField, Range
+from rospy.numpy_msg import numpy_msg
 from std_msgs.msg import Header
+
+NumpyLaserScan = numpy_msg(LaserScan)
 
 
 class _LargeData:
@@ -66,13 +69,17 @@ def header(stamp, frame_id):
 
 def laser_scan(stamp, frame_id, geometry, ranges, intensities=None):
     """`geometry`: ray.ScanGeometry; `ranges`: the reported ranges (inf allowed); `intensities`: the
-    laser_retro of what each ray hit (None: all 0)."""
+    laser_retro of what each ray hit (None: all 0). A LaserScan whose arrays are float32 numpy arrays,
+    serialized with their bytes (rospy.numpy_msg: the same bytes as the list's, without a Python float per
+    beam); its class is a LaserScan, with LaserScan's type and md5sum. (genpy's numpy serializer calls
+    ndarray.tostring, deprecated: numpy is pinned in tools/requirements.txt, and a unit test compares the bytes.)"""
     ranges = np.asarray(ranges, dtype=np.float32)
-    intensities = [0.0] * len(ranges) if intensities is None else [float(v) for v in intensities]
-    return LaserScan(header=header(stamp, frame_id), angle_min=geometry.angle_min, angle_max=geometry.angle_max,
-                     angle_increment=geometry.angle_increment, time_increment=0.0, scan_time=0.0,
-                     range_min=geometry.range_min, range_max=geometry.range_max,
-                     ranges=ranges.tolist(), intensities=intensities)
+    intensities = (np.zeros(len(ranges), dtype=np.float32) if intensities is None
+                   else np.asarray(intensities, dtype=np.float32))
+    return NumpyLaserScan(header=header(stamp, frame_id), angle_min=geometry.angle_min, angle_max=geometry.angle_max,
+                          angle_increment=geometry.angle_increment, time_increment=0.0, scan_time=0.0,
+                          range_min=geometry.range_min, range_max=geometry.range_max,
+                          ranges=ranges, intensities=intensities)
 
 
 # gazebo_ros_camera_utils: the sensor's <image><format> -> the image's encoding (an unknown format is
