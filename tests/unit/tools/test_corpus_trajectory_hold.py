@@ -18,6 +18,7 @@ from racebot_sim_bridge.engine.simulator import Simulator
 from racebot_sim_bridge.gazebo_ros_control.gazebo_ros_control_plugin import GazeboRosControlPlugin
 from racebot_sim_bridge.ros_control.controller_manager import STRICT
 
+from test_controller_load_while_stepping import Log
 from test_joint_trajectory_controller import IO, GoalHandle, trajectory
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[3] / 'tools'))
@@ -59,18 +60,6 @@ LIFT = {'shoulder': -0.5, 'elbow': 0.3}  # the goal, relative to where the arm r
 MID_FALL_STEPS = 60  # the controller starts this many steps after the spawn, the arm still falling
 AT_REST_STEPS = 1500  # or this many, the arm lying on the ground
 SETTLE_S = 3.0  # as the ur5 row's settle_s
-
-
-class Log:
-    def __init__(self):
-        self.errors = []
-
-    def error(self, message):
-        self.errors.append(message)
-
-    def warn(self, message):
-        pass
-    info = warn
 
 
 class Rig:
