@@ -9,7 +9,7 @@ each the median CPU time (time.process_time: the machine's other load does not c
   per-pixel copies; `readback` is the same call with nothing in view, the part a frame pays whatever it shows)
   and `convert` (render.CameraFrames.finish: ground planes, packed rgb, depth in metres, noise);
 - world server: `message` (the ROS messages the plugin publishes for that frame, built as
-  gazebo_ros_camera / gazebo_ros_openni_kinect build them: sensors/messages.py), `serialize` (as rospy does:
+  gazebo_ros_camera / gazebo_ros_openni_kinect build them, with their code), `serialize` (as rospy does:
   into a BytesIO) and `send` (the bytes written to a local TCP socket, as TCPROS writes them);
 - subscriber: `receive` (the reading end of that socket, 1 MB reads: a lower bound for any subscriber).
 The world server's physics is the real-time part's CPU with nothing subscribed (report.camera_budget_rows).
@@ -86,18 +86,16 @@ def serialized(msg):
     return buff.getvalue()
 
 
-def frame_messages(kind, camera, rgb, depth, rays, stamp):
-    """The messages one frame publishes with every topic subscribed (gazebo_ros_openni_kinect / gazebo_ros_camera
-    publish_frame, with the racebot's parameters: depth cut off at 0.4 m and the far clip)."""
+def frame_messages(kind, camera, params, rgb, depth, rays, stamp):
+    """The messages one frame publishes with every topic subscribed, built by the plugins' own code (depth:
+    gazebo_ros_openni_kinect.frame_messages with the sensor's parameters), camera_infos included."""
+    from racebot_sim_bridge.gazebo_plugins.gazebo_ros_openni_kinect import frame_messages as depth_frame
     from racebot_sim_bridge.sensors import messages as msgs
-    from racebot_sim_bridge.sensors.camera import mask_depth
-    out = [msgs.rgb_image(stamp, 'camera', rgb), msgs.camera_info(stamp, 'camera', camera)]
+    info = msgs.camera_info(stamp, 'camera', camera)
     if kind == 'depth':
-        masked = mask_depth(depth, 0.4, camera.far)
-        out += [msgs.depth_image(stamp, 'camera', masked),
-                msgs.point_cloud(stamp, 'camera', camera.points(masked, rays), rgb),
-                msgs.camera_info(stamp, 'camera', camera)]
-    return out
+        return [m for _, m in depth_frame(camera, params, 'camera', 'rgb8', rays, stamp, {'image', 'depth', 'points'},
+                                          rgb, depth)] + [info, msgs.camera_info(stamp, 'camera', camera)]
+    return [msgs.rgb_image(stamp, 'camera', rgb), info]
 
 
 def measure():
@@ -107,6 +105,7 @@ def measure():
     from racebot_sim_bridge.description import sdf_reader, urdf_reader
     from racebot_sim_bridge.engine.physics import PhysicsWorld
     from racebot_sim_bridge.sensors.camera import PinholeCamera
+    from racebot_sim_bridge.sensors.config import sensor_config
     from racebot_sim_bridge.sensors.noise import make_noise
     from racebot_sim_bridge.sensors.render import CameraFrames, load_renderer
     from racebot_sim_bridge.sensors.scene import SceneColours
@@ -145,7 +144,8 @@ def measure():
         copy_ms, _ = cpu_ms(lambda: (rgba.copy(), buffer.copy()))
         stages['convert'] = max(0.0, stages['convert'] - copy_ms)  # the measurement's own copies
         rays = camera.rays_optical()
-        stages['message'], msgs = cpu_ms(lambda: frame_messages(spec.type, camera, rgb, depth, rays, stamp))
+        params = sensor_config(spec).params
+        stages['message'], msgs = cpu_ms(lambda: frame_messages(spec.type, camera, params, rgb, depth, rays, stamp))
         stages['serialize'], blobs = cpu_ms(lambda: [serialized(m) for m in msgs])
         sends = []
         before = drain.cpu

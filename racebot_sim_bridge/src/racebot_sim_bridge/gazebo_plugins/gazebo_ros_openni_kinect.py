@@ -35,19 +35,27 @@ class DepthCameraSensor(CameraSensor,
         pubs = self.publishers
         if self.failed or not pubs:
             return
-        frame_id = self.config.frame_id
-        if depth is not None and wanted & {'depth', 'points'}:
-            depth = mask_depth(depth, self.config.params['cutoff'], self.config.params['cutoff_max'])
-            if 'depth' in wanted:
-                millimetres = self.config.params.get('depth_16uc1', False)
-                pubs['depth'].publish(msgs.depth_image(stamp, frame_id, depth, millimetres))
-            if 'points' in wanted:
-                if self.rays is None:
-                    self.rays = self.camera.rays_optical()
-                points = self.camera.points(depth, self.rays)
-                pubs['points'].publish(msgs.point_cloud(stamp, frame_id, points, rgb))
-        if 'image' in wanted:
-            pubs['image'].publish(msgs.rgb_image(stamp, frame_id, rgb, self.encoding))
+        if 'points' in wanted and self.rays is None:
+            self.rays = self.camera.rays_optical()
+        for role, msg in frame_messages(self.camera, self.config.params, self.config.frame_id, self.encoding,
+                                        self.rays, stamp, wanted, rgb, depth):
+            pubs[role].publish(msg)
         for role in ('info', 'depth_info'):
             pubs[role].publish(self.info(stamp))
         self.meter.tick()
+
+
+def frame_messages(camera, params, frame_id, encoding, rays, stamp, wanted, rgb, depth):
+    """[(role, message)] of one frame, in the order publish_frame sends them: the `wanted` roles of 'depth' (the
+    depth image), 'points' (the cloud; `rays`: camera.rays_optical()) and 'image'. `params`: the sensor config's
+    (cutoff, cutoff_max, depth_16uc1). Also what make bench's camera budget times (tools/bench/camera_budget.py)."""
+    out = []
+    if depth is not None and wanted & {'depth', 'points'}:
+        depth = mask_depth(depth, params['cutoff'], params['cutoff_max'])
+        if 'depth' in wanted:
+            out.append(('depth', msgs.depth_image(stamp, frame_id, depth, params.get('depth_16uc1', False))))
+        if 'points' in wanted:
+            out.append(('points', msgs.point_cloud(stamp, frame_id, camera.points(depth, rays), rgb)))
+    if 'image' in wanted:
+        out.append(('image', msgs.rgb_image(stamp, frame_id, rgb, encoding)))
+    return out

@@ -107,7 +107,8 @@ class PinholeCamera:
     def plane_depth(self, rays3, position, rotation, plane_point, plane_normal):
         """(height, width) depth along the optical axis at which each pixel's ray meets a plane
         (+inf where it does not, or behind the camera). `rays3`: rays_optical_3d(); `position`,
-        `rotation`: the sensor frame's world pose; the plane by a point and its normal."""
+        `rotation`: the sensor frame's world pose; the plane by a point and its normal. Ray by ray: the reference
+        that plane_inverse_depth, which cameras use, is tested against."""
         world_from_optical = np.asarray(rotation, dtype=np.float64) @ OPTICAL_FROM_SENSOR.T
         m = (world_from_optical.T @ np.asarray(plane_normal, dtype=np.float64)).astype(np.float32)
         height = float(np.dot(plane_normal, np.asarray(plane_point, dtype=np.float64) - np.asarray(position)))

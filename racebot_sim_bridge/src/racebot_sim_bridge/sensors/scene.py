@@ -32,7 +32,7 @@ class SceneColours:
     window, a world model's plane is therefore made invisible to the renderer and listed in
     `planes` with the colour the renderer gives it (measured once on a tiny image); cameras then
     draw it per pixel where it is nearer than what was rendered
-    (camera.PinholeCamera.plane_depth), which gives the same picture for a fraction of the cost.
+    (camera.PinholeCamera.plane_inverse_depth), which gives the same picture for a fraction of the cost.
     With a window on this client the plane stays as it is (the window shows it).
     """
 
