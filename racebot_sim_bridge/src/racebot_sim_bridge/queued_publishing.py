@@ -13,11 +13,18 @@ without blocking (MSG_DONTWAIT); what the socket does not take (a subscriber tha
 writer as before, and the caller yields only once the queue is half full, so the writer sends a batch before the
 queue would drop anything. Drop-oldest stays what queue_size means (rospy's and roscpp's): only a subscriber that
 cannot keep up loses messages. A queue_size of 1 yields after every queued message, as rospy.
+
+Where the compiled socket_writer is built and the process may use two cores, start_writer() goes one step further,
+as roscpp does: the caller only hands the message over and a writer thread of its own, which needs no interpreter
+lock, writes it (socket_writer.pyx says why: a send costs the update loop 11-18 us on a 2-core machine). Order,
+queue_size and the end of a connection whose subscriber went away stay as above.
 """
+import os
 import socket
 import time
 
 _installed = []
+_writer = [None]  # the started socket_writer.SocketWriter the connections hand their messages to, or None
 
 
 class _Rest(bytes):
@@ -42,31 +49,87 @@ def _send_now(conn, data):
 
 
 def write_data(self, data):
-    """QueuedConnection.write_data: straight to the socket when nothing is before it, else queued, yielding only
-    when the writer is behind (rospy 1.15's queues and yields every time)."""
+    """QueuedConnection.write_data: to the writer thread when one is started, else straight to the socket when
+    nothing is before it, else queued, yielding only when the writer is behind (rospy 1.15's queues and yields
+    every time)."""
     with self._lock:
         # if there was previously an error within the dispatch thread, raise it (as rospy)
         if self._error:
             error, self._error = self._error, None
             raise error
-        if not self._queue and not self._sending:
-            sent = _send_now(self._connection, data)
-            if sent:
-                if sent == len(data):
-                    return True
-                data = _Rest(data[sent:])
-        queue = self._queue
-        if self._queue_size > 0 and len(queue) >= self._queue_size:
-            for i, queued in enumerate(queue):
-                if not isinstance(queued, _Rest):
-                    del queue[i]  # drop the oldest, as rospy
-                    break
-        queue.append(data)
-        self._cond_data_available.notify()
-        backlog = len(queue)
+        writer = _writer[0]
+        if writer is not None and self._channel is None and not self._queue and not self._sending:
+            self._channel = _open_channel(writer, self._connection)
+        if writer is None or self._channel is None:
+            failed, backlog = 0, _send_or_queue(self, data)
+        else:
+            failed = writer.write(self._channel, data, self._queue_size)
+            if not failed:
+                self._connection.stat_bytes += len(data)
+                self._connection.stat_num_msg += 1
+                return True
+    if failed:
+        # the writer's send failed (the subscriber went away): what rospy's transport does on a failed write
+        from rospy.exceptions import TransportTerminated
+        self._connection.close()
+        raise TransportTerminated('writing to %s failed: %s' % (self._connection.endpoint_id, os.strerror(failed)))
     if backlog * 2 >= (self._queue_size or 2):
         time.sleep(0)  # let the writer send what is queued before the queue would drop any of it
     return True
+
+
+def _send_or_queue(self, data):
+    """The Python path, under the connection's lock: sends now what the socket takes when nothing is before it,
+    queues the rest for rospy's writer thread; the length of its queue after."""
+    if not self._queue and not self._sending:
+        sent = _send_now(self._connection, data)
+        if sent:
+            if sent == len(data):
+                return 0
+            data = _Rest(data[sent:])
+    queue = self._queue
+    if self._queue_size > 0 and len(queue) >= self._queue_size:
+        for i, queued in enumerate(queue):
+            if not isinstance(queued, _Rest):
+                del queue[i]  # drop the oldest, as rospy
+                break
+    queue.append(data)
+    self._cond_data_available.notify()
+    return len(queue)
+
+
+def _open_channel(writer, connection):
+    """A writer channel for the connection's socket; None when it has none (the caller's path is then rospy's)."""
+    sock = getattr(connection, 'socket', None)
+    if sock is None or getattr(connection, 'done', True):
+        return None
+    return writer.open(sock.fileno())
+
+
+def start_writer(log=None):
+    """Starts the compiled writer thread for this process's connections when it is built and the process may use
+    two cores or more (on one it would take turns with the update loop); returns it, or None (the Python path)."""
+    try:
+        from racebot_sim_bridge.socket_writer import SocketWriter
+    except ImportError:
+        if log is not None:
+            log('racebot_sim_bridge.socket_writer is not built: messages are sent from the update loop (slower); '
+                "'make build' compiles it (Cython)")
+        return None
+    if len(os.sched_getaffinity(0)) < 2:
+        return None
+    if _writer[0] is None:
+        writer = SocketWriter()
+        writer.start()
+        _writer[0] = writer
+    return _writer[0]
+
+
+def stop_writer():
+    """Stops the writer thread (what waits in it is dropped); later messages go the Python path."""
+    writer, _writer[0] = _writer[0], None
+    if writer is not None:
+        writer.stop()
 
 
 def _run(self):
@@ -93,6 +156,10 @@ def _run(self):
                     self._error = e
     with self._lock:
         self._sending = False
+        channel, self._channel = self._channel, None
+    writer = _writer[0]
+    if channel is not None and writer is not None:
+        writer.close(channel)  # the writer's own copy of the socket is closed too
 
 
 def install():
@@ -101,6 +168,7 @@ def install():
     if not _installed:
         _installed.append((QueuedConnection.write_data, QueuedConnection._run))
         QueuedConnection._sending = False  # until the writer takes its first batch
+        QueuedConnection._channel = None  # its socket_writer channel, once it has one
         QueuedConnection.write_data = write_data
         QueuedConnection._run = _run
     return QueuedConnection

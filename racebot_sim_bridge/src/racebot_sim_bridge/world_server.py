@@ -40,7 +40,7 @@ Services and topics live under the node's own name, as gazebo_ros's (node `gazeb
 /use_sim_time is set true when nobody has set it (gazebo_ros does). This node drives ROS time, so
 it does not subscribe to its own /clock (init_clock_source) and rospy's timers cannot pace it:
 pacing is in wall time, the world's real_time_update_rate updates per wall second, or as fast as
-possible when it is 0. /clock is published synchronously from the loop (clock_publisher).
+possible when it is 0. Messages, /clock included, are handed to a writer thread (queued_publishing).
 """
 import math
 import os
@@ -74,35 +74,14 @@ FAST_CLOCK_WALL_PERIOD = 0.001
 # world server at 20.5 % of a core, after every second one it is at 18-19 %. The price: a command that
 # arrives while it sleeps waits up to 2 ms for its update, not 1 (the bench's command path p99 shows it).
 PACING_SLACK = 0.001
-# /clock is written to its subscribers' sockets from the update loop (no writer thread per subscriber,
-# see clock_publisher); a subscriber that takes nothing for this long is disconnected.
-CLOCK_SEND_TIMEOUT = 1.0
 
 
 def clock_publisher():
-    """The /clock publisher, synchronous: rospy's queued publisher hands every message to a writer
-    thread per subscriber and yields the interpreter (time.sleep(0)) after each, which at 1000
-    messages a second costs the update loop more than the physics on a busy machine. Written
-    directly, a message costs one send per subscriber. A subscriber that stops reading (a process
-    stopped in a debugger) would block the loop once its socket buffers are full: its socket gets
-    a send timeout, after which rospy drops the connection."""
-    import warnings
-
-    class SendTimeout(rospy.SubscribeListener):
-        # No public rospy API gives a publisher's connections or a send timeout: the public
-        # SubscribeListener says when a subscriber connected; its socket is reached through the
-        # publisher's `impl` (rospy's topic implementation). Without that, a stopped subscriber
-        # would block the update loop for good once its socket buffers are full.
-        def peer_subscribe(self, topic_name, topic_publish, peer_publish):
-            for conn in list(getattr(pub.impl, 'connections', [])):
-                sock = getattr(conn, 'socket', None)
-                if sock is not None and sock.gettimeout() is None:
-                    sock.settimeout(CLOCK_SEND_TIMEOUT)
-
-    with warnings.catch_warnings():  # rospy warns that queue_size=None means synchronous: it is meant
-        warnings.simplefilter('ignore', SyntaxWarning)
-        pub = rospy.Publisher('/clock', Clock, queue_size=None, subscriber_listener=SendTimeout())
-    return pub
+    """The /clock publisher: queued as every publisher of this process (queued_publishing: the update loop hands
+    each message to the writer thread, or sends it without blocking), so that a subscriber that stops reading (a
+    process stopped in a debugger) never holds the loop up; queue_size 1: it then gets the latest time, not a
+    backlog of old ones."""
+    return rospy.Publisher('/clock', Clock, queue_size=1)
 
 
 class RospyLog:
@@ -393,6 +372,7 @@ def main(argv=None, debugger=False, fallback_to_empty=False):
     argv = rospy.myargv(argv if argv is not None else sys.argv)[1:]
     init_clock_source('gazebo')
     queued_publishing.install()  # before any publisher: no thread switch per message from the update loop
+    queued_publishing.start_writer(rospy.logwarn)  # and no send either, where the compiled writer is built
     if not rospy.has_param('/use_sim_time'):  # gazebo_ros sets it when nobody has
         rospy.set_param('/use_sim_time', True)
     if debugger:
@@ -414,3 +394,4 @@ def main(argv=None, debugger=False, fallback_to_empty=False):
         server.run()
     finally:  # after the loop, never during a step: the physics client must outlive every step
         server.shutdown()
+        queued_publishing.stop_writer()

@@ -57,6 +57,9 @@ class DiffDrive(GazeboRosPlugin):
         self.rate = p.number('updateRate', 100.0)
         self.clock = FixedPeriod(self.rate, ctx.sim.time)
         self.encoder = self.odometry_source() == 'encoder'
+        if self.encoder:
+            self.every_update = self._integrate_encoder
+        self._wheels = None  # (update time in ns, the wheels' states read then by the encoder)
         self.publish_odometry = p.boolean('publishTf', True)
         self.publish_odom_tf = p.boolean('publishOdomTF', True)
         self.publish_wheel_tf = p.boolean('publishWheelTF', False)
@@ -104,23 +107,28 @@ class DiffDrive(GazeboRosPlugin):
         self.command = (0.0, 0.0)
         self.world.drive_velocities(self.robot.body, self.indices, [0.0, 0.0], [self.torque] * 2)
 
+    def _integrate_encoder(self, now):
+        """UpdateOdometryEncoder, at every world update whatever the update rate (`every_update`; now in ns)."""
+        states = self._read_wheels()
+        self._wheels = (now, states)
+        dt = (now - self.last_encoder_ns) / float(NS)
+        self.last_encoder_ns = now
+        self.encoder_pose, self.encoder_twist = kin.encoder_step(self.encoder_pose, states[0][1], states[1][1],
+                                                                 self.diameter, self.separation, dt)
+
+    def quiet_span(self):
+        return self.clock.last, self.clock.last + self.clock.quiet_ns
+
     def before_physics(self, time):
         now = to_ns(time)
-        states = None
-        if self.encoder:  # integrated every world update, whatever the update rate
-            states = self._read_wheels()
-            dt = (now - self.last_encoder_ns) / float(NS)
-            self.last_encoder_ns = now
-            self.encoder_pose, self.encoder_twist = kin.encoder_step(self.encoder_pose, states[0][1], states[1][1],
-                                                                     self.diameter, self.separation, dt)
         clock = self.clock
         if 0 <= now - clock.last < clock.quiet_ns:  # clock.quiet(now), inline: most updates stop here
             return
         since = (now - clock.last) / float(NS)  # before due() moves the clock on
         if not clock.due(time):
             return
-        if states is None:
-            states = self._read_wheels()
+        wheels = self._wheels
+        states = wheels[1] if wheels is not None and wheels[0] == now else self._read_wheels()
         velocities = (states[0][1], states[1][1])  # left, right (rad/s)
         # Only what somebody subscribes to is worked out: rospy sends nothing (and counts no seq) without a
         # subscriber, so what a subscriber gets is the same.

@@ -27,6 +27,7 @@ from racebot_sim_bridge.gazebo_plugins.update_timing import AtLeastPeriod
 from racebot_sim_bridge.engine.sim_time import to_ns
 
 DEFAULT_NAME = '/default_imu'  # upstream's topic and service when not given
+NEVER = (-(1 << 63), 1 << 63)  # the quiet span of an IMU with no topic: all time
 
 
 def acceleration(last_velocity, velocity, dt):
@@ -76,6 +77,11 @@ class Imu(ModelPlugin):
             self.msg_class = ImuMsg
             self.pub = self.publisher(name_in(ns, self.topic), ImuMsg)
             self.service(name_in(ns, self.service_name), Empty, lambda request: EmptyResponse())
+
+    def quiet_span(self):
+        if self.pub is None:
+            return NEVER
+        return self.clock.last, self.clock.last + self.clock.quiet_ns
 
     def before_physics(self, time):
         if self.pub is None or 0 <= to_ns(time) - self.clock.last < self.clock.quiet_ns:  # clock.quiet, inline

@@ -133,8 +133,19 @@ class ModelPlugin:
                 for element, (written, now) in _rewritten(spec.rewrites).items()))
 
     # -- life cycle (physics thread, under Simulator.lock) ------------------------------------
+    # Work upstream does at every world update whatever the plugin's rate (the diff drive's encoder): a callable
+    # of the update's time in integer ns, or None. PluginManager calls it for every plugin that has one before
+    # any plugin's before_physics.
+    every_update = None
+
     def before_physics(self, time):
         pass
+
+    def quiet_span(self):
+        """(from_ns, until_ns): before_physics surely does nothing at an update whose time (integer ns) is in
+        [from_ns, until_ns), so PluginManager need not call it until then; asked after each call and after a
+        reset. None (the base's): call it at every update."""
+        return None
 
     def after_step(self, time):
         pass

@@ -7,6 +7,7 @@ robot works without it; a plugin refused for its parameters (PluginError) gets a
 reason. Nothing a plugin raises reaches the world server: a plugin whose update fails is stopped with
 an error, the world goes on.
 """
+from racebot_sim_bridge.engine.sim_time import to_ns
 from racebot_sim_bridge.gazebo_plugins import PluginKind
 from racebot_sim_bridge.gazebo_plugins.model_plugin import ModelPlugin, PluginError
 from racebot_sim_bridge.gazebo_plugins.registry import REGISTRY
@@ -33,6 +34,11 @@ class PluginManager:
         # update (the base's do nothing, and a call per plugin per update is what a fleet pays most for)
         self._before = []
         self._after = []
+        self._every = []  # (plugin, its every_update)
+        # Most updates no plugin is due (a 1 kHz world, plugins at 10-100 Hz): each plugin's quiet span (None:
+        # call it every update) and their intersection, [from, until) in integer ns, checked with one comparison
+        self._spans = []
+        self._quiet = (0, 0)
         self._tf_pub = None
         sim.on_spawn.append(self.on_spawn)
         sim.on_delete.append(self.on_delete)
@@ -76,13 +82,30 @@ class PluginManager:
     def on_reset(self):
         for plugin in self._active:
             plugin.reset()
+        self._spans = [None] * len(self._before)  # their clocks restarted: ask them all again
+        self._quiet = (0, 0)
 
     def before_physics(self, time):
-        for plugin in self._before:
+        now = to_ns(time)
+        for plugin, update in self._every:
             try:
-                plugin.before_physics(time)
+                update(now)
             except Exception as err:  # a plugin's bug must not stop the world
                 self._stop(plugin, err)
+        if self._quiet[0] <= now < self._quiet[1]:
+            return
+        spans = self._spans
+        for i, plugin in enumerate(self._before):
+            span = spans[i]
+            if span is not None and span[0] <= now < span[1]:
+                continue
+            try:
+                plugin.before_physics(time)
+                spans[i] = plugin.quiet_span()
+            except Exception as err:
+                self._stop(plugin, err)
+        if spans is self._spans:  # no plugin stopped meanwhile (that starts the spans again)
+            self._quiet = _intersection(spans)
 
     def after_step(self, time):
         for plugin in self._after:
@@ -114,8 +137,18 @@ class PluginManager:
         self._active = [p for group in self.plugins.values() for p in group]
         self._before = [p for p in self._active if _overrides(p, 'before_physics')]
         self._after = [p for p in self._active if _overrides(p, 'after_step')]
-        self.sim.set_step_hook('before_physics', self.before_physics, bool(self._before))
+        self._every = [(p, p.every_update) for p in self._active if p.every_update is not None]
+        self._spans = [None] * len(self._before)
+        self._quiet = (0, 0)
+        self.sim.set_step_hook('before_physics', self.before_physics, bool(self._before or self._every))
         self.sim.set_step_hook('after_step', self.after_step, bool(self._after))
+
+
+def _intersection(spans):
+    """[from, until) in which every span's plugin is quiet; empty when any must be called at every update."""
+    if not spans or None in spans:
+        return (0, 0)
+    return max(span[0] for span in spans), min(span[1] for span in spans)
 
 
 def _overrides(plugin, hook):
