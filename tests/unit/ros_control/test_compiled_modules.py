@@ -1,4 +1,4 @@
-"""hardware.py and pid.py run compiled (Cython, typed by hardware.pxd and pid.pxd; see
+"""hardware.py, pid.py and kinematics/differential.py run compiled (Cython, typed by the .pxd beside each; see
 racebot_sim_bridge/CMakeLists.txt): the build must have compiled them, and the compiled code must give
 what the same .py gives as plain Python, bit for bit, on any input (NaN, infinities, -0.0, ints, huge
 values). The plain modules are loaded from the .py files themselves."""
@@ -11,14 +11,15 @@ from pathlib import Path
 import pytest
 from hypothesis import example, given, settings, strategies as st
 
+from racebot_sim_bridge.kinematics import differential
 from racebot_sim_bridge.ros_control import hardware_interface as hardware, pid
 
-SOURCES = Path(__file__).resolve().parents[3] / 'racebot_sim_bridge' / 'src' / 'racebot_sim_bridge' / 'ros_control'
+SOURCES = Path(__file__).resolve().parents[3] / 'racebot_sim_bridge' / 'src' / 'racebot_sim_bridge'
 
 
-def plain(module_name):
+def plain(module_name, folder='ros_control'):
     """The module run from its .py by the interpreter (no extension module)."""
-    spec = importlib.util.spec_from_file_location('plain_' + module_name, SOURCES / (module_name + '.py'))
+    spec = importlib.util.spec_from_file_location('plain_' + module_name, SOURCES / folder / (module_name + '.py'))
     module = importlib.util.module_from_spec(spec)
     spec.loader.exec_module(module)
     return module
@@ -26,6 +27,7 @@ def plain(module_name):
 
 PLAIN_HARDWARE = plain('hardware_interface')
 PLAIN_PID = plain('pid')
+PLAIN_DIFFERENTIAL = plain('differential', 'kinematics')
 
 
 def bits(x):
@@ -41,9 +43,9 @@ def outcome(function, *args):
         return 'raised', type(err)
 
 
-@pytest.mark.parametrize('module', [hardware, pid])
+@pytest.mark.parametrize('module', [hardware, pid, differential])
 def test_the_build_compiled_the_every_step_modules(module):
-    # make setup installs Cython and python3-dev and the build compiles both; a plain .py here means the
+    # make setup installs Cython and python3-dev and the build compiles them; a plain .py here means the
     # world runs ~10 % slower than docs/BENCHMARK.md says
     assert module.__file__.endswith(sysconfig.get_config_var('EXT_SUFFIX')), module.__file__
 
@@ -147,3 +149,56 @@ def test_a_pid_compiled_refuses_what_plain_python_refuses():
     params = {'p': 2.0, 'i': 1.0, 'i_clamp': 3.0, 'antiwindup': True}
     assert pid_state(pid.Pid.from_params(params)) == pid_state(PLAIN_PID.Pid.from_params(params))
     assert repr(pid.Pid.from_params(params)) == repr(PLAIN_PID.Pid.from_params(params))
+
+
+wheel_inputs = st.one_of(floats, st.integers(-5, 5), st.just(1e308))
+
+
+@settings(max_examples=400, deadline=None)
+@given(pose=st.tuples(floats, floats, floats), left=wheel_inputs, right=wheel_inputs,
+       diameter=st.one_of(st.floats(0.01, 2.0), floats), separation=st.one_of(st.floats(0.05, 3.0), floats),
+       dt=st.one_of(st.floats(-0.01, 0.1), floats, st.just(0.0)))
+@example(pose=(0.0, 0.0, 0.0), left=1e308, right=-1e308, diameter=2.0, separation=1e-308, dt=1.0)
+def test_the_encoder_step_compiled_integrates_as_plain_python(pose, left, right, diameter, separation, dt):
+    assert tuple(map(bits_tuple, outcome_parts(differential.encoder_step, pose, left, right, diameter, separation,
+                                               dt))) == \
+        tuple(map(bits_tuple, outcome_parts(PLAIN_DIFFERENTIAL.encoder_step, pose, left, right, diameter,
+                                            separation, dt)))
+
+
+def outcome_parts(function, *args):
+    """What a call gives: ('value', its nested tuples of numbers) or ('raised', the exception's type)."""
+    try:
+        return 'value', function(*args)
+    except Exception as err:  # noqa: BLE001 (the exception's type is the outcome compared)
+        return 'raised', type(err)
+
+
+def bits_tuple(value):
+    return tuple(bits_tuple(v) for v in value) if isinstance(value, tuple) else bits(value)
+
+
+def odometer_state(odometer):
+    return tuple(bits(float(getattr(odometer, a))) for a in ('x', 'y', 'theta', 'v', 'w')) + (odometer.last_ns,)
+
+
+@settings(max_examples=200, deadline=None)
+@given(updates=st.lists(st.tuples(st.integers(-2_000_000, 50_000_000), finite, finite), min_size=1, max_size=15),
+       diameter=st.floats(0.01, 2.0), separation=st.floats(0.05, 3.0))
+def test_the_encoder_odometry_compiled_follows_the_wheels_as_plain_python(updates, diameter, separation):
+    readings = []
+    odometers = [module.EncoderOdometry(lambda: readings[-1], diameter, separation)
+                 for module in (differential, PLAIN_DIFFERENTIAL)]
+    pose, twist, last, now = (0.0, 0.0, 0.0), (0.0, 0.0), 0, 0
+    for gap, left, right in updates:
+        now += gap  # time may also go back (a reset): upstream's dt <= 0 moves nothing
+        readings.append(((0.0, left, (0.0,) * 6, 0.0), (0.0, right, (0.0,) * 6, 0.0)))
+        for odometer in odometers:
+            odometer.update(now)
+        compiled, reference = odometers
+        assert odometer_state(compiled) == odometer_state(reference)
+        assert compiled.wheels is reference.wheels is readings[-1] and compiled.wheels_ns == now
+        # and each update is encoder_step from the last pose over the time since the last update
+        pose, twist = PLAIN_DIFFERENTIAL.encoder_step(pose, left, right, diameter, separation, (now - last) / 1e9)
+        last = now
+        assert odometer_state(reference)[:5] == tuple(bits(float(v)) for v in pose + twist)

@@ -214,35 +214,35 @@ class Simulator:
         with self.lock:
             if self.paused:
                 return False
-            self.step()
+            self._step()
             return True
 
     def step(self) -> None:
         """One world update (physics step), each robot's control loop (read, controller manager update
         when its control period has elapsed, write) before it, inline: it runs thousands of times a second."""
         with self.lock:
-            t = self.time
-            world = self.world
-            for c in self._controls:
-                c.read(world)
-                if c.last_update is None or t - c.last_update >= c.control_period - 1e-9:
-                    period = 0.0 if c.last_update is None else t - c.last_update
-                    c.cm.update(t, period if period > 0 else c.control_period)
-                    c.last_update = t
-                c.write(world, self.step_size)
-            t_next = self._time_at(self.steps + 1)  # the time this step ends at, computed once
-            for hook in self.before_physics:
-                hook(t_next)
-            if self.physics_enabled:
-                world.step()
-            self.steps += 1
-            self.time = t_next
-            for hook in self.after_step:
-                hook(t_next)
+            self._step()
 
-    def _time_at(self, steps):
-        s0, t0 = self._epoch
-        return t0 + (steps - s0) * self.step_size
+    def _step(self) -> None:
+        t = self.time
+        world = self.world
+        for c in self._controls:
+            c.read(world)
+            if c.last_update is None or t - c.last_update >= c.control_period - 1e-9:
+                period = 0.0 if c.last_update is None else t - c.last_update
+                c.cm.update(t, period if period > 0 else c.control_period)
+                c.last_update = t
+            c.write(world, self.step_size)
+        s0, t0 = self._epoch  # the time this step ends at: from the last step size change, computed once
+        t_next = t0 + (self.steps + 1 - s0) * self.step_size
+        for hook in self.before_physics:
+            hook(t_next)
+        if self.physics_enabled:
+            world.step()
+        self.steps += 1
+        self.time = t_next
+        for hook in self.after_step:
+            hook(t_next)
 
     def set_step_size(self, step_size: float) -> None:
         """A new physics step (set_physics_properties); time goes on from where it is."""

@@ -10,7 +10,7 @@ none or empty -> the model's name). legacyMode is not read by noetic's plugin (i
 in kinetic): a warning says so when it is true.
 
 Every world update (before the physics step), with encoder odometry the wheel joint velocities are
-integrated (kinematics.diff_drive.encoder_step). When more than one update period has passed (the
+integrated (kinematics.differential.EncoderOdometry). When more than one update period has passed (the
 last update time then moves on by exactly one period): odometry and the odom -> base TF, wheel TFs
 (each wheel link's pose relative to the model, from its joint's parent link), wheel joint states
 (right then left, positions only), each only while subscribed (rospy sends nothing without a subscriber),
@@ -57,9 +57,6 @@ class DiffDrive(GazeboRosPlugin):
         self.rate = p.number('updateRate', 100.0)
         self.clock = FixedPeriod(self.rate, ctx.sim.time)
         self.encoder = self.odometry_source() == 'encoder'
-        if self.encoder:
-            self.every_update = self._integrate_encoder
-        self._wheels = None  # (update time in ns, the wheels' states read then by the encoder)
         self.publish_odometry = p.boolean('publishTf', True)
         self.publish_odom_tf = p.boolean('publishOdomTF', True)
         self.publish_wheel_tf = p.boolean('publishWheelTF', False)
@@ -79,9 +76,10 @@ class DiffDrive(GazeboRosPlugin):
                               tf_resolve(prefix, j.child_link), j.child_link) for j in (self.right, self.left)]
         self.command = (0.0, 0.0)  # cmd_vel's (linear.x, angular.z), replaced whole by the callback
         self.commanded = (0.0, 0.0)  # the ramp's commanded rim speeds (upstream's wheel_speed_instr_)
-        self.encoder_pose = (0.0, 0.0, 0.0)
-        self.encoder_twist = (0.0, 0.0)
-        self.last_encoder_ns = 0  # upstream's last_odom_update_ starts at time 0 and is never reset
+        # UpdateOdometryEncoder, at every world update whatever the update rate (compiled where built)
+        self.odometer = kin.EncoderOdometry(self._read_wheels, self.diameter, self.separation)
+        if self.encoder:
+            self.every_update = self.odometer.update
         self.world.drive_velocities(robot.body, self.indices, [0.0, 0.0], [self.torque] * 2)  # SetParam fmax
         from geometry_msgs.msg import Twist
         from nav_msgs.msg import Odometry
@@ -103,18 +101,17 @@ class DiffDrive(GazeboRosPlugin):
         the wheels' maximum torque is set again. Their target speed goes to zero too (PyBullet's motor would
         keep the old one until the next update, spinning the wheels of a robot just put back at rest)."""
         self.clock = FixedPeriod(self.rate, self.ctx.sim.time)
-        self.encoder_pose = (0.0, 0.0, 0.0)
+        self.odometer.x = self.odometer.y = self.odometer.theta = 0.0
         self.command = (0.0, 0.0)
         self.world.drive_velocities(self.robot.body, self.indices, [0.0, 0.0], [self.torque] * 2)
 
-    def _integrate_encoder(self, now):
-        """UpdateOdometryEncoder, at every world update whatever the update rate (`every_update`; now in ns)."""
-        states = self._read_wheels()
-        self._wheels = (now, states)
-        dt = (now - self.last_encoder_ns) / float(NS)
-        self.last_encoder_ns = now
-        self.encoder_pose, self.encoder_twist = kin.encoder_step(self.encoder_pose, states[0][1], states[1][1],
-                                                                 self.diameter, self.separation, dt)
+    @property
+    def encoder_pose(self):
+        return self.odometer.x, self.odometer.y, self.odometer.theta
+
+    @property
+    def encoder_twist(self):
+        return self.odometer.v, self.odometer.w
 
     def quiet_span(self):
         return self.clock.last, self.clock.last + self.clock.quiet_ns
@@ -127,8 +124,8 @@ class DiffDrive(GazeboRosPlugin):
         since = (now - clock.last) / float(NS)  # before due() moves the clock on
         if not clock.due(time):
             return
-        wheels = self._wheels
-        states = wheels[1] if wheels is not None and wheels[0] == now else self._read_wheels()
+        odometer = self.odometer
+        states = odometer.wheels if odometer.wheels_ns == now else self._read_wheels()  # read this update?
         velocities = (states[0][1], states[1][1])  # left, right (rad/s)
         # Only what somebody subscribes to is worked out: rospy sends nothing (and counts no seq) without a
         # subscriber, so what a subscriber gets is the same.

@@ -71,6 +71,35 @@ def encoder_step(pose, left_velocity, right_velocity, diameter, separation, dt):
     return (x + dx, y + dy, theta + dtheta), (math.hypot(dx, dy) / dt, dtheta / dt)
 
 
+class EncoderOdometry:
+    """UpdateOdometryEncoder's state, integrated at every world update (the diff drive plugin's every_update): the
+    pose (x, y, theta) and the twist (v, w) upstream reports with it, from the wheels' joint velocities that
+    read_wheels() gives ((left, right) joint states, velocity second: PyBullet's getJointStates), by encoder_step.
+    Compiled with Cython where built (differential.pxd): it runs every update for every diff-drive robot."""
+
+    def __init__(self, read_wheels, diameter, separation):
+        self.read_wheels = read_wheels
+        self.diameter = diameter
+        self.separation = separation
+        self.x = self.y = self.theta = 0.0
+        self.v = self.w = 0.0
+        self.last_ns = 0  # upstream's last_odom_update_ starts at time 0 and is never reset
+        self.wheels = None  # what read_wheels() gave at the latest update,
+        self.wheels_ns = -1  # and that update's time (ns)
+
+    def update(self, now):
+        """Reads the wheels and integrates from the last update to `now` (integer ns) at their velocities."""
+        wheels = self.read_wheels()
+        self.wheels = wheels
+        self.wheels_ns = now
+        dt = (now - self.last_ns) / 1e9
+        self.last_ns = now
+        pose, twist = encoder_step((self.x, self.y, self.theta), wheels[0][1], wheels[1][1], self.diameter,
+                                   self.separation, dt)
+        self.x, self.y, self.theta = pose
+        self.v, self.w = twist
+
+
 def yaw_quaternion(theta):
     """(x, y, z, w) of a rotation by theta about z (tf's setRPY(0, 0, theta))."""
     return 0.0, 0.0, math.sin(theta / 2.0), math.cos(theta / 2.0)
