@@ -287,7 +287,13 @@ class WorldServer:
                 with sim.lock:
                     self.windows.sync()
                     sim.rendering = self.windows.count > 0
-            if not step_unless_paused():  # no update starts once pause_physics has answered
+            if self.update_rate <= 0 and self.clock_wall_period > 0:
+                # as fast as possible: the updates until the next /clock (wall) or state topics (sim) are due
+                stepped = sim.steps_until(self.last_states + self.states_period - 1e-9,
+                                          self.last_clock_wall + self.clock_wall_period)
+            else:
+                stepped = step_unless_paused()  # no update starts once pause_physics has answered
+            if not stepped:
                 now = time.perf_counter()
                 # at once if the latest update's time was held back (fast mode), then now and then
                 if self.last_clock != self.sim.time or now - last_paused_clock >= PAUSED_CLOCK_PERIOD:
@@ -296,7 +302,7 @@ class WorldServer:
                 time.sleep(0.002)
                 wall_start, steps_since = time.perf_counter(), 0
                 continue
-            steps_since += 1
+            steps_since += stepped
             t = sim.time
             # A reset sent time back (perhaps while paused, between two of our steps): publish at once.
             if t < self.last_clock or t < self.last_states:

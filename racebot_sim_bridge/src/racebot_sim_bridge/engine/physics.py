@@ -111,6 +111,7 @@ class Body:
         self.model_offset = None
         dyn = client.getDynamicsInfo(body_id, -1)
         self._inertial = (tuple(dyn[3]), tuple(dyn[4]))  # base inertial frame in the link frame
+        self._inertial_inverse = pb.invertTransform(*self._inertial)  # frame_pose's, computed once
         self.spawn_pose = self.pose()
         self.initial_joint_positions = {}
         self.mimics = {}  # URDF <mimic> joints held to their leaders: {joint: mimic_joints.Coupling}
@@ -136,8 +137,7 @@ class Body:
         """The pose of the root link's frame, as Gazebo reports a model's pose; `com`: the base's pose() when
         already read (one PyBullet call fewer)."""
         pos, orn = self.pose() if com is None else com
-        inv_pos, inv_orn = pb.invertTransform(self._inertial[0], self._inertial[1])
-        p, o = pb.multiplyTransforms(pos, orn, inv_pos, inv_orn)
+        p, o = pb.multiplyTransforms(pos, orn, *self._inertial_inverse)
         return Pose(tuple(p), tuple(o))
 
     def com_pose_for_frame(self, position: Vec3, orientation: Quat) -> Pose:

@@ -9,6 +9,7 @@ efforts; then step the physics. All mutation happens under `lock`, which service
 from __future__ import annotations
 
 import threading
+import time
 import xml.etree.ElementTree as ET
 from collections.abc import Callable
 from typing import TYPE_CHECKING, Any
@@ -216,6 +217,22 @@ class Simulator:
                 return False
             self._step()
             return True
+
+    def steps_until(self, time_limit: float, wall_limit: float) -> int:
+        """Updates, holding the lock, until the sim time reaches `time_limit`, time.perf_counter() `wall_limit`, or
+        a pause (checked before each, as step_unless_paused); how many were made (0: paused). As fast as possible
+        the world server runs its updates so between two of its checks (/clock, state topics): the lock and the
+        loop's bookkeeping once, not per update. A pause or a service waits for the end of the run, at most
+        until wall_limit."""
+        count = 0
+        perf_counter = time.perf_counter
+        with self.lock:
+            while not self.paused:
+                self._step()
+                count += 1
+                if self.time >= time_limit or perf_counter() >= wall_limit:
+                    break
+        return count
 
     def step(self) -> None:
         """One world update (physics step), each robot's control loop (read, controller manager update

