@@ -5,7 +5,9 @@ in registry.REGISTRY by its filename and built when it is a model plugin (gazebo
 itself: gazebo_ros_control/). A plugin racebot does not simulate gets the registry's one warning naming it, and the
 robot works without it; a plugin refused for its parameters (PluginError) gets an error with the
 reason. Nothing a plugin raises reaches the world server: a plugin whose update fails is stopped with
-an error, the world goes on.
+an error, the world goes on. At each update a plugin is called only outside its quiet span (ModelPlugin.quiet_span:
+its update clock says nothing is due), and what upstream does at every update whatever the rate (the diff drive's
+encoder) is its every_update, called first.
 """
 from racebot_sim_bridge.engine.sim_time import to_ns
 from racebot_sim_bridge.gazebo_plugins import PluginKind
