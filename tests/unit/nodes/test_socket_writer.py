@@ -163,6 +163,36 @@ def test_what_arrives_is_what_the_python_path_delivers_in_order_and_whole(writer
         end(conn)
 
 
+def test_messages_rospys_thread_has_in_hand_are_never_passed_by_the_writer(writer):
+    # the writer appears (or a connection has no channel yet) while the Python path has the rest of a message
+    # queued or in rospy's thread: the next messages must follow it, not go to the writer ahead of it
+    queued_publishing._writer[0] = None
+    conn, transport, peer = rospy_connection(0, SMALL_BUFFER)
+    try:
+        big = framed(0, 300000)
+        conn.write_data(big)  # part sent at once, the rest for rospy's thread, which blocks: the peer reads nothing
+        queued_publishing._writer[0] = writer
+        conn.write_data(framed(1, 10))
+        assert conn._channel is None  # behind rospy's thread, on the Python path
+        peer.setblocking(True)
+        peer.settimeout(10.0)
+        stream = b''
+        while len(stream) < len(big) + len(framed(1, 10)):
+            stream += peer.recv(1 << 16)
+        assert unframed(stream) == [0, 1]
+        with conn._lock:
+            for _ in range(1000):  # till rospy's thread is done with its batch
+                if not (conn._queue or conn._sending):
+                    break
+                conn._cond_data_available.wait(0.01)
+        conn.write_data(framed(2, 10))  # nothing before it: the writer's from now on
+        assert conn._channel is not None
+        peer.setblocking(False)
+        assert unframed(pump(writer, conn._channel, peer)) == [2]
+    finally:
+        end(conn)
+
+
 def test_an_empty_write_is_nothing_to_send_and_ends_nothing(writer):
     # the Python path sends b'' as nothing and goes on; the writer must not take send()'s 0 for a closed peer
     sender, peer = pair()
