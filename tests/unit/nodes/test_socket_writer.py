@@ -242,7 +242,7 @@ OPS = st.lists(st.one_of(st.tuples(st.just('write'), st.integers(0, 40000)),
                          st.tuples(st.just('read'), st.integers(1, 50000))), max_size=60)
 
 
-@settings(max_examples=40, deadline=None)
+@settings(max_examples=150, deadline=None)
 @given(OPS, st.integers(1, 4))
 def test_whatever_the_interleaving_a_sequence_of_whole_messages_arrives_in_order(ops, queue_size):
     w = SocketWriter()
