@@ -155,7 +155,7 @@ def test_what_arrives_is_what_the_python_path_delivers_in_order_and_whole(writer
         for message in MESSAGES:
             conn.write_data(message)
         assert conn._channel is not None and conn._queue == []  # all handed to the writer, none to rospy's thread
-        received = pump(writer, conn._channel, peer)
+        received = pump(writer, conn._channel[1], peer)
         assert received == reference
         assert unframed(received) == list(range(len(MESSAGES)))
         assert (transport.stat_bytes, transport.stat_num_msg) == python_stats
@@ -188,7 +188,7 @@ def test_messages_rospys_thread_has_in_hand_are_never_passed_by_the_writer(write
         conn.write_data(framed(2, 10))  # nothing before it: the writer's from now on
         assert conn._channel is not None
         peer.setblocking(False)
-        assert unframed(pump(writer, conn._channel, peer)) == [2]
+        assert unframed(pump(writer, conn._channel[1], peer)) == [2]
     finally:
         end(conn)
 
@@ -306,7 +306,7 @@ def test_closing_the_channel_closes_the_writers_copy_of_the_socket(writer):
         conn.write_data(b'hello')
         assert conn._channel is not None
         assert copies(transport.socket) == 2  # the writer's dup
-        assert pump(writer, conn._channel, peer) == b'hello'
+        assert pump(writer, conn._channel[1], peer) == b'hello'
         # rospy's transport closes its own socket (no shutdown: the peer sees the end once every copy is closed)
         link = os.readlink('/proc/self/fd/%d' % transport.socket.fileno())
         transport.socket.close()
@@ -409,5 +409,26 @@ def test_stop_writer_returns_the_connections_to_the_python_path():
     try:
         conn.write_data(b'python path')
         assert conn._channel is None and transport.received(11) == b'python path'
+    finally:
+        close(conn, transport)
+
+
+def test_a_channel_of_a_stopped_writer_is_never_written_through_the_next_one(writer):
+    # stop_writer then start_writer: a connection's channel number means nothing to the new writer (whose slot of
+    # that number may be another subscriber's, or not be there at all: it crashed the process)
+    conn, transport = socket_connection(10)
+    transport.peer.setblocking(False)
+    try:
+        conn.write_data(b'first')
+        assert pump(writer, conn._channel[1], transport.peer) == b'first'
+        queued_publishing._writer[0] = None
+        writer.stop()
+        queued_publishing._writer[0] = SocketWriter()  # no channel yet
+        try:
+            conn.write_data(b'second')  # the Python path: the old writer's channel is closed, the new has none
+            assert transport.received(6) == b'second'
+        finally:
+            queued_publishing._writer[0].stop()
+            queued_publishing._writer[0] = writer
     finally:
         close(conn, transport)
