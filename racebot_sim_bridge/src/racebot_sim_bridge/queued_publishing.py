@@ -57,13 +57,13 @@ def write_data(self, data):
         if self._error:
             error, self._error = self._error, None
             raise error
-        writer = _writer[0]
-        if writer is not None and self._channel is None and not self._queue and not self._sending:
-            self._channel = _open_channel(writer, self._connection)
-        if writer is None or self._channel is None:
+        writer, channel = _writer[0], self._channel
+        if writer is not None and channel is None and not self._queue and not self._sending:
+            channel = self._channel = _open_channel(writer, self._connection)
+        if writer is None or channel is None or channel[0] is not writer:  # (a channel of a writer since stopped)
             failed, backlog = 0, _send_or_queue(self, data)
         else:
-            failed = writer.write(self._channel, data, self._queue_size)
+            failed = writer.write(channel[1], data, self._queue_size)
             if not failed:
                 self._connection.stat_bytes += len(data)
                 self._connection.stat_num_msg += 1
@@ -99,11 +99,12 @@ def _send_or_queue(self, data):
 
 
 def _open_channel(writer, connection):
-    """A writer channel for the connection's socket; None when it has none (the caller's path is then rospy's)."""
+    """(writer, its channel) for the connection's socket; None when it has none (the caller's path is then
+    rospy's). The writer is kept with it: a channel number means nothing to a writer started after it."""
     sock = getattr(connection, 'socket', None)
     if sock is None or getattr(connection, 'done', True):
         return None
-    return writer.open(sock.fileno())
+    return writer, writer.open(sock.fileno())
 
 
 def start_writer(log=None):
@@ -157,9 +158,8 @@ def _run(self):
     with self._lock:
         self._sending = False
         channel, self._channel = self._channel, None
-    writer = _writer[0]
-    if channel is not None and writer is not None:
-        writer.close(channel)  # the writer's own copy of the socket is closed too
+    if channel is not None:
+        channel[0].close(channel[1])  # the writer's own copy of the socket is closed too (stop() did, if it ran)
 
 
 def install():
@@ -168,7 +168,7 @@ def install():
     if not _installed:
         _installed.append((QueuedConnection.write_data, QueuedConnection._run))
         QueuedConnection._sending = False  # until the writer takes its first batch
-        QueuedConnection._channel = None  # its socket_writer channel, once it has one
+        QueuedConnection._channel = None  # (socket_writer, its channel), once it has one
         QueuedConnection.write_data = write_data
         QueuedConnection._run = _run
     return QueuedConnection

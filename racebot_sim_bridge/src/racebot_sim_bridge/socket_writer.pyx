@@ -234,7 +234,7 @@ cdef class SocketWriter:
                 err = errno
                 pthread_mutex_lock(&self.mutex)
                 c.sending = 0
-                if r > 0:
+                if r > 0 or m.size == 0:  # send() takes an empty message as 0 bytes: sent, not a closed peer
                     m.sent += r
                     if m.sent == m.size:
                         c.head = m.next
