@@ -11,6 +11,7 @@ import subprocess
 import sys
 import sysconfig
 import threading
+import time
 
 import pytest
 from hypothesis import given, settings, strategies as st
@@ -144,6 +145,14 @@ def test_what_arrives_is_what_the_python_path_delivers_in_order_and_whole(writer
         reference = b''
         while len(reference) < total:
             reference += peer.recv(1 << 16)
+        # rospy's thread counts a message after its send returns, which may be after the peer has the bytes: the
+        # counts are final once it has gone back to waiting (nothing queued, nothing in hand)
+        deadline = time.monotonic() + 10.0
+        while time.monotonic() < deadline:
+            with conn._lock:
+                if not conn._queue and not conn._sending:
+                    break
+            time.sleep(0.001)
         python_stats = (transport.stat_bytes, transport.stat_num_msg)
     finally:
         end(conn)
