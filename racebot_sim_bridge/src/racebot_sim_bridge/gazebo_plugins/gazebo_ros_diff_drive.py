@@ -80,7 +80,8 @@ class DiffDrive(GazeboRosPlugin):
         self.odometer = kin.EncoderOdometry(self._read_wheels, self.diameter, self.separation)
         if self.encoder:
             self.every_update = self.odometer.update
-        self.world.drive_velocities(robot.body, self.indices, [0.0, 0.0], [self.torque] * 2)  # SetParam fmax
+        self._driven = None  # the wheels' motor targets last sent
+        self._drive([0.0, 0.0])  # SetParam fmax
         from geometry_msgs.msg import Twist
         from nav_msgs.msg import Odometry
         from sensor_msgs.msg import JointState
@@ -103,7 +104,8 @@ class DiffDrive(GazeboRosPlugin):
         self.clock = FixedPeriod(self.rate, self.ctx.sim.time)
         self.odometer.x = self.odometer.y = self.odometer.theta = 0.0
         self.command = (0.0, 0.0)
-        self.world.drive_velocities(self.robot.body, self.indices, [0.0, 0.0], [self.torque] * 2)
+        self._driven = None
+        self._drive([0.0, 0.0])
 
     @property
     def encoder_pose(self):
@@ -144,8 +146,14 @@ class DiffDrive(GazeboRosPlugin):
         targets = kin.wheel_speeds(self.command[0], self.command[1], self.separation)
         measured = tuple(kin.rim_speed(v, self.diameter) for v in velocities)
         speeds, self.commanded = kin.ramped_speeds(targets, measured, self.commanded, self.acceleration, since)
-        self.world.drive_velocities(self.robot.body, self.indices,
-                                    [kin.joint_velocity(s, self.diameter) for s in speeds], [self.torque] * 2)
+        self._drive([kin.joint_velocity(s, self.diameter) for s in speeds])
+
+    def _drive(self, velocities):
+        """The wheels' velocity motors (SetParam fmax and vel); PyBullet keeps a motor's target, so the same again
+        (a robot cruising: every update) is not sent."""
+        if velocities != self._driven:
+            self.world.drive_velocities(self.robot.body, self.indices, velocities, [self.torque] * 2)
+            self._driven = velocities
 
     # -- outputs --------------------------------------------------------------------------------
     def _publish_odometry(self, stamp, send_tf):
