@@ -1,7 +1,7 @@
 # cython: language_level=3, boundscheck=False, wraparound=False
 """A writer thread that sends the world server's messages without the interpreter lock: queued_publishing hands
 each message over (a copy, under a mutex: ~0.3 us) and returns; the thread, every PERIOD_US on another core, writes
-what is queued to each subscriber's socket.
+what is queued to each subscriber's socket, and sleeps while there is nothing to write.
 
 Why: as fast as possible, the update loop publishes thousands of messages a wall second, and on a 2-core machine a
 send to a subscriber whose thread sleeps on the other core costs the sender 11-18 us (the loopback TCP path and the
@@ -25,9 +25,14 @@ from posix.unistd cimport close, dup, usleep
 cdef extern from "<pthread.h>" nogil:
     ctypedef struct pthread_mutex_t:
         pass
+    ctypedef struct pthread_cond_t:
+        pass
     int pthread_mutex_init(pthread_mutex_t*, void*)
     int pthread_mutex_lock(pthread_mutex_t*)
     int pthread_mutex_unlock(pthread_mutex_t*)
+    int pthread_cond_init(pthread_cond_t*, void*)
+    int pthread_cond_wait(pthread_cond_t*, pthread_mutex_t*)
+    int pthread_cond_signal(pthread_cond_t*)
 
 cdef extern from "<errno.h>" nogil:
     int EWOULDBLOCK
@@ -38,6 +43,9 @@ cdef extern from "<sys/socket.h>" nogil:
     int MSG_NOSIGNAL
 
 PERIOD_US = 200  # between two passes of the writer: a message waits at most this long before its send begins
+# After this many passes with nothing to write (2 ms), the writer sleeps until a write or a close wakes it (a
+# signal, paid by that caller once): a world nobody listens to costs no wake-ups, a busy one no signals.
+IDLE_PASSES = 10
 
 
 ctypedef struct Message:
@@ -70,6 +78,8 @@ cdef void _free_messages(Channel* c) noexcept nogil:
 
 cdef class SocketWriter:
     cdef pthread_mutex_t mutex
+    cdef pthread_cond_t wake  # signalled, under mutex, when the writer is idle and there is work
+    cdef int idle  # the writer waits on wake (under mutex)
     cdef Channel** channels
     cdef int used, capacity
     cdef volatile int stopping
@@ -77,6 +87,8 @@ cdef class SocketWriter:
 
     def __cinit__(self):
         pthread_mutex_init(&self.mutex, NULL)
+        pthread_cond_init(&self.wake, NULL)
+        self.idle = 0
         self.channels = NULL
         self.used = self.capacity = 0
         self.stopping = 0
@@ -158,6 +170,8 @@ cdef class SocketWriter:
             c.tail.next = m
             c.tail = m
         c.count += 1
+        if self.idle:
+            pthread_cond_signal(&self.wake)
         pthread_mutex_unlock(&self.mutex)
         return 0
 
@@ -173,12 +187,17 @@ cdef class SocketWriter:
         """rospy is done with the connection: the writer drops what waits and closes its socket."""
         pthread_mutex_lock(&self.mutex)
         self.channels[channel].closing = 1
+        if self.idle:
+            pthread_cond_signal(&self.wake)
         pthread_mutex_unlock(&self.mutex)
 
     def stop(self):
         """Ends the writer thread, closing every channel."""
         cdef int i
+        pthread_mutex_lock(&self.mutex)
         self.stopping = 1
+        pthread_cond_signal(&self.wake)
+        pthread_mutex_unlock(&self.mutex)
         if self.thread is not None:
             self.thread.join(5.0)
             self.thread = None
@@ -195,15 +214,43 @@ cdef class SocketWriter:
         with nogil:
             self._pass()
 
+    def sleeping(self):
+        """Whether the writer thread sleeps until a write or a close (IDLE_PASSES passes found nothing)."""
+        pthread_mutex_lock(&self.mutex)
+        cdef int idle = self.idle
+        pthread_mutex_unlock(&self.mutex)
+        return bool(idle)
+
     def _run(self):
         cdef unsigned int period = PERIOD_US
+        cdef int quiet = 0, idle_passes = IDLE_PASSES
         with nogil:
             while not self.stopping:
-                self._pass()
-                usleep(period)
+                quiet = 0 if self._pass() else quiet + 1
+                if quiet < idle_passes:
+                    usleep(period)
+                    continue
+                quiet = 0
+                pthread_mutex_lock(&self.mutex)
+                if not self._has_work() and not self.stopping:  # else a write came meanwhile: no sleep
+                    self.idle = 1
+                    pthread_cond_wait(&self.wake, &self.mutex)
+                    self.idle = 0
+                pthread_mutex_unlock(&self.mutex)
 
-    cdef void _pass(self) noexcept nogil:
-        cdef int i, n, fd, err
+    cdef int _has_work(self) noexcept nogil:
+        """Under mutex: a channel has a message to send or a close to carry out."""
+        cdef int i
+        cdef Channel* c
+        for i in range(self.used):
+            c = self.channels[i]
+            if c.fd >= 0 and (c.closing or (c.head != NULL and not c.error)):
+                return 1
+        return 0
+
+    cdef int _pass(self) noexcept nogil:
+        """Sends what each channel's socket takes and carries out closes; whether there was anything to do."""
+        cdef int i, n, fd, err, worked = 0
         cdef ssize_t r
         cdef Channel* c
         cdef Message* m
@@ -221,11 +268,13 @@ cdef class SocketWriter:
                     _free_messages(c)
                     close(c.fd)
                     c.fd = -1
+                    worked = 1
                     pthread_mutex_unlock(&self.mutex)
                     break
                 if c.error or c.head == NULL:
                     pthread_mutex_unlock(&self.mutex)
                     break
+                worked = 1
                 m = c.head
                 c.sending = 1
                 fd = c.fd
@@ -251,3 +300,4 @@ cdef class SocketWriter:
                 _free_messages(c)
                 pthread_mutex_unlock(&self.mutex)
                 break
+        return worked

@@ -377,6 +377,37 @@ def test_the_started_thread_sends_and_stop_ends_it_closing_the_channels():
     assert w.write(channel, b'after', 0) == errno.EPIPE
 
 
+def _until(condition, timeout=10.0):
+    deadline = time.monotonic() + timeout
+    while not condition() and time.monotonic() < deadline:
+        time.sleep(0.001)
+    return condition()
+
+
+def test_with_nothing_to_write_the_thread_sleeps_and_a_write_or_a_close_wakes_it():
+    w = SocketWriter()
+    sender, peer = pair()
+    channel = w.open(sender.fileno())
+    w.start()
+    try:
+        assert _until(w.sleeping)  # nothing to write: asleep, no wake-ups every PERIOD_US
+        peer.setblocking(True)
+        peer.settimeout(10.0)
+        for i in range(3):
+            assert _until(w.sleeping)
+            assert w.write(channel, framed(i, 1000), 0) == 0  # wakes it: sent without another write or pass
+            got = b''
+            while len(got) < len(framed(i, 1000)):
+                got += peer.recv(1 << 16)
+            assert unframed(got) == [i]
+        assert _until(w.sleeping)
+        sender.close()  # rospy's own socket; the writer's copy stays open until the close is carried out
+        w.close(channel)  # wakes it
+        assert peer.recv(1) == b''
+    finally:
+        w.stop()
+
+
 CHILD = """
 import os
 cores = sorted(os.sched_getaffinity(0))
