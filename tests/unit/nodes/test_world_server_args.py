@@ -1,9 +1,11 @@
 """world_server.parse_args / resolve_world: gzserver's command line as empty_world.launch builds it
-(`[-u] [-r] [--verbose] -e PHYSICS EXTRA_ARGS WORLD`) and gzserver's world look-up. No ROS master.
+(`[-u] [-r] [--verbose] -e PHYSICS EXTRA_ARGS WORLD`) and gzserver's world look-up; set_own_ros_time. No ROS master.
 """
 import os
+import time
 from pathlib import Path
 
+import genpy
 import pytest
 
 from racebot_sim_bridge.world_server import parse_args, resolve_world
@@ -108,3 +110,37 @@ def test_relative_to_the_working_directory(elsewhere):
 
 def test_missing_world_is_returned_unchanged_for_the_loader_to_report(elsewhere):
     assert resolve_world('worlds/no_such.world') == 'worlds/no_such.world'
+
+
+def test_the_world_servers_own_ros_time_is_set_and_wakes_who_waits_for_it():
+    # the world server drives its own ROS time where it publishes /clock (it does not subscribe to itself); a
+    # thread waiting for time to pass (rospy.sleep, rospy.Timer wait on rospy's time condition) must be woken
+    import threading
+
+    import rospy.rostime
+    from racebot_sim_bridge.world_server import set_own_ros_time
+    cond = rospy.rostime.get_rostime_cond()
+    saved = rospy.rostime._rostime_current
+    woke = threading.Event()
+
+    def waiter():
+        with cond:
+            cond.wait()  # no timeout: only a notify ends it
+        woke.set()
+    thread = threading.Thread(target=waiter, daemon=True)
+    try:
+        thread.start()
+        deadline = time.monotonic() + 10.0
+        while not cond._waiters and time.monotonic() < deadline:
+            time.sleep(0.001)
+        set_own_ros_time(rospy.Time(12, 345))
+        assert woke.wait(10.0)
+        assert rospy.rostime._rostime_current == rospy.Time(12, 345)
+        set_own_ros_time(genpy.Time(13, 0))  # a genpy Time (a message's field) is kept as a rospy.Time
+        assert type(rospy.rostime._rostime_current) is rospy.Time
+        assert rospy.rostime._rostime_current == rospy.Time(13, 0)
+    finally:
+        rospy.rostime._rostime_current = saved
+        with cond:
+            cond.notify_all()
+        thread.join(5.0)

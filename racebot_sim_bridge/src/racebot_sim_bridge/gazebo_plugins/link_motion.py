@@ -16,11 +16,11 @@ def link_motion(world, body, link):
     """(position, quaternion xyzw, linear velocity of the frame origin, angular velocity), all in world
     axes, of the PyBullet link `link` (a name in body.link_index; the root link is the base)."""
     index = body.link_index[link]
-    if index < 0:
-        com = body.pose()
-        frame = body.frame_pose(com)
-        linear, angular = body.twist()
-        position, orientation, com_position = frame.position, frame.orientation, com.position
+    if index < 0:  # the base: PyBullet's base calls read directly (an IMU asks 50-100 times a sim second)
+        client = world.client
+        com_position, com_orientation = client.getBasePositionAndOrientation(body.id)
+        position, orientation = body.frame_pose((com_position, com_orientation))
+        linear, angular = client.getBaseVelocity(body.id)
     else:
         s = world.client.getLinkState(body.id, index, computeLinkVelocity=1, computeForwardKinematics=1)
         com_position, position, orientation, linear, angular = s[0], s[4], s[5], s[6], s[7]

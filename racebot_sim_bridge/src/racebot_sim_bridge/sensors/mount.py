@@ -32,8 +32,8 @@ class SensorMount:
         velocity) of the carrying link, all in world coordinates."""
         client, body = self.world.client, self.body
         if self.index < 0:
-            frame = body.frame_pose()
             com = body.pose()
+            frame = body.frame_pose(com)  # from the same read of the base (was read twice)
             lin, ang = body.twist() if velocity else ((0.0, 0.0, 0.0), (0.0, 0.0, 0.0))
             return frame.position, frame.orientation, com.position, lin, ang
         s = client.getLinkState(body.id, self.index, computeLinkVelocity=1 if velocity else 0,
