@@ -126,6 +126,16 @@ def start_writer(log=None):
     return _writer[0]
 
 
+def writer_pace(bursts):
+    """`bursts`: the process publishes in one burst per update of a paced loop (the world server in real time), so
+    the writer sleeps after each burst until the next wakes it; else (as fast as possible) it keeps polling while
+    messages keep coming."""
+    writer = _writer[0]
+    if writer is not None:
+        from racebot_sim_bridge.socket_writer import IDLE_PASSES
+        writer.set_idle_passes(1 if bursts else IDLE_PASSES)
+
+
 def stop_writer():
     """Stops the writer thread (what waits in it is dropped); later messages go the Python path."""
     writer, _writer[0] = _writer[0], None

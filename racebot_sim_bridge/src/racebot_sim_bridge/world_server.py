@@ -275,6 +275,7 @@ class WorldServer:
             set_own_ros_time(self.clock_msg.clock)
 
     def run(self):
+        queued_publishing.writer_pace(bursts=self.update_rate > 0)
         self.publish_clock(force=True)
         sim, perf_counter = self.sim, time.perf_counter  # looked up once: the loop runs 10,000s of times a second
         step_unless_paused = sim.step_unless_paused
@@ -314,6 +315,7 @@ class WorldServer:
                     self.services.publish_states()
             if self.update_rate != sim.real_time_update_rate:  # set_physics_properties changed it
                 self.update_rate = sim.real_time_update_rate
+                queued_publishing.writer_pace(bursts=self.update_rate > 0)
                 wall_start, steps_since = time.perf_counter(), 0
             if self.update_rate > 0:
                 ahead = wall_start + steps_since / self.update_rate - time.perf_counter()

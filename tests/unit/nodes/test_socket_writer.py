@@ -384,8 +384,11 @@ def _until(condition, timeout=10.0):
     return condition()
 
 
-def test_with_nothing_to_write_the_thread_sleeps_and_a_write_or_a_close_wakes_it():
+@pytest.mark.parametrize('idle_passes', [None, 1])  # as fast as possible / real time (queued_publishing.writer_pace)
+def test_with_nothing_to_write_the_thread_sleeps_and_a_write_or_a_close_wakes_it(idle_passes):
     w = SocketWriter()
+    if idle_passes is not None:
+        w.set_idle_passes(idle_passes)
     sender, peer = pair()
     channel = w.open(sender.fileno())
     w.start()
