@@ -116,7 +116,7 @@ class DiffDrive(GazeboRosPlugin):
         return self.odometer.v, self.odometer.w
 
     def quiet_span(self):
-        return self.clock.last, self.clock.last + self.clock.quiet_ns
+        return self.clock.quiet_span()
 
     def before_physics(self, time):
         now = to_ns(time)

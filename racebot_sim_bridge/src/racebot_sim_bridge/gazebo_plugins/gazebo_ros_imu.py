@@ -83,7 +83,7 @@ class Imu(ModelPlugin):
     def quiet_span(self):
         if self.pub is None:
             return NEVER
-        return self.clock.last, self.clock.last + self.clock.quiet_ns
+        return self.clock.quiet_span()
 
     def before_physics(self, time):
         if self.pub is None or 0 <= to_ns(time) - self.clock.last < self.clock.quiet_ns:  # clock.quiet, inline

@@ -27,6 +27,10 @@ class _Clock:
         """True when surely no update is due at `now` (integer ns): the caller need not ask."""
         return 0 <= now - self.last < self.quiet_ns
 
+    def quiet_span(self):
+        """[from, until) in integer ns in which quiet() holds: a plugin's ModelPlugin.quiet_span."""
+        return self.last, self.last + self.quiet_ns
+
     def _since(self, now):
         if now < self.last:
             self.last = now
