@@ -13,8 +13,8 @@ sends from the caller (its Python path, which the tests compare this one with).
 Each connection is a channel: a dup() of its socket, owned here, so that the socket rospy closes is never written
 after (a closed fd's number may be reused), and closed here when rospy is done with the connection. Messages go in
 order, each whole: a send the socket does not take all of is carried on at the next pass (MSG_DONTWAIT: a subscriber
-that reads slowly holds up nobody else); past queue_size messages waiting, the oldest not yet begun is dropped, as
-rospy's queue_size means. A send that fails (the subscriber went away) ends the channel and write() returns its errno,
+that reads slowly holds up nobody else); while its socket is full, past queue_size messages waiting, the oldest not
+yet begun are dropped, as rospy's queue_size means (and as queued_publishing's Python path does). A send that fails (the subscriber went away) ends the channel and write() returns its errno,
 so that rospy closes the connection as its own writer would.
 """
 from libc.errno cimport EAGAIN, EINTR, EPIPE, errno
@@ -62,6 +62,7 @@ ctypedef struct Channel:
     int error  # errno of the send that ended the channel, 0 while it is good
     int closing  # rospy is done with it: the writer drops what waits and closes fd
     int sending  # the writer is sending the head outside the lock: it must not be dropped
+    int blocked  # the socket took less than it was given at the last send: the subscriber is behind
     size_t count
     Message* head
     Message* tail
@@ -125,7 +126,7 @@ cdef class SocketWriter:
             i = self.used
             self.used += 1
         c.fd = own
-        c.error = c.closing = c.sending = 0
+        c.error = c.closing = c.sending = c.blocked = 0
         c.count = 0
         c.head = c.tail = NULL
         pthread_mutex_unlock(&self.mutex)
@@ -152,22 +153,25 @@ cdef class SocketWriter:
             pthread_mutex_unlock(&self.mutex)
             free(m)
             return error or EPIPE
-        if queue_size > 0 and c.count >= <size_t>queue_size:
-            # the oldest message not begun: the head, unless the socket has taken part of it or it is being sent
+        # Only a subscriber that is behind (its socket full) loses messages, as on the Python path, which sends at
+        # once what the socket takes: messages merely waiting for the next pass count for nothing (/clock at every
+        # update in real time, queue_size 1, comes twice between two passes). Behind, the oldest not begun go
+        # until queue_size are left: the head, unless the socket has taken part of it or it is being sent.
+        while c.blocked and queue_size > 0 and c.count >= <size_t>queue_size:
             if c.head.sent or c.sending:
                 drop = c.head.next
-                if drop != NULL:
-                    c.head.next = drop.next
-                    if c.tail == drop:
-                        c.tail = c.head
+                if drop == NULL:
+                    break
+                c.head.next = drop.next
+                if c.tail == drop:
+                    c.tail = c.head
             else:
                 drop = c.head
                 c.head = drop.next
                 if c.tail == drop:
                     c.tail = NULL
-            if drop != NULL:
-                free(drop)
-                c.count -= 1
+            free(drop)
+            c.count -= 1
         if c.tail == NULL:
             c.head = c.tail = m
         else:
@@ -186,6 +190,13 @@ cdef class SocketWriter:
         count = self.channels[channel].count
         pthread_mutex_unlock(&self.mutex)
         return count
+
+    def blocked(self, int channel):
+        """Whether the channel's socket was full at the writer's last send (then past queue_size the oldest go)."""
+        pthread_mutex_lock(&self.mutex)
+        cdef int blocked = self.channels[channel].blocked
+        pthread_mutex_unlock(&self.mutex)
+        return bool(blocked)
 
     def close(self, int channel):
         """rospy is done with the connection: the writer drops what waits and closes its socket."""
@@ -293,6 +304,7 @@ cdef class SocketWriter:
                 c.sending = 0
                 if r > 0 or m.size == 0:  # send() takes an empty message as 0 bytes: sent, not a closed peer
                     m.sent += r
+                    c.blocked = m.sent < m.size  # the socket took only part: it is full
                     if m.sent == m.size:
                         c.head = m.next
                         if c.head == NULL:
@@ -302,6 +314,7 @@ cdef class SocketWriter:
                     pthread_mutex_unlock(&self.mutex)
                     continue
                 if r < 0 and (err == EAGAIN or err == EWOULDBLOCK or err == EINTR):
+                    c.blocked = err != EINTR
                     pthread_mutex_unlock(&self.mutex)
                     break  # the socket is full: the next pass goes on
                 c.error = err if r < 0 else EPIPE
