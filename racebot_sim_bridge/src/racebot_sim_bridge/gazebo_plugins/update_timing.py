@@ -15,13 +15,14 @@ from racebot_sim_bridge.engine.sim_time import NS, to_ns
 
 
 class _Clock:
+    STRICT = True  # due when more than one period has passed (False: at least one period)
+
     def __init__(self, rate, start):
         self.period = 1.0 / rate if rate > 0 else 0.0
         self.last = to_ns(start)
         # A plugin's shortcut at every world update: while 0 <= now - last < quiet_ns (integer ns), no update
-        # is due by any of the rules below (a microsecond short of the period: the float comparisons are
-        # left to due/since); 0 for every world update, when the range is empty.
-        self.quiet_ns = max(0, to_ns(self.period) - 1000)
+        # is due; from quiet_ns on, one is. 0 for every world update, when the range is empty.
+        self.quiet_ns = first_due_gap(self.period, self.STRICT)
 
     def quiet(self, now):
         """True when surely no update is due at `now` (integer ns): the caller need not ask."""
@@ -58,6 +59,8 @@ class SincePublished(_Clock):
 
 
 class AtLeastPeriod(_Clock):
+    STRICT = False
+
     def since(self, time):
         """Seconds since the last update when one is due, else None; call mark(time) when it is made."""
         since = self._since(to_ns(time))
@@ -67,3 +70,19 @@ class AtLeastPeriod(_Clock):
 
     def mark(self, time):
         self.last = to_ns(time)
+
+
+def first_due_gap(period, strict):
+    """The least gap (integer ns) since the last update at which the next is due: the float comparison the clocks
+    make of (gap / 1e9) with the period, '>' when `strict`, else '>=' (0 for a period of 0: every update)."""
+    if period <= 0:
+        return 0
+
+    def due(gap):
+        return gap / float(NS) > period if strict else gap / float(NS) >= period
+    gap = to_ns(period)
+    while gap > 0 and due(gap - 1):
+        gap -= 1
+    while not due(gap):
+        gap += 1
+    return gap
