@@ -289,9 +289,10 @@ class WorldServer:
                     self.windows.sync()
                     sim.rendering = self.windows.count > 0
             if self.update_rate <= 0 and self.clock_wall_period > 0:
-                # as fast as possible: the updates until the next /clock (wall) or state topics (sim) are due
-                stepped = sim.steps_until(self.last_states + self.states_period - 1e-9,
-                                          self.last_clock_wall + self.clock_wall_period)
+                # as fast as possible: the updates until the next /clock (wall) or, while somebody listens, state
+                # topics (sim) are due (nobody listening, no stop every 10 ms of sim time to publish nothing)
+                states_due = self.last_states + self.states_period - 1e-9 if self._states_wanted() else math.inf
+                stepped = sim.steps_until(states_due, self.last_clock_wall + self.clock_wall_period)
             else:
                 stepped = step_unless_paused()  # no update starts once pause_physics has answered
             if not stepped:
@@ -323,6 +324,9 @@ class WorldServer:
                     time.sleep(ahead)
                 elif ahead < -0.5:  # far behind (a slow machine, a debugger): do not sprint to catch up
                     wall_start, steps_since = time.perf_counter(), 0
+
+    def _states_wanted(self):
+        return self.services is not None and self.services.states_wanted()
 
     def shutdown(self):
         if self.services is not None:

@@ -184,3 +184,44 @@ def test_changing_the_step_keeps_time_going_on(box_sim):
 def test_gravity_change_changes_the_fall(box_sim):
     box_sim.world.set_gravity((0, 0, -2.0))
     assert _fall(box_sim, 0.5) == approx(-0.5 * 2.0 * 0.5 ** 2, rel=0.02)
+
+
+def test_the_force_jobs_hook_is_called_only_while_there_are_jobs_and_before_the_plugins(box_sim):
+    """GazeboForces joins the step hooks with its first job, ahead of those there (gazebo_ros's update runs
+    before the model plugins'), pushes the box while the job lasts, and leaves once none is left."""
+    from gazebo_msgs.srv import ApplyBodyWrenchRequest
+    from racebot_sim_bridge.gazebo_ros_api.forces import GazeboForces
+    forces = GazeboForces(_Log(), box_sim)
+    seen = []
+
+    def plugins(t):
+        seen.append(box_sim.before_physics.index(plugins))
+    box_sim.set_step_hook('before_physics', plugins, True)
+    assert box_sim.before_physics == [plugins]  # nothing to apply: not called at every update
+    req = ApplyBodyWrenchRequest(body_name='box::body')
+    req.wrench.force.z = 2 * 9.8 * 2  # twice the weight, for 50 ms
+    req.duration.nsecs = 50 * MS
+    assert forces.apply_body_wrench(req).success
+    assert box_sim.before_physics == [forces.apply, plugins]
+    rise = _fall(box_sim, 0.05)
+    assert rise == approx(0.5 * 9.8 * 0.05 ** 2, rel=0.05)  # up at g while it lasted
+    box_sim.step()
+    box_sim.step()  # the step after the job ended finds none and leaves
+    assert box_sim.before_physics == [plugins] and set(seen) == {0, 1}
+
+
+def test_gravity_mode_off_hooks_its_weight_back_only_while_some_link_has_it(box_sim):
+    from gazebo_msgs.srv import GetLinkPropertiesRequest, SetLinkPropertiesRequest
+    from racebot_sim_bridge.gazebo_ros_api.properties import GazeboProperties
+    properties = GazeboProperties(_Log(), box_sim)
+    assert box_sim.before_physics == []
+    now = properties.get_link_properties(GetLinkPropertiesRequest(link_name='box::body'))
+    req = SetLinkPropertiesRequest(link_name='box::body', com=now.com, gravity_mode=False, mass=now.mass, ixx=now.ixx,
+                                   ixy=now.ixy, ixz=now.ixz, iyy=now.iyy, iyz=now.iyz, izz=now.izz)
+    assert properties.set_link_properties(req).success
+    assert box_sim.before_physics == [properties.cancel_gravity]
+    assert abs(_fall(box_sim, 0.2)) < 1e-6  # floats
+    req.gravity_mode = True
+    assert properties.set_link_properties(req).success
+    assert _fall(box_sim, 0.2) == approx(-0.5 * 9.8 * 0.2 ** 2, rel=0.02)
+    assert box_sim.before_physics == []  # left at the first update with no such link

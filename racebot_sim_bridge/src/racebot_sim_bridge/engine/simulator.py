@@ -90,14 +90,16 @@ class Simulator:
         self.after_step = []
         self.before_physics = []
 
-    def set_step_hook(self, hooks: str, hook: Callable[[float], None], wanted: bool) -> None:
+    def set_step_hook(self, hooks: str, hook: Callable[[float], None], wanted: bool, first: bool = False) -> None:
         """Puts `hook` into (or takes it out of) the step hook list named `hooks` ('before_physics' or
-        'after_step'): a component whose work comes and goes (plugins, sensors) is called only while it
-        has some, as every hook costs each of the thousands of steps a second. The list is replaced, not
-        changed, so a step that is walking it (a hook leaving from its own call) is not disturbed."""
+        'after_step'): a component whose work comes and goes (plugins, sensors, force jobs) is called only while
+        it has some, as every hook costs each of the thousands of steps a second. `first`: before the hooks
+        already there (gazebo_ros's world services: its system plugin's update runs before the model plugins').
+        The list is replaced, not changed, so a step that is walking it (a hook leaving from its own call) is
+        not disturbed."""
         current = getattr(self, hooks)
         if wanted and hook not in current:
-            setattr(self, hooks, current + [hook])
+            setattr(self, hooks, [hook] + current if first else current + [hook])
         elif not wanted and hook in current:
             setattr(self, hooks, [h for h in current if h != hook])
 

@@ -133,7 +133,6 @@ class GazeboForces:
         self.srv = srv
         self.schedule = ForceSchedule()
         self.entities = WorldEntities(sim.world)
-        sim.before_physics.append(self.apply)
         # advertised by GazeboServices, in gazebo_ros's order
         self.handlers = {
             'apply_body_wrench': (srv.ApplyBodyWrench, self.apply_body_wrench),
@@ -170,6 +169,7 @@ class GazeboForces:
                 return res
             start, duration = start_and_duration(req.start_time.to_nsec(), req.duration.to_nsec(), self._now())
             self.schedule.add_wrench(link, force, torque, start, duration, self.sim.world.bodies[link[0]])
+            self.sim.set_step_hook('before_physics', self.apply, True, first=True)
         res.success, res.status_message = True, ''  # upstream says nothing on success
         return res
 
@@ -190,6 +190,7 @@ class GazeboForces:
                 return res
             start, duration = start_and_duration(req.start_time.to_nsec(), req.duration.to_nsec(), self._now())
             self.schedule.add_effort(joint, req.effort, start, duration, self.sim.world.bodies[joint[0]])
+            self.sim.set_step_hook('before_physics', self.apply, True, first=True)
         res.success, res.status_message = True, 'ApplyJointEffort: effort set'
         return res
 
@@ -211,8 +212,9 @@ class GazeboForces:
 
     # -- the world update -------------------------------------------------------------------------
     def apply(self, time):
-        """Simulator.before_physics: the jobs due in the update ending at `time` (s)."""
+        """Simulator.before_physics while there are jobs: those due in the update ending at `time` (s)."""
         if not (self.schedule.wrenches or self.schedule.efforts):
+            self.sim.set_step_hook('before_physics', self.apply, False)
             return
         world = self.sim.world
         self.schedule.drop_orphans(lambda body: world.bodies.get(body.name) is body)

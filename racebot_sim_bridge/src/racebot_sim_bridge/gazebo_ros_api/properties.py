@@ -94,7 +94,6 @@ class GazeboProperties:
         self._warned = set()
         self._lock = threading.Lock()
         self.entities = WorldEntities(sim.world)
-        sim.before_physics.append(self.cancel_gravity)
         # advertised by GazeboServices, in gazebo_ros's order
         self.handlers = {
             'get_model_properties': (srv.GetModelProperties, self.get_model_properties),
@@ -271,12 +270,14 @@ class GazeboProperties:
                 self.no_gravity.pop((body.name, link), None)
             else:
                 self.no_gravity[(body.name, link)] = body
+                self.sim.set_step_hook('before_physics', self.cancel_gravity, True, first=True)
         res.success, res.status_message = True, 'SetLinkProperties: properties set'
         return res
 
     def cancel_gravity(self, _time):
-        """Simulator.before_physics: a link with gravity_mode false gets its weight back as a force."""
+        """Simulator.before_physics while some link has gravity_mode false: it gets its weight back as a force."""
         if not self.no_gravity:
+            self.sim.set_step_hook('before_physics', self.cancel_gravity, False)
             return
         world = self.sim.world
         for (model, link), body in list(self.no_gravity.items()):

@@ -404,6 +404,10 @@ class GazeboServices:
         return EmptyResponse()
 
     # -- topics ---------------------------------------------------------------------------------
+    def states_wanted(self):
+        """Whether somebody listens to model_states or link_states."""
+        return self.model_states_pub.get_num_connections() > 0 or self.link_states_pub.get_num_connections() > 0
+
     def publish_states(self):
         """model_states and link_states, each only when somebody listens."""
         want_models = self.model_states_pub.get_num_connections() > 0
