@@ -10,6 +10,7 @@ costs the simulator what we are measuring. So the bench node starts before the l
 import json
 import math
 import os
+import random
 import struct
 import threading
 import time
@@ -252,12 +253,16 @@ def command_path(n, rate_hz, trace_path):
     sent = []
     msg = AckermannDriveStamped()
     period = 1.0 / rate_hz
+    # Each gap is the period +- a quarter of it, at random (seeded): at a strict 10 ms the commands kept one phase
+    # to the world server's 2 ms cycle of updates and sleeps (real time), so one run's p50 and p99 were that phase's
+    # latency (0.5 / 1.5 ms in one run, 2.0 / 2.1 ms in another), not the spread a command at any time meets.
+    jitter = random.Random(20261126)
     next_t = time.monotonic()
     for v in speeds:
         msg.drive.speed = v
         sent.append(time.monotonic())
         pub.publish(msg)
-        next_t += period
+        next_t += period * jitter.uniform(0.75, 1.25)
         delay = next_t - time.monotonic()
         if delay > 0:
             time.sleep(delay)
