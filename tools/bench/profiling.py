@@ -34,7 +34,9 @@ def profile_world_server(pid, seconds, out, name='world_server'):
 def summarize_stacks(path, thread):
     """py-spy raw (collapsed) stacks -> shares of the thread's samples by leaf and by frame."""
     leaf, inclusive, total = {}, {}, 0
-    with open(path) as f:
+    # py-spy writes names as it reads them from the process's memory: a frame caught mid-change can carry bytes
+    # that are not UTF-8 (once 0xf6 in a speed run, which then failed); such a name is kept, its bad bytes replaced
+    with open(path, encoding='utf-8', errors='replace') as f:
         for line in f:
             stack, _, n = line.rstrip('\n').rpartition(' ')
             frames = stack.split(';')
