@@ -45,7 +45,7 @@ FULL = {
     'modes': ['parallel', 'ackermann'],
     'determinism_s': 20.0,
     'profile_steps': 5000,
-    'fleet': dict(counts=[1, 2, 4, 8], rounds=3, window_s=4.0, warmup_s=1.5, profile_s=8.0),
+    'fleet': dict(counts=[1, 2, 3, 4, 5, 6, 7, 8], rounds=3, window_s=4.0, warmup_s=1.5, profile_s=8.0),
     'big_world': dict(runs=3, world='auto', models=90, timeout_s=300),
 }
 QUICK = {
@@ -197,7 +197,7 @@ def part_fidelity(cfg, out, results):
 
 
 def part_fleet(cfg, out, results):
-    """1, 2, 4, 8 differential-drive robots with laser and IMU beside bare PyBullet (bench/fleet.py)."""
+    """1 to 8 differential-drive robots with laser and IMU beside bare PyBullet (bench/fleet.py)."""
     from bench import plot
     results['fleet'] = run_scenario('fleet', cfg['fleet'], out)
     plot.fleet(os.path.join(out, 'fleet.png'), results['fleet'])

@@ -1,4 +1,4 @@
-"""make bench's fleet part (issue 17): 1, 2, 4 and 8 differential-drive robots as fast as possible.
+"""make bench's fleet part (issue 17): 1 to 8 differential-drive robots (every count, issue 30) as fast as possible.
 
 Each robot is the fixture package diffbot_plugins (tests/fixtures/robots): gazebo_plugins' diff drive, a
 360-ray laser at 10 Hz and the IMU model plugin at 50 Hz, spawned through gazebo_ros's spawn service in a

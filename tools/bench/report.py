@@ -68,7 +68,7 @@ def rows(r):
                 '%s / %s (%s)' % (stats.with_spread(sp_['rtf']), stats.with_spread(sp_['ceiling_rtf']),
                                   stats.with_spread(sp_['ratio'])), '-', 'reported', '-')
     elif 'fleet' in errors:
-        add('fleet (1, 2, 4, 8 robots)', 'ERROR', '-', '-', 'NO')
+        add('fleet (1 to 8 robots)', 'ERROR', '-', '-', 'NO')
 
     rt = r.get('realtime')
     if rt:
