@@ -15,14 +15,28 @@ from racebot_sim_bridge.engine.sim_time import NS, to_ns
 
 
 class _Clock:
-    STRICT = True  # due when more than one period has passed (False: at least one period)
-
     def __init__(self, rate, start):
         self.period = 1.0 / rate if rate > 0 else 0.0
         self.last = to_ns(start)
         # A plugin's shortcut at every world update: while 0 <= now - last < quiet_ns (integer ns), no update
         # is due; from quiet_ns on, one is. 0 for every world update, when the range is empty.
-        self.quiet_ns = first_due_gap(self.period, self.STRICT)
+        self.quiet_ns = self._first_due_gap()
+
+    def _passed(self, since):
+        """Whether an update is due `since` seconds after the last: more than one period has passed."""
+        return since > self.period
+
+    def _first_due_gap(self):
+        """The least gap (integer ns) since the last update at which _passed holds, as the clock computes the
+        seconds since ((gap) / 1e9, a float); 0 for a period of 0 (every update)."""
+        if self.period <= 0:
+            return 0
+        gap = to_ns(self.period)
+        while gap > 0 and self._passed((gap - 1) / float(NS)):
+            gap -= 1
+        while not self._passed(gap / float(NS)):
+            gap += 1
+        return gap
 
     def quiet(self, now):
         """True when surely no update is due at `now` (integer ns): the caller need not ask."""
@@ -41,7 +55,7 @@ class _Clock:
 class FixedPeriod(_Clock):
     def due(self, time):
         now = to_ns(time)
-        if self._since(now) > self.period:
+        if self._passed(self._since(now)):
             self.last += to_ns(self.period)
             return True
         return False
@@ -52,37 +66,22 @@ class SincePublished(_Clock):
         """(due, seconds since the last update)"""
         now = to_ns(time)
         since = self._since(now)
-        if since > self.period:
+        if self._passed(since):
             self.last = now
             return True, since
         return False, since
 
 
 class AtLeastPeriod(_Clock):
-    STRICT = False
+    def _passed(self, since):
+        """At least one period has passed."""
+        return since >= self.period
 
     def since(self, time):
         """Seconds since the last update when one is due, else None; call mark(time) when it is made."""
         since = self._since(to_ns(time))
-        if self.period > 0 and since < self.period:
-            return None
-        return since
+        return since if self._passed(since) else None
 
     def mark(self, time):
         self.last = to_ns(time)
 
-
-def first_due_gap(period, strict):
-    """The least gap (integer ns) since the last update at which the next is due: the float comparison the clocks
-    make of (gap / 1e9) with the period, '>' when `strict`, else '>=' (0 for a period of 0: every update)."""
-    if period <= 0:
-        return 0
-
-    def due(gap):
-        return gap / float(NS) > period if strict else gap / float(NS) >= period
-    gap = to_ns(period)
-    while gap > 0 and due(gap - 1):
-        gap -= 1
-    while not due(gap):
-        gap += 1
-    return gap
