@@ -1,7 +1,10 @@
 """The house rules of the source tree (issue 28), read from the files with `ast`, nothing imported.
 
-- No Python module over MAX_LINES in racebot_sim_bridge/src, upstream_compat/*/src and tools: a longer one
-  holds more than one job.
+- No import runs back up a layer: the rooms of docs/ARCHITECTURE.md's ```layers block, bottom first, for every
+  Python file of racebot_sim_bridge, upstream_compat, the tutorial's packages and tools/ (no exception list).
+- No Python module over MAX_LINES, no class over MAX_CLASS_LINES and no function over MAX_FUNCTION_LINES in
+  racebot_sim_bridge/src, upstream_compat/*/src and tools: a longer one holds more than one job.
+- C and C++ only in the rooms for compiled code (CPP_ROOMS).
 - No import cycle among racebot_sim_bridge's modules, nor among tools/bench's.
 - description/ reads URDF and SDF without rospy and PyBullet, itself and through what it imports.
 - No folder in racebot_sim_bridge is named like the real gazebo_ros or controller_manager packages.
@@ -137,6 +140,146 @@ def _cycle_report(modules):
     return [_loop(graph, component) for component in cycles(graph)]
 
 
+# -- the layer order: read from docs/ARCHITECTURE.md, checked for every import ----------------------------
+
+ARCHITECTURE = REPO / 'docs' / 'ARCHITECTURE.md'
+# Where importable modules are found, as sys.path finds them when the product runs (catkin's devel space relays
+# each package's src/ folder; the tools put tools/ first on sys.path).
+IMPORT_ROOTS = ('racebot_sim_bridge/src', 'upstream_compat/*/src', 'racebot_control/src', 'racebot_gazebo/src',
+                'tools')
+# What the layer check reads: every Python file of the product (scripts included), not the tests or fixtures.
+CHECKED = ('racebot_sim_bridge', 'upstream_compat', 'racebot_control', 'racebot_gazebo', 'tools')
+
+
+def layer_rooms(text):
+    """[repository path of a room] bottom first, from the ```layers block of ARCHITECTURE.md: a line's first word."""
+    block = text.split('```layers\n', 1)[1].split('```', 1)[0]
+    return [line.split()[0] for line in block.splitlines() if line.strip()]
+
+
+def room_of(rel, rooms):
+    """The index in `rooms` of the room holding the repository path `rel` (the longest room path that is a prefix of
+    it: a folder ends with '/', a file is itself), or None."""
+    best = None
+    for index, room in enumerate(rooms):
+        if (rel == room or (room.endswith('/') and rel.startswith(room))) and \
+                (best is None or len(room) > len(rooms[best])):
+            best = index
+    return best
+
+
+def importable_modules(repo):
+    """{module name: repository path} of every module under IMPORT_ROOTS. Where a package and a module share a
+    name, the package is what Python imports."""
+    modules = {}
+    for pattern in IMPORT_ROOTS:
+        for root in sorted(repo.glob(pattern)):
+            for path in sorted(root.rglob('*.py')):
+                parts = list(path.relative_to(root).with_suffix('').parts)
+                if parts[-1] == '__init__':
+                    parts.pop()
+                elif modules.get('.'.join(parts), '').endswith('__init__.py'):
+                    continue
+                if parts:
+                    modules['.'.join(parts)] = str(path.relative_to(repo))
+    return modules
+
+
+def _resolve(target, modules):
+    """The repository paths an import of `target` runs: the module itself (or the nearest package that defines
+    the name) and the packages above it."""
+    parts = target.split('.')
+    return [modules[name] for name in ('.'.join(parts[:i]) for i in range(1, len(parts) + 1)) if name in modules]
+
+
+def layer_violations(repo, rooms):
+    """['file line N: imports X (room B, above room A)'] for every import in CHECKED that runs a module of a room
+    listed after the importer's; plus every checked file that no room holds."""
+    modules = importable_modules(repo)
+    names = {path: name for name, path in modules.items()}
+    found = []
+    for top in CHECKED:
+        for path in sorted((repo / top).rglob('*.py')):
+            rel = str(path.relative_to(repo))
+            if any(part in ('build', 'devel', '.venv') for part in path.relative_to(repo).parts):
+                continue
+            own = room_of(rel, rooms)
+            if own is None:
+                found.append('%s: in no room of the layer list; add its room to docs/ARCHITECTURE.md' % rel)
+                continue
+            name = names.get(rel, path.stem)
+            for target, line in _imports(name, path, path.name == '__init__.py'):
+                for target_path in _resolve(target, modules):
+                    other = room_of(target_path, rooms)
+                    if other is not None and other > own:
+                        found.append('%s line %d: imports %s (%s, above %s)'
+                                     % (rel, line, target, rooms[other], rooms[own]))
+    return sorted(set(found))
+
+
+def test_no_import_goes_up_a_layer():
+    found = layer_violations(REPO, layer_rooms(ARCHITECTURE.read_text()))
+    assert not found, ('imports that run back up a layer (docs/ARCHITECTURE.md, "Layers"): hand the lower room what '
+                       'it needs, or move the shared piece down:\n' + '\n'.join(found))
+
+
+def test_every_room_of_the_layer_list_exists():
+    missing = [room for room in layer_rooms(ARCHITECTURE.read_text()) if not (REPO / room).exists()]
+    assert not missing, 'docs/ARCHITECTURE.md lists rooms that do not exist: %s' % missing
+
+
+MAX_CLASS_LINES = 300
+MAX_FUNCTION_LINES = 80
+
+
+def long_definitions(paths, repo):
+    """['file: class C, N lines'] for classes over MAX_CLASS_LINES and functions over MAX_FUNCTION_LINES."""
+    long = []
+    for path in paths:
+        for node in ast.walk(ast.parse(path.read_text(), str(path))):
+            limit = MAX_CLASS_LINES if isinstance(node, ast.ClassDef) else \
+                MAX_FUNCTION_LINES if isinstance(node, (ast.FunctionDef, ast.AsyncFunctionDef)) else None
+            count = node.end_lineno - node.lineno + 1 if limit else 0
+            if limit and count > limit:
+                long.append('%s: %s %s, %d lines' % (path.relative_to(repo), 'class' if limit == MAX_CLASS_LINES
+                                                      else 'function', node.name, count))
+    return long
+
+
+def test_no_class_or_function_over_its_limit():
+    roots = [PACKAGE_SRC] + sorted(REPO.glob('upstream_compat/*/src')) + [REPO / 'tools']
+    long = long_definitions([path for root in roots for path in sorted(root.rglob('*.py'))], REPO)
+    assert not long, ('classes over %d lines or functions over %d; split them along their jobs:\n%s'
+                      % (MAX_CLASS_LINES, MAX_FUNCTION_LINES, '\n'.join(long)))
+
+
+# C and C++ live in two places (docs/ARCHITECTURE.md, "Compiled code"): a stand-in for an upstream C++ package under
+# upstream_compat/<its name>/ (include/ and src/), and the glue that binds C++ to the engine in racebot_sim_bridge's
+# include/ and src/cpp/. Cython stays beside the Python module it compiles.
+CPP_SUFFIXES = ('.c', '.cc', '.cpp', '.cxx', '.h', '.hh', '.hpp')
+CPP_ROOMS = ('upstream_compat/*/include/', 'upstream_compat/*/src/', 'racebot_sim_bridge/include/',
+             'racebot_sim_bridge/src/cpp/', 'tests/', 'examples/')
+
+
+def misplaced_compiled_sources(repo):
+    """Repository paths of C/C++ files outside CPP_ROOMS (tests/ and examples/ hold users' packages)."""
+    import fnmatch
+    bad = []
+    for path in sorted(repo.rglob('*')):
+        rel = path.relative_to(repo)
+        if path.suffix not in CPP_SUFFIXES or rel.parts[0] in ('build', 'devel', '.venv', 'out', '.git'):
+            continue
+        if not any(fnmatch.fnmatch(str(rel), room + '*') for room in CPP_ROOMS):
+            bad.append(str(rel))
+    return bad
+
+
+def test_compiled_code_lives_in_its_rooms():
+    bad = misplaced_compiled_sources(REPO)
+    assert not bad, ('C/C++ files outside the rooms for compiled code (docs/ARCHITECTURE.md, "Compiled code"):\n'
+                     + '\n'.join(bad))
+
+
 def test_no_module_over_the_line_limit():
     roots = [PACKAGE_SRC] + sorted(REPO.glob('upstream_compat/*/src')) + [REPO / 'tools']
     long = ['%s: %d lines' % (path.relative_to(REPO), count)
@@ -270,3 +413,49 @@ def test_a_missing_annotation_is_named(tmp_path):
                     'class _Hidden:\n    def m(self, z):\n        pass\n')
     assert _missing_annotations(path) == ['f (line 1): parameters b', 'C.__init__ (line 6): return',
                                           'C.s (line 11): parameters v']
+
+
+def test_an_import_up_a_layer_is_found_and_one_down_is_not(tmp_path):
+    rooms = ['racebot_sim_bridge/', 'racebot_sim_bridge/src/racebot_sim_bridge/engine/', 'racebot_sim_bridge/src/racebot_sim_bridge/sensors/',
+             'tools/']
+    files = {'racebot_sim_bridge/src/racebot_sim_bridge/__init__.py': '',
+             'racebot_sim_bridge/src/racebot_sim_bridge/engine/__init__.py': '',
+             'racebot_sim_bridge/src/racebot_sim_bridge/engine/world.py': 'import math\n',
+             'racebot_sim_bridge/src/racebot_sim_bridge/sensors/__init__.py': '',
+             'racebot_sim_bridge/src/racebot_sim_bridge/sensors/ray.py': 'from racebot_sim_bridge.engine import world\n',
+             'tools/bench/__init__.py': '', 'tools/bench/run.py': 'from racebot_sim_bridge.sensors.ray import x\n'}
+    for rel, text in files.items():
+        (tmp_path / rel).parent.mkdir(parents=True, exist_ok=True)
+        (tmp_path / rel).write_text(text)
+    assert layer_violations(tmp_path, rooms) == []
+    (tmp_path / files_key(files, 'engine/world.py')).write_text('def f():\n    from racebot_sim_bridge.sensors import ray\n')
+    assert layer_violations(tmp_path, rooms) == [
+        'racebot_sim_bridge/src/racebot_sim_bridge/engine/world.py line 2: imports racebot_sim_bridge.sensors '
+        '(racebot_sim_bridge/src/racebot_sim_bridge/sensors/, above racebot_sim_bridge/src/racebot_sim_bridge/engine/)',
+        'racebot_sim_bridge/src/racebot_sim_bridge/engine/world.py line 2: imports racebot_sim_bridge.sensors.ray '
+        '(racebot_sim_bridge/src/racebot_sim_bridge/sensors/, above racebot_sim_bridge/src/racebot_sim_bridge/engine/)']
+    (tmp_path / 'tools/loose.py').parent.mkdir(exist_ok=True)
+    assert room_of('tools/loose.py', rooms) == 3 and room_of('upstream_compat/x.py', rooms) is None
+
+
+def files_key(files, tail):
+    return next(rel for rel in files if rel.endswith(tail))
+
+
+def test_the_layer_list_is_read_from_its_block():
+    text = 'x\n```layers\na/b/   one\n\nc.py  two words\n```\n```layers\nz/\n```'
+    assert layer_rooms(text) == ['a/b/', 'c.py']
+
+
+def test_a_long_class_and_a_long_function_are_named(tmp_path):
+    path = tmp_path / 'm.py'
+    path.write_text('class C:\n' + '    x = 1\n' * 300 + 'def f():\n' + '    y = 1\n' * 80)
+    assert long_definitions([path], tmp_path) == ['m.py: class C, 301 lines', 'm.py: function f, 81 lines']
+
+
+def test_a_cpp_file_outside_its_rooms_is_named(tmp_path):
+    for rel in ('racebot_sim_bridge/src/racebot_sim_bridge/engine/fast.cpp', 'upstream_compat/gazebo_dev/include/'
+                'gazebo/gazebo.hh', 'racebot_sim_bridge/src/cpp/plugin_host.cpp', 'tests/fixtures/p/src/a.cc'):
+        (tmp_path / rel).parent.mkdir(parents=True, exist_ok=True)
+        (tmp_path / rel).write_text('')
+    assert misplaced_compiled_sources(tmp_path) == ['racebot_sim_bridge/src/racebot_sim_bridge/engine/fast.cpp']
