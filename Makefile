@@ -42,10 +42,12 @@ $(VENV)/.racebot-installed: tools/requirements.txt
 	$(VENV)/bin/pip install --disable-pip-version-check -q -r tools/requirements.txt
 	@touch $@
 
+# out/ holds what tests, the bench, the demo and the soak write, generated catkin packages among them: its
+# CATKIN_IGNORE keeps them out of this source space, so `make run` after `make test` builds.
 # catkin_make is incremental: with nothing changed it only re-checks, in seconds. Building with the
 # venv interpreter gives every node script a shebang that sees rospy and pybullet, whatever PATH says.
 build: debian venv
-	@mkdir -p build devel && touch build/CATKIN_IGNORE devel/CATKIN_IGNORE
+	@mkdir -p build devel out && touch build/CATKIN_IGNORE devel/CATKIN_IGNORE out/CATKIN_IGNORE
 	@PATH=$(VENV)/bin:$$PATH catkin_make -C $(ROOT) --source $(ROOT) --build $(ROOT)/build \
 	    -DCATKIN_DEVEL_PREFIX=$(ROOT)/devel -DPYTHON_EXECUTABLE=$(VENV)/bin/python3 \
 	    -DRACEBOT_VENV=$(VENV) > build/catkin_make.log 2>&1 \

@@ -169,6 +169,31 @@ def repeat_summary(runs, tests_per_run):
     return lines
 
 
+def stray_packages(root):
+    """Package folders catkin finds in the source space `root` that the repository does not hold (a test's or the
+    bench's generated package under out/ would stop the next `catkin_make`: 'does not contain a CMakeLists.txt')."""
+    from catkin_pkg.packages import find_package_paths
+    try:
+        tracked = subprocess.run(['git', '-C', root, 'ls-files', '*package.xml'], capture_output=True, text=True,
+                                 check=True).stdout.split()
+        ours = {os.path.dirname(path) for path in tracked}
+    except (OSError, subprocess.CalledProcessError):  # not a git checkout: only the folders we write are suspect
+        ours = None
+    found = find_package_paths(root)
+    if ours is None:
+        return sorted(path for path in found if path.split(os.sep)[0] in ('out', 'build', 'devel'))
+    return sorted(path for path in found if path not in ours)
+
+
+def check_source_space():
+    """One test: after the suite, catkin still finds only the repository's packages, so `make run` (or any
+    catkin_make) after `make test` builds. (passed, failed, skipped, failures) as count_junit gives them."""
+    stray = stray_packages(ROOT)
+    if stray:
+        return 0, 1, 0, ['source space: packages written by the suite where catkin looks: ' + ', '.join(stray)]
+    return 1, 0, 0, []
+
+
 def main():
     global OUT
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
@@ -183,6 +208,8 @@ def main():
     if 'ROS_PACKAGE_PATH' not in os.environ or ROOT not in os.environ['ROS_PACKAGE_PATH']:
         sys.exit('racebot: source devel/setup.bash first (or use `make test`)')
     use_loopback_ros_networking(os.environ)
+    os.makedirs(os.path.join(ROOT, 'out'), exist_ok=True)  # out/ is no part of the source space (Makefile: build)
+    open(os.path.join(ROOT, 'out', 'CATKIN_IGNORE'), 'a').close()
     os.environ.setdefault('ROS_LOG_DIR', os.path.join(ROOT, 'out', 'ros_log'))
     base = os.path.abspath(args.out)
     runs, tests_per_run = [], []
@@ -218,6 +245,8 @@ def run_once(args):
             if args.only and args.only not in os.path.basename(test_file):
                 continue
             add(rostest_cases(test_file))
+    if not args.only and not args.unit_only:
+        add(check_source_space())
     print(CORPUS_NOT_RUN, flush=True)
     if failures:
         print('\nfailed:\n  ' + '\n  '.join(failures))

@@ -28,3 +28,4 @@ def test_the_summary_names_each_failing_test_and_the_passing_runs():
     assert lines[-1] == '2 of 3 runs passed'
     clean = run_tests.repeat_summary([[], []], [5, 5])
     assert '  0 of 2  every test (5 tests a run)' in clean and clean[-1] == '2 of 2 runs passed'
+
