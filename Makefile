@@ -69,7 +69,7 @@ HEADLESS_ARGS = $(if $(DISPLAY),,gui:=false teleop:=false)
 run: setup
 	@$(if $(DISPLAY),,echo "racebot: no display (DISPLAY is unset): running headless. In another shell, drive with:"; \
 	  echo "  cd $(ROOT) && source devel/setup.bash"; \
-	  echo "  rostopic pub -r 10 /ackermann_cmd_mux/output ackermann_msgs/AckermannDriveStamped '{drive: {speed: 0.5, steering_angle: 0.3}}'";)
+	  echo "  rostopic pub -r 10 /ackermann_cmd_mux/output ackermann_msgs/AckermannDriveStamped '{drive: {speed: 0.5, steering_angle: 0.45}}'";)
 	@$(IN_WS) roslaunch racebot_gazebo racebot.launch $(HEADLESS_ARGS) $(ARGS)
 
 # Headless: a scripted route through the room (~20 s of sim time), then the distance, the final pose
