@@ -13,8 +13,6 @@ from racebot_sim_bridge.description.urdf_model import GazeboPlugin, UrdfError, n
 
 __all__ = ['vector', 'integer', 'boolean', 'attr_number', 'origin', 'element_name', 'child_text', 'read_plugin']
 
-Xyz = tuple[float, float, float]
-
 
 def vector(text: str | None, count: int, what: str) -> tuple[float, ...]:
     """`count` numbers, each checked in turn (the first bad one is named)."""
@@ -40,7 +38,7 @@ def attr_number(elem: ET.Element, attr: str, what: str, default: float | None = 
     return number(text, '%s %s' % (what, attr))
 
 
-def origin(elem: ET.Element, what: str) -> tuple[Xyz, Xyz]:
+def origin(elem: ET.Element, what: str) -> tuple[tuple[float, ...], tuple[float, ...]]:
     """(xyz, rpy) of the <origin> of `elem`, zeros for what is not given."""
     child = elem.find('origin')
     if child is None:
