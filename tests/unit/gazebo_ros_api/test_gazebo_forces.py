@@ -219,7 +219,7 @@ def test_gravity_mode_off_hooks_its_weight_back_only_while_some_link_has_it(box_
     req = SetLinkPropertiesRequest(link_name='box::body', com=now.com, gravity_mode=False, mass=now.mass, ixx=now.ixx,
                                    ixy=now.ixy, ixz=now.ixz, iyy=now.iyy, iyz=now.iyz, izz=now.izz)
     assert properties.set_link_properties(req).success
-    assert box_sim.before_physics == [properties.cancel_gravity]
+    assert box_sim.before_physics == [properties.links.cancel_gravity]
     assert abs(_fall(box_sim, 0.2)) < 1e-6  # floats
     req.gravity_mode = True
     assert properties.set_link_properties(req).success

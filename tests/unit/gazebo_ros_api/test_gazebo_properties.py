@@ -5,7 +5,8 @@ import math
 import pytest
 
 from racebot_sim_bridge.description import sdf_reader, urdf_reader
-from racebot_sim_bridge.gazebo_ros_api.properties import principal_in_frame, tensor_from_principal, urdf_geom_names
+from racebot_sim_bridge.gazebo_ros_api.link_properties import principal_in_frame, tensor_from_principal
+from racebot_sim_bridge.gazebo_ros_api.model_properties import urdf_geom_names
 from racebot_sim_bridge.gazebo_ros_api.performance_metrics import NO_FPS, MetricsWindow
 from racebot_sim_bridge.kinematics.rotations import rpy_to_quaternion
 

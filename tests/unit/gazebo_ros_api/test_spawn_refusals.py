@@ -20,7 +20,8 @@ from racebot_sim_bridge.description import sdf_reader
 from racebot_sim_bridge.engine.physics import MAX_BULLET_LINKS
 from racebot_sim_bridge.engine.simulator import Simulator
 from racebot_sim_bridge.gazebo_plugins.plugin_manager import PluginManager
-from racebot_sim_bridge.gazebo_ros_api.services import SPAWN_NOT_LOADED, GazeboServices
+from racebot_sim_bridge.gazebo_ros_api.services import GazeboServices
+from racebot_sim_bridge.gazebo_ros_api.spawn_services import SPAWN_NOT_LOADED
 from racebot_sim_bridge.gazebo_ros_control.gazebo_ros_control_plugin import GazeboRosControlPlugin
 
 from test_plugin_namespace import _Log

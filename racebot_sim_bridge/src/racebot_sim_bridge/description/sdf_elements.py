@@ -1,9 +1,9 @@
 """The pieces of an SDF read with warnings: values, poses, shapes (meshes resolved and converted) and colours.
 
 Pure Python: no rospy, no pybullet. ElementReader is the part of sdf_reader's world reader that reads one
-element's values; the world reader (sdf_reader._WorldReader) adds the world's structure. A value that cannot
-be used raises Unusable, caught where the element holding it is skipped with one warning; the checks are
-xml_values' (as the URDF reader's are), the wording this format's.
+element's values; the readers of links (sdf_links), models (sdf_models) and the world (sdf_reader) add the
+structure. A value that cannot be used raises Unusable, caught where the element holding it is skipped with one
+warning; the checks are xml_values' (as the URDF reader's are), the wording this format's.
 """
 from __future__ import annotations
 
@@ -121,6 +121,10 @@ class ElementReader:
         """Warns that the element at `where` is skipped because of `problem`; returns None, its value."""
         self.warn(where, '%s; skipped' % problem)
         return None
+
+    def unsupported(self, where: str, child: ET.Element, reasons: dict[str, str]) -> None:
+        """Warns that `child` is skipped for its tag's reason in `reasons`."""
+        self.warn(where, '<%s> %s: %s; skipped' % (child.tag, quote(child.get('name', '')), reasons[child.tag]))
 
     # -- small pieces -----------------------------------------------------------------
 

@@ -130,22 +130,13 @@ class IncludeReader(ElementReader):
         if target == 'model://sun':
             self.warn(where, 'model://sun is a light; only a world holds lights; skipped')
             return []
-        folder = _ModelFolder()
         if target == 'model://ground_plane':
-            model_elem = ET.fromstring(_GROUND_PLANE_SDF)
+            folder, model_elem = _ModelFolder(), ET.fromstring(_GROUND_PLANE_SDF)
         else:
-            if target in self.missing_models:
-                self.missing_models[target][1].append(name or target)
+            found = self.included_model(target, name, where)
+            if found is None:
                 return []
-            folder = self.model_folder(target)
-            if folder.missing:
-                self.missing_models[target] = [folder.problem, [name or target]]
-                return []
-            if folder.problem is not None:
-                return self.skipped(where, folder.problem) or []
-            model_elem = self.model_element(folder.path, where)
-            if model_elem is None:
-                return []
+            folder, model_elem = found
         try:
             pose = self.pose(elem if elem.find('pose') is not None else model_elem, where)
             static = elem.find('static')
@@ -181,6 +172,23 @@ class IncludeReader(ElementReader):
                 self._axis_in(child, pose)
             flattened.append(child)
         return flattened
+
+    def included_model(self, target: str, name: str, where: str) -> tuple[_ModelFolder, ET.Element] | None:
+        """(_ModelFolder, <model> element) of the model an <include> names (`target`: its URI, `name`: its <name>);
+        None when it is skipped: a model on no folder of the model path is collected in missing_models (one
+        warning per missing model however often it is included, given with the world's others), any other
+        problem warned about here."""
+        if target in self.missing_models:
+            self.missing_models[target][1].append(name or target)
+            return None
+        folder = self.model_folder(target)
+        if folder.missing:
+            self.missing_models[target] = [folder.problem, [name or target]]
+            return None
+        if folder.problem is not None:
+            return self.skipped(where, folder.problem)
+        model_elem = self.model_element(folder.path, where)
+        return None if model_elem is None else (folder, model_elem)
 
     def model_element(self, folder: str, where: str) -> ET.Element | None:
         """The <model> element of the model in `folder` (model.config picks the SDF file); None when it cannot be

@@ -1,8 +1,9 @@
 """Read SDF 1.6 world files into sdf_model's dataclasses: ``load_world``, ``parse_world``.
 
 Pure Python: no rospy, no pybullet.  ``physics.py`` turns the result into bodies. The values of each
-element (numbers, poses, shapes, meshes, colours) are read by sdf_elements.ElementReader, which the world
-reader here extends with the world's structure. Files are read as TinyXML reads them (xml_document: a blank
+element (numbers, poses, shapes, meshes, colours) are read by sdf_elements.ElementReader, links and joints by
+sdf_links, models (their includes and nested models) by sdf_models, which the world reader here extends with the
+world's physics, lights and saved state. Files are read as TinyXML reads them (xml_document: a blank
 line before ``<?xml ...?>`` is no error).
 
 What is understood: the world's physics block and gravity; models made of links with box,
@@ -36,16 +37,13 @@ from __future__ import annotations
 import os
 import xml.etree.ElementTree as ET
 from collections.abc import Sequence
-from typing import NamedTuple
 
 from racebot_sim_bridge.description import model_path, xml_document
-from racebot_sim_bridge.description.geometry import Shape
-from racebot_sim_bridge.description.materials import GAZEBO_MATERIALS
 from racebot_sim_bridge.description.sdf_elements import Unusable, child_bool, child_float, floats, quote
-from racebot_sim_bridge.description.sdf_includes import BASE_DIR, IncludeReader
-from racebot_sim_bridge.description.sdf_model import (UNLIMITED, ZERO_POSE, Collision, Joint, Light, Link, Model,
-                                                      Physics, Visual, World)
-from racebot_sim_bridge.kinematics.rotations import XyzRpy, as_transform, as_xyz_rpy, compose, inverse, rotate
+from racebot_sim_bridge.description.sdf_links import keep
+from racebot_sim_bridge.description.sdf_model import Light, Physics, World
+from racebot_sim_bridge.description.sdf_models import ModelReader
+from racebot_sim_bridge.kinematics.rotations import XyzRpy, as_xyz_rpy, compose, inverse
 
 __all__ = ['WorldError', 'parse_world', 'load_world', 'sun_light', 'EMPTY_WORLD_SDF']
 
@@ -82,342 +80,10 @@ _WORLD_UNSUPPORTED = {
     'population': 'populations are not supported; write the models out',
     'frame': 'frames are not supported',
 }
-_MODEL_UNSUPPORTED = {
-    'gripper': 'grippers are not supported',
-}
-_LINK_UNSUPPORTED = {
-    'projector': 'projectors are not supported',
-    'light': 'lights are not simulated',
-    'audio_source': 'audio is not supported',
-    'audio_sink': 'audio is not supported',
-    'battery': 'batteries are not supported',
-    'particle_emitter': 'particle emitters are not supported',
-}
 
 
-def _keep(items, item):
-    """Appends `item` unless it is None (skipped, and warned about where it was read)."""
-    if item is not None:
-        items.append(item)
-
-
-class _Scope(NamedTuple):
-    """A level of a model as its links are read: the outer model itself, or a nested <model> in it. `prefix`: the
-    nested models' names down to it, each followed by '::' ('' for the outer model); `pose`: its frame in the outer
-    model's; `static`: a nested model's own <static> (None: the outer model's); `where`: for messages;
-    `base_dir`: what relative mesh URIs in it are relative to; `around`: the prefixes of the models around it,
-    outermost first."""
-    prefix: str = ''
-    pose: tuple = ZERO_POSE
-    static: bool = None
-    where: str = ''
-    base_dir: str = None
-    around: tuple = ()
-
-
-class _WorldReader(IncludeReader):
-    def unsupported(self, where, child, reasons):
-        """Warns that `child` is skipped for its tag's reason in `reasons`."""
-        self.warn(where, '<%s> %s: %s; skipped' % (child.tag, quote(child.get('name', '')), reasons[child.tag]))
-
-    # -- elements ---------------------------------------------------------------------
-
-    def placed_shape(self, elem, where):
-        """(name, where, pose, _Geometry) of a <collision> or <visual>, or None when it is skipped (warned)."""
-        name = elem.get('name', '')
-        where = '%s %s %s' % (where, elem.tag, quote(name))
-        try:
-            pose = self.pose(elem, where)
-        except Unusable as err:
-            return self.skipped(where, err)
-        geometry = self.shape(elem.find('geometry'), where)
-        if geometry is None:
-            return None
-        return name, where, pose, geometry
-
-    def collision(self, elem, where):
-        placed = self.placed_shape(elem, where)
-        if placed is None:
-            return None
-        name, where, pose, geometry = placed
-        mu = mu2 = None
-        ode = elem.find('surface/friction/ode')
-        if ode is not None:
-            try:
-                mu = child_float(ode, 'mu', None, 'friction mu')
-                mu2 = child_float(ode, 'mu2', None, 'friction mu2')
-            except Unusable as err:
-                return self.skipped(where, err)
-            for label, value in (('mu', mu), ('mu2', mu2)):
-                if value is not None and value < 0.0:
-                    return self.skipped(where, 'friction %s must be >= 0, got %g' % (label, value))
-        try:
-            retro = child_float(elem, 'laser_retro', 0.0, 'laser_retro')
-        except Unusable as err:
-            return self.skipped(where, err)
-        return Collision(name, pose, geometry.shape, mu, mu2, retro)
-
-    def visual(self, elem, where):
-        placed = self.placed_shape(elem, where)
-        if placed is None:
-            return None
-        name, where, pose, geometry = placed
-        try:
-            # an SDF <material> overrides the mesh's own, as in Gazebo
-            rgba = self.rgba(elem.find('material')) or geometry.mesh_rgba
-        except Unusable as err:
-            return self.skipped(where, err)
-        return Visual(name, pose, geometry.shape, rgba)
-
-    def link(self, elem, where, static=False):
-        name = elem.get('name')
-        if not name:
-            self.warn(where, 'a <link> without a name; skipped')
-            return None
-        where = '%s link %s' % (where, quote(name))
-        try:
-            link = Link(name, pose=self.pose(elem, where))
-            inertial = elem.find('inertial')
-            if inertial is not None:
-                mass = child_float(inertial, 'mass', 1.0, 'mass')
-                if mass > 0.0:
-                    link.mass = mass
-                elif not static:  # a static link's mass does not matter
-                    self.warn(where, 'mass must be > 0, got %g; using 1.0 (the SDF default)'
-                              % mass)
-                link.inertial_pose = self.pose(inertial, where + ' inertial')
-                inertia = inertial.find('inertia')
-                if inertia is not None:
-                    defaults = {'ixx': 1.0, 'ixy': 0.0, 'ixz': 0.0,
-                                'iyy': 1.0, 'iyz': 0.0, 'izz': 1.0}
-                    link.inertia = tuple(child_float(inertia, key, default, key)
-                                         for key, default in defaults.items())
-        except Unusable as err:
-            return self.skipped(where, err)
-        for child in elem:
-            if child.tag == 'collision':
-                _keep(link.collisions, self.collision(child, where))
-            elif child.tag == 'visual':
-                _keep(link.visuals, self.visual(child, where))
-            elif child.tag == 'sensor':
-                link.sensors.append(ET.tostring(child, encoding='unicode'))
-            elif child.tag in _LINK_UNSUPPORTED:
-                self.unsupported(where, child, _LINK_UNSUPPORTED)
-        return link
-
-    def joint(self, elem, where):
-        """A <joint>; None (warned) when unusable.  ball, universal, revolute2, screw and gearbox
-        joints are not simulated: made fixed, with a warning, so that the links stay joined."""
-        name = elem.get('name')
-        if not name:
-            return self.skipped(where, 'a <joint> without a name')
-        where = '%s joint %s' % (where, quote(name))
-        kind = elem.get('type', '')
-        parent, child = (elem.findtext('parent') or '').strip(), (elem.findtext('child') or '').strip()
-        if not parent or not child:
-            return self.skipped(where, 'a joint needs <parent> and <child> link names')
-        if kind not in ('revolute', 'prismatic', 'fixed'):
-            if kind not in ('ball', 'universal', 'revolute2', 'screw', 'gearbox'):
-                return self.skipped(where, 'unknown joint type %s (SDF has revolute, prismatic, fixed, ball, '
-                                    'universal, revolute2, screw, gearbox)' % quote(kind))
-            self.warn(where, '%s joints are not supported; made fixed' % kind)
-            kind = 'fixed'
-        try:
-            joint = Joint(name, kind, parent, child, pose=self.pose(elem, where))
-            axis = elem.find('axis')
-            if axis is not None and kind != 'fixed':
-                xyz = axis.find('xyz')
-                if xyz is not None:
-                    joint.axis = floats(xyz.text, 3, 'axis xyz')
-                    joint.axis_in_model = xyz.get('expressed_in') == '__model__'
-                joint.axis_in_model = child_bool(axis, 'use_parent_model_frame', joint.axis_in_model,
-                                                 'use_parent_model_frame')
-                if not any(joint.axis):
-                    raise Unusable('axis xyz is the zero vector; give the direction the joint moves along')
-                limit = axis.find('limit')
-                if limit is not None:
-                    joint.lower = child_float(limit, 'lower', -UNLIMITED, 'limit lower')
-                    joint.upper = child_float(limit, 'upper', UNLIMITED, 'limit upper')
-                    joint.effort = child_float(limit, 'effort', -1.0, 'limit effort')
-                    joint.velocity = child_float(limit, 'velocity', -1.0, 'limit velocity')
-                    if joint.lower > joint.upper:
-                        raise Unusable('limit lower %g is above upper %g' % (joint.lower, joint.upper))
-                dynamics = axis.find('dynamics')
-                if dynamics is not None:
-                    joint.damping = child_float(dynamics, 'damping', 0.0, 'dynamics damping')
-                    joint.friction = child_float(dynamics, 'friction', 0.0, 'dynamics friction')
-                    if joint.damping < 0 or joint.friction < 0:
-                        raise Unusable('dynamics damping and friction must be >= 0, got %g and %g'
-                                       % (joint.damping, joint.friction))
-        except Unusable as err:
-            return self.skipped(where, err)
-        return joint
-
-    def model(self, elem):
-        """A <model> of the world (or the model of a world-level <include>), as one Model: the <include>s in it
-        flattened into it as sdformat's parser does (expand_includes), its nested <model>s read into it as
-        Gazebo loads them (read_level): their links named inner::link, posed in the outer model's frame."""
-        name = elem.get('name')
-        if not name:
-            self.warn('world', 'a <model> without a name; skipped')
-            return None
-        where = 'model %s' % quote(name)
-        self.expand_includes(elem, where)
-        try:
-            # the first <static> in the model after the includes are flattened: sdformat keeps every one and
-            # Gazebo reads the first (an included model's own comes where its <include> stood)
-            model = Model(name, pose=self.pose(elem, where),
-                          static=child_bool(elem, 'static', False, 'static'))
-        except Unusable as err:
-            return self.skipped(where, err)
-        warnings_before = len(self.warnings)
-        joints = []
-        self.read_level(model, elem, _Scope(where=where, base_dir=self.base_dir), joints)
-        names = {link.name for link in model.links}
-        for joint, scope in joints:
-            joint.parent, joint.child = (self.scoped_link(model, names, joint.parent, scope),
-                                         self.scoped_link(model, names, joint.child, scope))
-            model.joints.append(joint)
-        if not model.links:
-            if any(elem.iter('link')) and len(self.warnings) > warnings_before:
-                # Its links were skipped with a warning each: say the model went with them.
-                self.warnings[-1] += ", and so model %s, which has no usable link left" % (
-                    quote(name))
-            else:
-                self.warn(where, 'has no links; skipped')
-            return None
-        return model
-
-    def read_level(self, model, elem, scope, joints):
-        """Reads the links, joints and plugins of `elem` (the outer <model> or a nested one, as `scope` says) into
-        `model`, then its nested <model>s, depth first: Gazebo's order (Model::LoadLinks, then LoadModels), so the
-        first link of the list is Gazebo's canonical link. Joints go to `joints` with their scope, their links
-        found once all are read."""
-        nested = []
-        for child in elem:
-            if child.tag == 'link':
-                base_dir = child.get(BASE_DIR) or scope.base_dir
-                with self.relative_to(base_dir):
-                    link = self.link(child, scope.where, model.static if scope.static is None else scope.static)
-                if link is None:
-                    continue
-                if scope.prefix:
-                    link.name = scope.prefix + link.name
-                    link.pose = as_xyz_rpy(compose(scope.pose, link.pose))
-                    link.static = scope.static
-                if any(other.name == link.name for other in model.links):
-                    self.warn(scope.where, 'a second link %s; skipped' % quote(link.name))
-                    continue
-                model.links.append(link)
-            elif child.tag == 'joint':
-                joint = self.joint(child, scope.where)
-                if joint is not None:
-                    joint.name = scope.prefix + joint.name
-                    if joint.axis_in_model and scope.prefix:  # the nested model's frame, turned into the outer's
-                        joint.axis = rotate(as_transform(scope.pose)[1], joint.axis)
-                    joints.append((joint, scope))
-            elif child.tag == 'plugin':
-                if scope.prefix:
-                    self.warn(scope.where, '<plugin> %s runs with model %s: a nested model is part of its outer '
-                              'model here, its links and joints named %sNAME' % (
-                                  quote(child.get('name', '')), quote(model.name), scope.prefix))
-                model.plugins.append(ET.tostring(child, encoding='unicode'))
-            elif child.tag == 'model':
-                nested.append(child)
-            elif child.tag in _MODEL_UNSUPPORTED:
-                self.unsupported(scope.where, child, _MODEL_UNSUPPORTED)
-        for child in nested:
-            name = child.get('name')
-            if not name:
-                self.warn(scope.where, 'a nested <model> without a name; skipped')
-                continue
-            where = '%s model %s' % (scope.where, quote(name))
-            try:
-                pose = self.pose(child, where)
-                # Gazebo: a nested model is static by its own <static> (Model::Load), not by its outer model's
-                static = child_bool(child, 'static', False, 'static')
-            except Unusable as err:
-                self.skipped(where, err)
-                continue
-            self.read_level(model, child, _Scope(scope.prefix + name + '::', as_xyz_rpy(compose(scope.pose, pose)),
-                                                 static, where, child.get(BASE_DIR) or scope.base_dir,
-                                                 scope.around + (scope.prefix,)), joints)
-
-    @staticmethod
-    def scoped_link(model, names, name, scope):
-        """The link of `model` (flattened, names in `names`) a joint of `scope` names, as Gazebo's Joint::Load
-        finds it: in the joint's own (nested) model, then in each model around it; `world` is the world. A name
-        found nowhere is kept (scoped), for sdf_urdf to say which link is missing."""
-        if name == 'world':
-            return name
-        for prefix in (scope.prefix,) + scope.around[::-1]:
-            if prefix + name in names:
-                return prefix + name
-        if name.startswith(model.name + '::') and name[len(model.name) + 2:] in names:
-            return name[len(model.name) + 2:]  # the link's scoped name, world-wide
-        return scope.prefix + name
-
-    def include(self, elem):
-        """An <include>d model: model://ground_plane and model://sun are built in (as Gazebo ships
-        them); any other model is read from its folder on the model path (model.config picks the
-        SDF file), with the include's <name>, <pose> and <static> overriding the model's own."""
-        uri = (elem.findtext('uri') or '').strip()
-        target = uri.rstrip('/')
-        if target == 'model://sun':
-            return None  # a light, not a model: world() reads it with light_of_include
-        if target == 'model://ground_plane':
-            return self.ground_plane(elem)
-        where = 'include %s' % quote(uri or '(no uri)')
-        if not uri:
-            self.warn(where, 'no <uri>; give <uri>model://NAME</uri>; skipped')
-            return None
-        name = (elem.findtext('name') or '').strip()
-        if target in self.missing_models:
-            self.missing_models[target][1].append(name or target)
-            return None
-        folder = self.model_folder(target)
-        if folder.missing:
-            # one warning per missing model however often it is included, given with the world's others
-            self.missing_models[target] = [folder.problem, [name or target]]
-            return None
-        if folder.problem is not None:
-            return self.skipped(where, folder.problem)
-        model_elem = self.model_element(folder.path, where)
-        if model_elem is None:
-            return None
-        try:
-            pose = self.pose(elem, where) if elem.find('pose') is not None else None
-            static = child_bool(elem, 'static', None, 'static')
-        except Unusable as err:
-            return self.skipped(where, err)
-        if name:
-            model_elem.set('name', name)  # before reading, so that its warnings name it
-        model_elem.extend(elem.findall('plugin'))  # sdformat adds the include's plugins to the model
-        with self.relative_to(folder.path):
-            model = self.model(model_elem)
-        if model is None:
-            return None
-        if pose is not None:
-            model.pose = pose
-        if static is not None:
-            model.static = static
-        return model
-
-    def ground_plane(self, elem):
-        name = (elem.findtext('name') or '').strip() or 'ground_plane'
-        where = 'include %s' % quote(name)
-        try:
-            pose = self.pose(elem, where)
-            static = child_bool(elem, 'static', True, 'static')
-        except Unusable as err:
-            return self.skipped(where, err)
-        # Gazebo's ground_plane model: a static 100 m x 100 m plane, mu 100, mu2 50.
-        def plane():
-            return Shape('plane', size=(100.0, 100.0), normal=(0.0, 0.0, 1.0))
-        link = Link('link',
-                    collisions=[Collision('collision', ZERO_POSE, plane(), 100.0, 50.0)],
-                    visuals=[Visual('visual', ZERO_POSE, plane(), GAZEBO_MATERIALS['Gazebo/Grey'])])
-        return Model(name, pose=pose, static=static, links=[link])
+class _WorldReader(ModelReader):
+    """Reads a world: its physics, models, lights and saved state (see the module)."""
 
     def light(self, elem):
         """A world <light>, or None (one warning) when a value is unusable."""
@@ -553,9 +219,9 @@ class _WorldReader(IncludeReader):
                 model = self.model(child)
             elif child.tag == 'include':
                 model = self.include(child)
-                _keep(world.lights, self.light_of_include(child))
+                keep(world.lights, self.light_of_include(child))
             elif child.tag == 'light':
-                _keep(world.lights, self.light(child))
+                keep(world.lights, self.light(child))
             elif child.tag in _WORLD_UNSUPPORTED:
                 self.unsupported('world', child, _WORLD_UNSUPPORTED)
             elif child.tag not in _WORLD_SILENT:

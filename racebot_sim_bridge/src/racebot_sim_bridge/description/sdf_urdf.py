@@ -156,6 +156,64 @@ def _limits(joint):
     return kind, attrs
 
 
+def _write_link(robot, model, link, back, warnings):
+    """`link` as a URDF <link> of `robot` (its inertial, visuals and collisions moved by `back`), and its friction,
+    laser_retro and sensors as a <gazebo reference> block."""
+    name = link.name
+    elem = ET.SubElement(robot, 'link', name=name)
+    inertial = ET.SubElement(elem, 'inertial')
+    _origin(inertial, compose(back, link.inertial_pose))
+    ET.SubElement(inertial, 'mass', value='%.17g' % link.mass)
+    ixx, ixy, ixz, iyy, iyz, izz = link.inertia or (1.0, 0.0, 0.0, 1.0, 0.0, 1.0)  # SDF's defaults
+    ET.SubElement(inertial, 'inertia', ixx='%.17g' % ixx, ixy='%.17g' % ixy, ixz='%.17g' % ixz,
+                  iyy='%.17g' % iyy, iyz='%.17g' % iyz, izz='%.17g' % izz)
+    for tag, items in (('visual', link.visuals), ('collision', link.collisions)):
+        for item in items:
+            if item.shape.kind is ShapeKind.PLANE:
+                warnings.append("model '%s' link '%s' %s '%s': a plane cannot be part of a robot; left out"
+                                % (model.name, name, tag, item.name))
+                continue
+            part = ET.SubElement(elem, tag, name=item.name)
+            _origin(part, compose(back, item.pose))
+            _geometry(part, item.shape)
+            if tag == 'visual' and item.rgba is not None:
+                material = ET.SubElement(part, 'material', name='%s_%s' % (name, item.name))
+                ET.SubElement(material, 'color', rgba=_fmt(item.rgba))
+    extension = ET.Element('gazebo', reference=name)
+    friction = next((c for c in link.collisions if c.mu is not None or c.mu2 is not None), None)
+    if friction is not None:
+        for tag, value in (('mu1', friction.mu), ('mu2', friction.mu2)):
+            if value is not None:
+                ET.SubElement(extension, tag).text = '%.17g' % value
+    retro = next((c.laser_retro for c in link.collisions if c.laser_retro), 0.0)
+    if retro:
+        ET.SubElement(extension, 'laserRetro').text = '%.17g' % retro
+    for sensor in link.sensors:
+        extension.append(_shifted_sensor(sensor, back))
+    if len(extension):
+        robot.append(extension)
+
+
+def _write_joint(robot, joint, frame, pose):
+    """An SDF joint as a URDF <joint> of `robot` between its links' URDF frames (`frame`, in the model frame),
+    its axis in the child's frame (the child link's SDF `pose`); a fixed one kept by preserveFixedJoint."""
+    elem = ET.SubElement(robot, 'joint', name=joint.name, type=joint.type)
+    ET.SubElement(elem, 'parent', link=joint.parent)
+    ET.SubElement(elem, 'child', link=joint.child)
+    _origin(elem, compose(inverse(frame[joint.parent]), frame[joint.child]))
+    if joint.type == 'fixed':
+        # Gazebo keeps an SDF fixed joint and its child link (only its URDF reader lumps them)
+        preserve = ET.SubElement(robot, 'gazebo', reference=joint.name)
+        ET.SubElement(preserve, 'preserveFixedJoint').text = 'true'
+        return
+    kind, limit = _limits(joint)
+    elem.set('type', kind)
+    ET.SubElement(elem, 'axis', xyz=_fmt(_axis_in_child(joint, pose[joint.child][1])))
+    ET.SubElement(elem, 'limit', **limit)
+    if joint.damping or joint.friction:
+        ET.SubElement(elem, 'dynamics', damping='%.17g' % joint.damping, friction='%.17g' % joint.friction)
+
+
 def model_urdf(model: Model) -> Conversion:
     """The Conversion of an sdf_model.Model; ConversionError when its links do not form one tree."""
     if not model.links:
@@ -175,39 +233,7 @@ def model_urdf(model: Model) -> Conversion:
     if fixed_to_world:
         ET.SubElement(robot, 'link', name=WORLD)
     for name, link in links.items():
-        back = inverse(shift[name])
-        elem = ET.SubElement(robot, 'link', name=name)
-        inertial = ET.SubElement(elem, 'inertial')
-        _origin(inertial, compose(back, link.inertial_pose))
-        ET.SubElement(inertial, 'mass', value='%.17g' % link.mass)
-        ixx, ixy, ixz, iyy, iyz, izz = link.inertia or (1.0, 0.0, 0.0, 1.0, 0.0, 1.0)  # SDF's defaults
-        ET.SubElement(inertial, 'inertia', ixx='%.17g' % ixx, ixy='%.17g' % ixy, ixz='%.17g' % ixz,
-                      iyy='%.17g' % iyy, iyz='%.17g' % iyz, izz='%.17g' % izz)
-        for tag, items in (('visual', link.visuals), ('collision', link.collisions)):
-            for item in items:
-                if item.shape.kind is ShapeKind.PLANE:
-                    warnings.append("model '%s' link '%s' %s '%s': a plane cannot be part of a robot; left out"
-                                    % (model.name, name, tag, item.name))
-                    continue
-                part = ET.SubElement(elem, tag, name=item.name)
-                _origin(part, compose(back, item.pose))
-                _geometry(part, item.shape)
-                if tag == 'visual' and item.rgba is not None:
-                    material = ET.SubElement(part, 'material', name='%s_%s' % (name, item.name))
-                    ET.SubElement(material, 'color', rgba=_fmt(item.rgba))
-        extension = ET.Element('gazebo', reference=name)
-        friction = next((c for c in link.collisions if c.mu is not None or c.mu2 is not None), None)
-        if friction is not None:
-            for tag, value in (('mu1', friction.mu), ('mu2', friction.mu2)):
-                if value is not None:
-                    ET.SubElement(extension, tag).text = '%.17g' % value
-        retro = next((c.laser_retro for c in link.collisions if c.laser_retro), 0.0)
-        if retro:
-            ET.SubElement(extension, 'laserRetro').text = '%.17g' % retro
-        for sensor in link.sensors:
-            extension.append(_shifted_sensor(sensor, back))
-        if len(extension):
-            robot.append(extension)
+        _write_link(robot, model, link, inverse(shift[name]), warnings)
     held = [name for name, link in links.items() if name not in parent_joint and link.is_static(model)]
     for index, name in enumerate(held):
         joint_name = '%s_static' % model.name if index == 0 else '%s_static_%s' % (model.name, name)
@@ -216,21 +242,7 @@ def model_urdf(model: Model) -> Conversion:
         ET.SubElement(elem, 'child', link=name)
         _origin(elem, frame[name])
     for joint in model.joints:
-        elem = ET.SubElement(robot, 'joint', name=joint.name, type=joint.type)
-        ET.SubElement(elem, 'parent', link=joint.parent)
-        ET.SubElement(elem, 'child', link=joint.child)
-        _origin(elem, compose(inverse(frame[joint.parent]), frame[joint.child]))
-        if joint.type == 'fixed':
-            # Gazebo keeps an SDF fixed joint and its child link (only its URDF reader lumps them)
-            preserve = ET.SubElement(robot, 'gazebo', reference=joint.name)
-            ET.SubElement(preserve, 'preserveFixedJoint').text = 'true'
-            continue
-        kind, limit = _limits(joint)
-        elem.set('type', kind)
-        ET.SubElement(elem, 'axis', xyz=_fmt(_axis_in_child(joint, pose[joint.child][1])))
-        ET.SubElement(elem, 'limit', **limit)
-        if joint.damping or joint.friction:
-            ET.SubElement(elem, 'dynamics', damping='%.17g' % joint.damping, friction='%.17g' % joint.friction)
+        _write_joint(robot, joint, frame, pose)
     if model.plugins:
         extension = ET.SubElement(robot, 'gazebo')
         for plugin in model.plugins:

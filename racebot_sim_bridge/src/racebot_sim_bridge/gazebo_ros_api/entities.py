@@ -39,6 +39,20 @@ class WorldEntities:
         entity = self.resolve(name)
         return entity if entity is not None and entity.link is not None else None
 
+    def model_body(self, name):
+        """The Body of the model called `name` (World::ModelByName: a link's name is no model); None if none."""
+        entity = self.resolve(name)
+        return self.world.bodies[entity.model] if entity is not None and entity.link is None else None
+
+    def find_joint(self, name):
+        """(Body, joint name) of the joint called `name` as Model::GetJoint finds it, model by model: its plain or
+        scoped name; (None, None) when no model has it."""
+        for model, body in self.world.bodies.items():
+            for joint in body.joints:
+                if name in (joint, '%s::%s' % (model, joint)):
+                    return body, joint
+        return None, None
+
     @staticmethod
     def link_names(body):
         return list(body.link_index) + [link for link, _ in body.extra_bodies]
@@ -50,6 +64,14 @@ class WorldEntities:
         if entity.link is None:
             return self.model_state(body)
         return self.link_state(body, entity.link)
+
+    def frame_state(self, name):
+        """(Pose, Twist) in the world of the entity (model or link) called `name`, as a reference frame: (None, None)
+        for the world's names, (False, None) when nothing has that name."""
+        entity = self.resolve(name)
+        if entity is not None:
+            return self.state(entity)
+        return (None, None) if frames.is_world_frame(name) else (False, None)
 
     def model_state(self, body):
         pose, twist = body.frame_pose(), body.twist()

@@ -28,7 +28,7 @@ from collections import namedtuple
 from racebot_sim_bridge.gazebo_ros_api import frames
 from racebot_sim_bridge.kinematics.rotations import compose, inverse, rotate
 from racebot_sim_bridge.engine.sim_time import to_ns
-from racebot_sim_bridge.gazebo_ros_api.entities import WorldEntities
+from racebot_sim_bridge.gazebo_ros_api.service_group import ServiceGroup
 
 
 # times in ns; duration < 0: until cleared; owner: the Body the target belongs to (a model deleted and
@@ -123,23 +123,15 @@ def truncate_effort(effort, velocity, effort_limit, velocity_limit):
     return effort
 
 
-class GazeboForces:
+class GazeboForces(ServiceGroup):
     """The four force services' handlers, and the simulator hook that applies the jobs."""
 
+    SERVICES = {'apply_body_wrench': 'ApplyBodyWrench', 'apply_joint_effort': 'ApplyJointEffort',
+                'clear_body_wrenches': 'BodyRequest', 'clear_joint_forces': 'JointRequest'}
+
     def __init__(self, rospy, sim):
-        from gazebo_msgs import srv
-        self.rospy = rospy
-        self.sim = sim
-        self.srv = srv
+        super().__init__(rospy, sim)
         self.schedule = ForceSchedule()
-        self.entities = WorldEntities(sim.world)
-        # advertised by GazeboServices, in gazebo_ros's order
-        self.handlers = {
-            'apply_body_wrench': (srv.ApplyBodyWrench, self.apply_body_wrench),
-            'apply_joint_effort': (srv.ApplyJointEffort, self.apply_joint_effort),
-            'clear_body_wrenches': (srv.BodyRequest, self.clear_body_wrenches),
-            'clear_joint_forces': (srv.JointRequest, self.clear_joint_forces),
-        }
 
     # -- services ---------------------------------------------------------------------------------
     def apply_body_wrench(self, req):
@@ -148,25 +140,20 @@ class GazeboForces:
         with self.sim.lock:
             link = self._link(req.body_name)
             if link is None:
-                self.rospy.logerr('ApplyBodyWrench: body [%s] does not exist' % req.body_name)
-                res.success, res.status_message = False, 'ApplyBodyWrench: body does not exist'
-                return res
+                return self.fail(res, 'ApplyBodyWrench: body does not exist',
+                                 'ApplyBodyWrench: body [%s] does not exist' % req.body_name)
             if not frames.finite(f.x, f.y, f.z, t.x, t.y, t.z, p.x, p.y, p.z):
-                res.success = False
-                res.status_message = ('ApplyBodyWrench: wrench and reference_point must be finite numbers, got '
+                return self.fail(res, 'ApplyBodyWrench: wrench and reference_point must be finite numbers, got '
                                       'force (%g, %g, %g), torque (%g, %g, %g), point (%g, %g, %g)'
                                       % (f.x, f.y, f.z, t.x, t.y, t.z, p.x, p.y, p.z))
-                self.rospy.logerr(res.status_message)
-                return res
             force, torque = shift_wrench((f.x, f.y, f.z), (t.x, t.y, t.z), (p.x, p.y, p.z))
             frame = self.entities.resolve(req.reference_frame)
             if frame is not None:
                 link_pose = self.entities.state(frames.Entity(*link))[0]
                 force, torque = wrench_in_link(force, torque, self.entities.state(frame)[0], link_pose)
             elif not frames.is_world_frame(req.reference_frame):
-                self.rospy.logerr('ApplyBodyWrench: reference_frame is not a valid entity name')
-                res.success, res.status_message = False, 'ApplyBodyWrench: reference_frame not found'
-                return res
+                return self.fail(res, 'ApplyBodyWrench: reference_frame not found',
+                                 'ApplyBodyWrench: reference_frame is not a valid entity name')
             start, duration = start_and_duration(req.start_time.to_nsec(), req.duration.to_nsec(), self._now())
             self.schedule.add_wrench(link, force, torque, start, duration, self.sim.world.bodies[link[0]])
             self.sim.set_step_hook('before_physics', self.apply, True, first=True)
@@ -178,16 +165,12 @@ class GazeboForces:
         with self.sim.lock:
             joint = self._joint(req.joint_name)
             if joint is None:
-                res.success, res.status_message = False, 'ApplyJointEffort: joint not found'
-                self.rospy.logerr('ApplyJointEffort: joint [%s] not found (movable joints: %s)' % (
-                    req.joint_name, ', '.join(sorted(j for b in self.sim.world.bodies.values() for j in b.joints))
-                    or 'none'))
-                return res
+                return self.fail(res, 'ApplyJointEffort: joint not found',
+                                 'ApplyJointEffort: joint [%s] not found (movable joints: %s)' % (
+                                     req.joint_name, ', '.join(sorted(j for b in self.sim.world.bodies.values()
+                                                                      for j in b.joints)) or 'none'))
             if not math.isfinite(req.effort):
-                res.success = False
-                res.status_message = 'ApplyJointEffort: effort must be a finite number, got %r' % req.effort
-                self.rospy.logerr(res.status_message)
-                return res
+                return self.fail(res, 'ApplyJointEffort: effort must be a finite number, got %r' % req.effort)
             start, duration = start_and_duration(req.start_time.to_nsec(), req.duration.to_nsec(), self._now())
             self.schedule.add_effort(joint, req.effort, start, duration, self.sim.world.bodies[joint[0]])
             self.sim.set_step_hook('before_physics', self.apply, True, first=True)
@@ -239,11 +222,8 @@ class GazeboForces:
 
     def _joint(self, name):
         """(model, joint) as Model::GetJoint finds it, model by model: the plain or scoped name."""
-        for model, body in self.sim.world.bodies.items():
-            for joint in body.joints:
-                if name in (joint, '%s::%s' % (model, joint)):
-                    return model, joint
-        return None
+        body, joint = self.entities.find_joint(name)
+        return None if body is None else (body.name, joint)
 
 
 

@@ -1,7 +1,8 @@
 """Frames as gazebo_ros's services use them: entity names, quaternions, poses and twists in a reference.
 
 Pure Python: no rospy, no pybullet. Poses are ``(position xyz, quaternion xyzw)`` pairs (physics.Pose
-fits), twists ``(linear, angular)`` pairs of world-frame vectors; the maths is rotations.py's.
+fits), twists ``(linear, angular)`` pairs of world-frame vectors (pose_in, twist_in read them from a request's
+geometry_msgs); the maths is rotations.py's.
 
 Names: Gazebo finds an entity by walking its tree depth first (world -> models in the order they came
 -> each model's links, then its joints) and taking the first whose scoped name (``model::link``) or
@@ -61,6 +62,22 @@ def normalised(q):
     if n < 1e-6:  # ignition's equal(s, 0) tolerance
         return IDENTITY
     return tuple(c / n for c in q)
+
+
+def pose_in(msg):
+    """(position, unit quaternion) of a geometry_msgs/Pose, a zero quaternion read as the identity
+    (as ignition's Normalize makes it); None if a number is not finite."""
+    p, q = msg.position, msg.orientation
+    orientation = normalised((q.x, q.y, q.z, q.w))
+    if orientation is None or not finite(p.x, p.y, p.z):
+        return None
+    return (p.x, p.y, p.z), orientation
+
+
+def twist_in(msg):
+    """(linear, angular) of a geometry_msgs/Twist; None if a number is not finite."""
+    lin, ang = (msg.linear.x, msg.linear.y, msg.linear.z), (msg.angular.x, msg.angular.y, msg.angular.z)
+    return (lin, ang) if finite(*lin + ang) else None
 
 
 def in_world(frame_pose, local_pose):
