@@ -28,7 +28,6 @@ import threading
 
 from racebot_sim_bridge.engine.physics import BodyKind
 from racebot_sim_bridge.gazebo_ros_api import frames
-from racebot_sim_bridge.gazebo_ros_api.forces import link_address
 from racebot_sim_bridge.gazebo_ros_api.entities import WorldEntities
 from racebot_sim_bridge.kinematics.rotations import matrix, quaternion_to_rpy
 
@@ -89,8 +88,8 @@ class GazeboProperties:
                                          sor_pgs_w=1.3, sor_pgs_rms_error_tol=0.0, contact_surface_layer=0.001,
                                          contact_max_correcting_vel=100.0, cfm=0.0, erp=0.2, max_contacts=20)
         self.physics_listeners = []  # called with no arguments after set_physics_properties changed the world
-        self.no_gravity = {}  # (model, link) -> Body whose link has gravity_mode false
-        self.motors = {}  # (model, joint) -> (Body, vel, fmax): ODE's joint motor as set_joint_properties left it
+        self.no_gravity = {}  # (model, link) -> Model whose link has gravity_mode false
+        self.motors = {}  # (model, joint) -> (Model, vel, fmax): ODE's joint motor as set_joint_properties left it
         self._warned = set()
         self._lock = threading.Lock()
         self.entities = WorldEntities(sim.world)
@@ -135,7 +134,7 @@ class GazeboProperties:
         return res
 
     def _joint(self, name):
-        """(Body, joint name) as Model::GetJoint finds it, model by model: plain or scoped name."""
+        """(Model, joint name) as Model::GetJoint finds it, model by model: plain or scoped name."""
         for model, body in self.sim.world.bodies.items():
             for joint in body.joints:
                 if name in (joint, '%s::%s' % (model, joint)):
@@ -149,7 +148,7 @@ class GazeboProperties:
             if body is None:
                 res.success, res.status_message = False, 'GetJointProperties: joint not found'
                 return res
-            state = self.sim.world.joint_states(body, [body.joints[joint].index])[0]
+            state = body.joints[joint].state()
         res.type = res.REVOLUTE  # upstream's FIXME: every joint is reported revolute, damping empty
         res.damping = []
         res.position = [state.position]
@@ -181,16 +180,14 @@ class GazeboProperties:
                                   % req.joint_name)
             extra = sorted(k for k, v in lists.items() if len(v) > 1)
             ignored = sorted(k for k in self.IGNORED_JOINT_PARAMS if k in first)
-            world = self.sim.world
-            world.set_joint_dynamics(body, joint, damping=first.get('damping'), lower=first.get('loStop'),
-                                     upper=first.get('hiStop'))
+            info.set_dynamics(damping=first.get('damping'), lower=first.get('loStop'), upper=first.get('hiStop'))
             if 'fmax' in first or 'vel' in first:
                 owner, vel, fmax = self.motors.get((body.name, joint), (body, 0.0, 0.0))
                 if owner is not body:  # the model was deleted and spawned again: its motor starts off
                     vel, fmax = 0.0, 0.0
                 vel, fmax = first.get('vel', vel), first.get('fmax', fmax)
                 self.motors[(body.name, joint)] = (body, vel, fmax)
-                world.drive_velocities(body, [info.index], [vel], [fmax])
+                info.drive_velocity(vel, fmax)
         for what in ([('axes beyond the first (%s): the joints here have one' % ', '.join(extra))] if extra else []) + \
                 ([('%s: ODE parameters with no PyBullet counterpart' % ', '.join(ignored))] if ignored else []):
             if what not in self._warned:
@@ -201,7 +198,7 @@ class GazeboProperties:
 
     # -- links ------------------------------------------------------------------------------------
     def _link(self, name):
-        """(Body, link name) of the link World::EntityByName finds under `name`; (None, None) for a
+        """(Model, link name) of the link World::EntityByName finds under `name`; (None, None) for a
         model, a joint or nothing."""
         entity = self.entities.find_link(name)
         if entity is None:
@@ -217,7 +214,7 @@ class GazeboProperties:
                 res.status_message = ('GetLinkProperties: link not found, did you forget to scope the link by '
                                       'model name?')
                 return res
-            d = self.sim.world.link_dynamics(*link_address(body, link))
+            d = body.links[link].dynamics()
             res.gravity_mode = (body.name, link) not in self.no_gravity
             spec = body.source.model.link(link) if body.static and body.source.kind is BodyKind.SDF else None
         if spec is not None:  # PyBullet holds a static body with mass 0; Gazebo reports the SDF's inertial
@@ -251,8 +248,7 @@ class GazeboProperties:
             if body.static:
                 return self._fail(res, 'SetLinkProperties: link [%s] belongs to the static model [%s], which has '
                                        'no dynamics to change' % (req.link_name, body.name))
-            address = link_address(body, link)
-            d = self.sim.world.link_dynamics(*address)
+            d = body.links[link].dynamics()
             moved = max(abs(a - b) for a, b in zip(com, d.inertial_position))
             if moved > COM_TOLERANCE:
                 return self._fail(res, 'SetLinkProperties: the centre of mass of link [%s] cannot move here '
@@ -265,7 +261,7 @@ class GazeboProperties:
                                        'about the principal axes it has now (PyBullet cannot turn them): give '
                                        'a tensor with the products of inertia get_link_properties implies'
                                        % req.link_name)
-            self.sim.world.set_link_mass(address[0], address[1], req.mass, diagonal)
+            body.links[link].set_mass(req.mass, diagonal)
             if req.gravity_mode:
                 self.no_gravity.pop((body.name, link), None)
             else:
@@ -284,10 +280,10 @@ class GazeboProperties:
             if world.bodies.get(model) is not body:  # deleted (perhaps spawned again): another body
                 del self.no_gravity[(model, link)]
                 continue
-            body_id, index = link_address(body, link)
-            mass = world.link_dynamics(body_id, index).mass
-            world.apply_wrench(body_id, index, tuple(-mass * g for g in world.gravity), (0.0, 0.0, 0.0),
-                               accumulate=False)  # gravity off is no force in Gazebo
+            target = body.links[link]
+            mass = target.dynamics().mass
+            target.apply_wrench(tuple(-mass * g for g in world.gravity), (0.0, 0.0, 0.0),
+                                accumulate=False)  # gravity off is no force in Gazebo
 
     # -- physics ----------------------------------------------------------------------------------
     def get_physics_properties(self, _req):

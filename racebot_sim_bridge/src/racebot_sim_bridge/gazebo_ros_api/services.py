@@ -245,7 +245,7 @@ class GazeboServices:
         return (None, None) if frames.is_world_frame(name) else (False, None)
 
     def _model(self, name):
-        """The Body of the model called `name` (World::ModelByName: a link's name is no model)."""
+        """The physics.Model of the model called `name` (World::ModelByName: a link's name is no model)."""
         entity = self.entities.resolve(name)
         return self.sim.world.bodies[entity.model] if entity is not None and entity.link is None else None
 
@@ -373,7 +373,7 @@ class GazeboServices:
             for joint in body.joints:
                 for key in (joint, '%s::%s' % (req.model_name, joint)):
                     if key in wanted:
-                        self.sim.world.set_joint_position(body, joint, wanted[key])
+                        body.joints[joint].set_position(wanted[key])
                         used.add(key)
                         break
             unknown = [n for n in wanted if n not in used]
