@@ -71,7 +71,7 @@ class PluginWorld:
         """As spawn_urdf_model places a robot: its root link frame at `pose` (x, y, z), level."""
         robot = self.sim.spawn_urdf(name, urdf, namespace, pose)
         frame = robot.body.com_pose_for_frame(pose, (0, 0, 0, 1))
-        self.sim.world.set_pose(robot.body, frame.position, frame.orientation)
+        robot.body.set_pose(frame.position, frame.orientation)
         return robot
 
     def run(self, seconds):

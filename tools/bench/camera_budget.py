@@ -129,7 +129,7 @@ def measure():
         cam = spec.camera
         camera = PinholeCamera(cam.width, cam.height, cam.horizontal_fov, cam.clip_near, cam.clip_far)
         frames = CameraFrames(camera, make_noise(cam.noise_type, cam.noise_mean, cam.noise_stddev, True))
-        (link_pos, link_orn), _ = world.link_state(body, spec.reference)
+        (link_pos, link_orn), _ = body.links[spec.reference].state()
         x, y, z, roll, pitch, yaw = spec.pose
         pos, orn = pb.multiplyTransforms(link_pos, link_orn, (x, y, z), pb.getQuaternionFromEuler((roll, pitch, yaw)))
         position = np.asarray(pos)

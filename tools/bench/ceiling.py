@@ -32,7 +32,7 @@ class Ceiling:
         xml = urdf_xml or common.render_racebot()
         body = self.world.spawn_urdf('racebot', urdf_reader.parse_urdf(xml), xml)
         frame = body.com_pose_for_frame((0.0, 0.0, 0.0), (0.0, 0.0, 0.0, 1.0))  # as spawn_model -x 0 -y 0 -z 0
-        self.world.set_pose(body, frame.position, frame.orientation)
+        body.set_pose(frame.position, frame.orientation)
         missing = set(GAINS) - set(body.joints)
         if missing:
             raise common.BenchError('the racebot model has no joints %s' % sorted(missing))

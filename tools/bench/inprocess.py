@@ -71,7 +71,7 @@ class Car:
         self.robot = self.sim.spawn_urdf('racebot', xml, '', (0.0, 0.0, 0.0), (0.0, 0.0, 0.0, 1.0))
         body = self.robot.body
         frame = body.com_pose_for_frame((0.0, 0.0, 0.0), (0.0, 0.0, 0.0, 1.0))  # as spawn_model places it
-        self.sim.world.set_pose(body, frame.position, frame.orientation)
+        body.set_pose(frame.position, frame.orientation)
         body.spawn_pose = body.pose()
         cm = self.robot.control.cm
         for name in common.CONTROLLERS:

@@ -183,10 +183,10 @@ def test_a_joint_pose_off_the_axis_is_where_the_link_swings(world):
         joint('fix', 'world', 'post', 'fixed'),
         joint('hinge', 'post', 'bar', extra='<pose>0 -0.5 0 0 0 0</pose><axis><xyz>1 0 0</xyz></axis>')))
     robot = world.sim.spawn_sdf_robot(model_of(body))
-    index = robot.body.link_index['bar']
-    start = world.sim.world.com_position(robot.body.id, index)
+    bar = robot.body.links['bar']
+    start = bar.com_position()
     world.run(0.5)
-    centre = world.sim.world.com_position(robot.body.id, index)
+    centre = bar.com_position()
     hinge = (0.0, 0.0, 2.0)
     assert math.dist(centre, hinge) == pytest.approx(0.5, abs=0.01)
     assert centre[2] < start[2] - 0.1

@@ -128,8 +128,8 @@ def test_pybullet_keeps_a_preserved_link_rigid_on_its_parent():
         world.client.resetBaseVelocity(body.id, (0.0, 0.0, 0.0), (1.0, 2.0, 3.0))
         for _ in range(500):  # falling and tumbling for half a second
             world.step()
-        base, _ = world.link_state(body, 'base')
-        arm, _ = world.link_state(body, 'arm')
+        base, _ = body.links['base'].state()
+        arm, _ = body.links['arm'].state()
         expected = rotations.compose((base.position, base.orientation), (0.2, 0.0, 0.3, 0.0, 0.0, math.pi / 2))
         assert arm.position == pytest.approx(expected[0], abs=1e-5)
         assert arm.orientation == pytest.approx(expected[1], abs=1e-5)

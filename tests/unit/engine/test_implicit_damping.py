@@ -46,13 +46,13 @@ def spinner(damping, implicit, fixed=True, joint_type='continuous'):
 def velocities(damping, implicit, v0=1.0, steps=5, effort=0.0, **kw):
     """The joint's velocity after each of `steps` steps from velocity v0 with a constant effort."""
     sim, robot = spinner(damping, implicit, **kw)
-    sim.world.set_joint_position(robot.body, 'spin', 0.0, v0)
+    robot.body.joints['spin'].set_position(0.0, v0)
     handle = robot.control.hw.handles['spin']
     result = []
     for _ in range(steps):
         handle.command = effort
         sim.step()
-        result.append(sim.world.joint_states(robot.body, [robot.body.joints['spin'].index])[0].velocity)
+        result.append(robot.body.joint_states([robot.body.joints['spin'].index])[0].velocity)
     return result
 
 
@@ -91,17 +91,17 @@ def test_implicit_damping_on_a_floating_base():
 def test_off_beyond_the_limits_as_gazebo_hands_the_row_to_the_limit():
     # revolute in [-1, 1]: at 0.9995 moving up at 1 rad/s, angle + 2 v dt passes the upper limit: no damping
     sim, robot = spinner(50.0, True, joint_type='revolute')
-    dampers = sim.world.implicit_dampers[robot.body.id]
-    sim.world.set_joint_position(robot.body, 'spin', 0.9995, 1.0)
+    dampers = robot.body.dampers
+    robot.body.joints['spin'].set_position(0.9995, 1.0)
     assert dampers.torques(DT, {}) == ([], [])
-    sim.world.set_joint_position(robot.body, 'spin', 0.0, 1.0)
+    robot.body.joints['spin'].set_position(0.0, 1.0)
     indices, torques = dampers.torques(DT, {})
     assert torques == pytest.approx([-50.0 / 6])
 
 
 def test_set_joint_properties_damping_keeps_the_joint_implicit():
     sim, robot = spinner(0.5, True)
-    sim.world.set_joint_dynamics(robot.body, 'spin', damping=50.0)
-    sim.world.set_joint_position(robot.body, 'spin', 0.0, 1.0)
+    robot.body.joints['spin'].set_dynamics(damping=50.0)
+    robot.body.joints['spin'].set_position(0.0, 1.0)
     sim.step()
-    assert sim.world.joint_states(robot.body, [robot.body.joints['spin'].index])[0].velocity == pytest.approx(1 / 6)
+    assert robot.body.joint_states([robot.body.joints['spin'].index])[0].velocity == pytest.approx(1 / 6)

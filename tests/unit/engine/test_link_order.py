@@ -47,14 +47,14 @@ def swing(urdf, steps=300):
     world = PhysicsWorld(step_size=0.001)
     try:
         body = world.spawn_urdf('arm', urdf_reader.parse_urdf(urdf), urdf)
-        world.set_joint_position(body, 'j2', 0.5)
-        world.apply_joint_effort(body, 'j1', 0.0)
+        body.joints['j2'].set_position(0.5)
+        body.joints['j1'].apply_effort(0.0)
         for _ in range(steps):
-            world.apply_efforts(body, [body.joints['j1'].index], [2.0])
+            body.apply_efforts([body.joints['j1'].index], [2.0])
             world.step()
         joints = {name: round(s.position, 9) for name, s in
-                  zip(body.joints, world.joint_states(body, [j.index for j in body.joints.values()]))}
-        pose = world.link_state(body, 'link2')[0]
+                  zip(body.joints, body.joint_states([j.index for j in body.joints.values()]))}
+        pose = body.links['link2'].state()[0]
         return joints, tuple(round(v, 9) for v in pose.position), sorted(body.link_index)
     finally:
         world.close()

@@ -67,7 +67,7 @@ def sim():
 
 
 def positions(sim, robot, *names):
-    states = sim.world.joint_states(robot.body, [robot.body.joints[n].index for n in names])
+    states = robot.body.joint_states([robot.body.joints[n].index for n in names])
     return [s.position for s in states]
 
 
@@ -101,7 +101,7 @@ def test_a_chain_of_mimics_follows_through_and_reset_puts_it_back(sim):
     assert c == pytest.approx(leader - 0.2, abs=1e-3) and b == pytest.approx(2 * c, abs=2e-3)
     sim.reset_world()
     assert positions(sim, robot, 'leader', 'b', 'c') == pytest.approx([0.0, -0.4, -0.2], abs=1e-9)
-    sim.world.set_joint_position(robot.body, 'leader', 0.25)  # set_model_configuration's way
+    robot.body.joints['leader'].set_position(0.25)  # set_model_configuration's way
     assert positions(sim, robot, 'b', 'c') == pytest.approx([0.1, 0.05], abs=1e-9)
 
 

@@ -150,11 +150,11 @@ def _spin_in_the_air(world, racebot_model, racebot_xml, steps=100):
     """Wheel at 5 rad/s and hinge at 0.5 rad/s, then `steps` steps of free fall with no effort."""
     body = world.spawn_urdf('racebot', racebot_model, racebot_xml, position=(0.0, 0.0, 2.0))
     joints = ['left_rear_wheel_joint', 'left_steering_hinge_joint']
-    world.set_joint_position(body, joints[0], 0.0, velocity=5.0)
-    world.set_joint_position(body, joints[1], 0.0, velocity=0.5)
+    body.joints[joints[0]].set_position(0.0, velocity=5.0)
+    body.joints[joints[1]].set_position(0.0, velocity=0.5)
     for _ in range(steps):  # nothing touches the car
         world.step()
-    return world.joint_states(body, [body.joints[n].index for n in joints])
+    return body.joint_states([body.joints[n].index for n in joints])
 
 
 def test_joint_velocity_motors_are_off(world, racebot_model, racebot_xml):
@@ -174,16 +174,16 @@ def test_free_joint_is_not_damped(world, racebot_model, racebot_xml):
 def test_effort_accelerates_a_joint_for_one_step_only(world, racebot_model, racebot_xml):
     body = world.spawn_urdf('racebot', racebot_model, racebot_xml, position=(0.0, 0.0, 2.0))
     index = body.joints['right_rear_wheel_joint'].index
-    world.apply_efforts(body, [index], [0.5])
+    body.apply_efforts([index], [0.5])
     world.step()
-    v1 = world.joint_states(body, [index])[0].velocity
+    v1 = body.joint_states([index])[0].velocity
     assert v1 > 0.1  # 0.5 N m on ~7e-4 kg m^2 for 1 ms: ~0.7 rad/s
     for _ in range(10):
         world.step()  # no effort given again
-    assert world.joint_states(body, [index])[0].velocity == pytest.approx(v1, rel=0.02)
-    world.apply_efforts(body, [index], [-0.5])
+    assert body.joint_states([index])[0].velocity == pytest.approx(v1, rel=0.02)
+    body.apply_efforts([index], [-0.5])
     world.step()
-    assert world.joint_states(body, [index])[0].velocity < v1 / 2
+    assert body.joint_states([index])[0].velocity < v1 / 2
 
 
 # -- poses ----------------------------------------------------------------------------------------
@@ -204,14 +204,14 @@ def test_frame_pose_is_the_spawn_pose(world, racebot_model, racebot_xml):
 
 def test_frame_and_com_pose_stay_consistent_while_moving(world, car):
     for _ in range(200):
-        world.apply_efforts(car, [car.joints['left_rear_wheel_joint'].index,
+        car.apply_efforts([car.joints['left_rear_wheel_joint'].index,
                                   car.joints['right_rear_wheel_joint'].index], [0.5, 0.5])
         world.step()
     frame = car.frame_pose()
     com = car.com_pose_for_frame(*frame)
     assert com.position == pytest.approx(car.pose().position, abs=1e-6)
     assert abs(sum(a * b for a, b in zip(com.orientation, car.pose().orientation))) == pytest.approx(1.0, abs=1e-6)
-    assert world.link_state(car, 'base_footprint')[0].position == pytest.approx(frame.position, abs=1e-12)
+    assert car.links['base_footprint'].state()[0].position == pytest.approx(frame.position, abs=1e-12)
     # The frame is not the centre of mass: about 4 cm apart (the chassis' mass sits above base_footprint).
     assert math.dist(frame.position, car.pose().position) > 0.03
 
@@ -223,7 +223,7 @@ def test_resting_car_has_base_footprint_at_ground_level(world, car):
     roll, pitch, _ = pb.getEulerFromQuaternion(orn)
     assert abs(roll) < 0.01 and abs(pitch) < 0.01
     for wheel in WHEEL_LINKS:
-        assert world.link_state(car, wheel)[0].position[2] == pytest.approx(WHEEL_RADIUS, abs=0.002)
+        assert car.links[wheel].state()[0].position[2] == pytest.approx(WHEEL_RADIUS, abs=0.002)
     # ... and it stays put: no drift without efforts
     assert math.hypot(pos[0], pos[1]) < 0.01
 
@@ -261,9 +261,9 @@ def _drive(world, body, steps):
     idx = [body.joints[n].index for n in names]
     for k in range(steps):
         steer = 0.3 * math.sin(k * 0.01)
-        world.apply_efforts(body, idx, [0.8, 0.7, steer, steer])
+        body.apply_efforts(idx, [0.8, 0.7, steer, steer])
         world.step()
-    return body.pose(), body.twist(), world.joint_states(body, [j.index for j in body.joints.values()])
+    return body.pose(), body.twist(), body.joint_states([j.index for j in body.joints.values()])
 
 
 def test_two_worlds_with_the_same_torques_agree(make_world, racebot_model, racebot_xml):
@@ -280,10 +280,10 @@ def test_two_worlds_with_the_same_torques_agree(make_world, racebot_model, raceb
 
 def test_reset_to_spawn(world, car):
     _drive(world, car, 300)
-    world.reset_to_spawn(car)
+    car.reset()
     assert car.frame_pose().position == pytest.approx((0.0, 0.0, 0.0), abs=1e-9)
     assert car.twist().linear == pytest.approx((0.0, 0.0, 0.0), abs=1e-12)
-    states = world.joint_states(car, [j.index for j in car.joints.values()])
+    states = car.joint_states([j.index for j in car.joints.values()])
     assert all(s.position == 0.0 and s.velocity == 0.0 for s in states)
 
 

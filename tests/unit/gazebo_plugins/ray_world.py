@@ -64,7 +64,7 @@ def make_world(tmp_path, sensor, params=None, namespace='/', reconfigure=None):
     robot = sim.spawn_urdf('ray_robot', ROBOT.format(z=SENSOR_Z - BASE_Z, sensor=sensor), namespace,
                            (0.0, 0.0, BASE_Z))
     frame = robot.body.com_pose_for_frame((0.0, 0.0, BASE_Z), (0, 0, 0, 1))
-    sim.world.set_pose(robot.body, frame.position, frame.orientation)
+    robot.body.set_pose(frame.position, frame.orientation)
     return sim, fake, manager, robot
 
 

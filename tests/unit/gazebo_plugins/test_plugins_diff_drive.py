@@ -73,7 +73,7 @@ def command(w, vx, wz, topic='/cmd_vel'):
 
 def wheel_velocities(w, robot):
     names = ('left_wheel_joint', 'right_wheel_joint')
-    return [s[1] for s in w.sim.world.joint_states_raw(robot.body, [robot.body.joints[n].index for n in names])]
+    return [s[1] for s in robot.body.joint_states_raw([robot.body.joints[n].index for n in names])]
 
 
 def quaternion(msg):

@@ -24,7 +24,7 @@ PARAMS = ('<lift_joint>elevator::lift</lift_joint><door_joint>elevator::door</do
 
 
 def joints(w, robot):
-    return [s.position for s in w.sim.world.joint_states(robot.body, [robot.body.joints[n].index
+    return [s.position for s in robot.body.joint_states([robot.body.joints[n].index
                                                                        for n in ('lift', 'door')])]
 
 

@@ -32,7 +32,7 @@ def spawn(tmp_path, *plugins, namespace='/'):
     w = PluginWorld(tmp_path)
     robot = w.spawn('box', box(*plugins), namespace, (0.0, 0.0, 5.0))  # in the air: no contact for a second
     frame = robot.body.com_pose_for_frame((0.0, 0.0, 5.0), rpy_to_quaternion(0.3, 0.0, 0.0))
-    w.sim.world.set_pose(robot.body, frame.position, frame.orientation)  # tilted: world axes are not the box's
+    robot.body.set_pose(frame.position, frame.orientation)  # tilted: world axes are not the box's
     return w, robot
 
 
@@ -68,7 +68,7 @@ def test_a_force_accelerates_a_free_body_at_f_over_m_in_world_axes(tmp_path):
 def test_an_untilted_spin_is_tau_over_i(tmp_path):
     w, robot = spawn(tmp_path, FORCE % 'marker')  # a lumped link: sdformat's rewrite makes it the box
     try:
-        w.sim.world.set_pose(robot.body, robot.body.com_pose_for_frame((0, 0, 5), (0, 0, 0, 1)).position,
+        robot.body.set_pose(robot.body.com_pose_for_frame((0, 0, 5), (0, 0, 0, 1)).position,
                              (0, 0, 0, 1))
         push(w, '/force', (0.0, 0.0, 0.0), (0.0, 0.0, 0.25))
         w.run(0.4)

@@ -39,13 +39,13 @@ def test_the_harness_holds_lowers_holds_again_and_detaches(tmp_path):
     try:
         w.run(2.0)
         assert z(w, robot) == pytest.approx(1.5, abs=1e-3)  # 98 N of gravity against p = 1e6
-        w.sim.world.apply_wrench(robot.body.id, -1, (500.0, 0.0, 0.0), (0.0, 0.0, 0.0))
+        robot.body.links['link'].apply_wrench((500.0, 0.0, 0.0), (0.0, 0.0, 0.0))
         w.run(0.5)
         x, y, _ = robot.body.frame_pose().position
         assert abs(x) < 1e-3 and abs(y) < 1e-3  # a slider: no sideways motion
         w.fake.subscribers['/box/harness/velocity'](Float32(data=-0.5))
         w.run(1.0)
-        _, twist = w.sim.world.link_state(robot.body, 'link')
+        _, twist = robot.body.links['link'].state()
         assert twist.linear[2] == pytest.approx(-0.5, abs=0.02)  # the winch lets it down at 0.5 m/s
         w.fake.subscribers['/box/harness/velocity'](Float32(data=0.0))
         w.run(0.5)

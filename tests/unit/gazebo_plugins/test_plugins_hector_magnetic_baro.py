@@ -28,7 +28,7 @@ def spawn(tmp_path, *plugins, yaw=0.0, z=0.1, namespace='/'):
     w = PluginWorld(tmp_path)
     robot = w.spawn('box', box(*plugins), namespace, (0.0, 0.0, z))
     frame = robot.body.com_pose_for_frame((0.0, 0.0, z), rpy_to_quaternion(0.0, 0.0, yaw))
-    w.sim.world.set_pose(robot.body, frame.position, frame.orientation)
+    robot.body.set_pose(frame.position, frame.orientation)
     assert not w.errors() and not w.warnings(), (w.errors(), w.warnings())
     return w, robot
 
@@ -94,7 +94,7 @@ def test_pressure_altitude_at_a_known_height(tmp_path):
     try:
         w.run(0.95)
         frame = robot.body.com_pose_for_frame((0.0, 0.0, 1000.0), (0.0, 0.0, 0.0, 1.0))
-        w.sim.world.set_pose(robot.body, frame.position, frame.orientation)  # at rest 1000 m up, 50 ms to fall
+        robot.body.set_pose(frame.position, frame.orientation)  # at rest 1000 m up, 50 ms to fall
         w.run(0.1)
         height, altimeter = messages(w, '/uav/pressure_height')[-1], messages(w, '/uav/altimeter')[-1]
         assert height.header.stamp.to_sec() == pytest.approx(1.0) and altimeter.header.stamp == height.header.stamp

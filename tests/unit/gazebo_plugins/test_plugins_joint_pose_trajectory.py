@@ -51,7 +51,7 @@ def trajectory(points, names=('shoulder', 'elbow', 'no_such_joint'), frame='worl
 
 
 def angles(w, robot):
-    return [s[0] for s in w.sim.world.joint_states_raw(robot.body, [robot.body.joints[n].index
+    return [s[0] for s in robot.body.joint_states_raw([robot.body.joints[n].index
                                                                      for n in ('shoulder', 'elbow')])]
 
 

@@ -43,7 +43,7 @@ def test_named_joints_in_order_at_the_update_rate(tmp_path, urdf):
         last = msgs[-1]
         assert list(last.name) == ['right_rear_wheel_joint', 'left_front_wheel_joint']
         assert list(last.velocity) == pytest.approx([4.0, 4.0], rel=0.05)
-        states = w.sim.world.joint_states_raw(robot.body, [robot.body.joints['right_rear_wheel_joint'].index])
+        states = robot.body.joint_states_raw([robot.body.joints['right_rear_wheel_joint'].index])
         # read before the step that ends at its stamp, then turning at 4 rad/s until now (0.5 s)
         age = 0.5 - (last.header.stamp.to_sec() - 0.001)
         assert last.position[0] == pytest.approx(states[0][0] - 4.0 * age, abs=0.01)

@@ -42,7 +42,7 @@ def spawn(tmp_path, urdf, yaw=0.0):
     robot = w.spawn('skid_steer_bot', urdf, '/skid', (0.0, 0.0, 0.1))
     if yaw:
         frame = robot.body.com_pose_for_frame((0.0, 0.0, 0.1), rpy_to_quaternion(0, 0, yaw))
-        w.sim.world.set_pose(robot.body, frame.position, frame.orientation)
+        robot.body.set_pose(frame.position, frame.orientation)
     return w, robot
 
 

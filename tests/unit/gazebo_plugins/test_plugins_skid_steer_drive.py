@@ -24,7 +24,7 @@ def spawn(tmp_path, urdf, params=None, yaw=0.0):
     robot = w.spawn('skid_steer_bot', urdf, '/skid', (0.0, 0.0, 0.1))
     if yaw:
         frame = robot.body.com_pose_for_frame((0.0, 0.0, 0.1), rpy_to_quaternion(0, 0, yaw))
-        w.sim.world.set_pose(robot.body, frame.position, frame.orientation)
+        robot.body.set_pose(frame.position, frame.orientation)
     return w, robot
 
 
@@ -35,7 +35,7 @@ def command(w, vx, wz, topic='/skid/cmd_vel'):
 
 
 def wheel_velocities(w, robot):
-    return [s[1] for s in w.sim.world.joint_states_raw(robot.body, [robot.body.joints[n].index for n in WHEELS])]
+    return [s[1] for s in robot.body.joint_states_raw([robot.body.joints[n].index for n in WHEELS])]
 
 
 def test_topics_under_the_spawn_namespace(tmp_path, urdf):

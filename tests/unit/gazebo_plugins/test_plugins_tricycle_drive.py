@@ -56,7 +56,7 @@ def command(w, vx, angle, topic='/cmd_vel'):
 
 
 def joints(w, robot, *names):
-    return [w.sim.world.joint_states_raw(robot.body, [robot.body.joints[n].index])[0] for n in names]
+    return [robot.body.joint_states_raw([robot.body.joints[n].index])[0] for n in names]
 
 
 def test_topics_in_the_gazebo_ros_namespace_and_the_defaults_said_once(tmp_path):

@@ -61,7 +61,7 @@ def make(tmp_path, worker=False):
     manager = SensorManager(fake, sim)
     robot = sim.spawn_urdf('cam_bot', ROBOT, '/', (0.0, 0.0, 0.0))
     frame = robot.body.com_pose_for_frame((0.0, 0.0, 0.0), (0, 0, 0, 1))
-    sim.world.set_pose(robot.body, frame.position, frame.orientation)
+    robot.body.set_pose(frame.position, frame.orientation)
     return sim, fake, manager
 
 

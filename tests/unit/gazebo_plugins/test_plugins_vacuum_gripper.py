@@ -42,7 +42,7 @@ def spawn(tmp_path, params=PARAMS, box_at=(0.03, 0.0, 1.0), yaw=0.0):
     w.spawn('arm', gripper(VACUUM % params), '/', (0.0, 0.0, 0.0))  # first: its update runs before the box's f3d
     box = w.spawn('box', OBJECT, '/', box_at)
     frame = box.body.com_pose_for_frame(box_at, rpy_to_quaternion(0.0, 0.0, yaw))
-    w.sim.world.set_pose(box.body, frame.position, frame.orientation)
+    box.body.set_pose(frame.position, frame.orientation)
     w.fake.publishers['/box_force'].connections = 1
     return w, box
 

@@ -35,7 +35,7 @@ def roll(w, robot, seconds=1.0):
     """Drives both wheels with 4 N m each; the cart's forward speed."""
     body = robot.body
     for _ in range(int(seconds / w.sim.step_size)):
-        w.sim.world.apply_efforts(body, [body.joints['left_joint'].index, body.joints['right_joint'].index],
+        body.apply_efforts([body.joints['left_joint'].index, body.joints['right_joint'].index],
                                   [4.0, 4.0])
         w.sim.step()
     return body.twist().linear[0]

@@ -42,7 +42,7 @@ def make_world(tmp_path, urdf):
     manager = SensorManager(fake, sim)
     robot = sim.spawn_urdf('sensor_robot', urdf, '/', (0.0, 0.0, 0.0))
     frame = robot.body.com_pose_for_frame((0.0, 0.0, 0.0), (0, 0, 0, 1))
-    sim.world.set_pose(robot.body, frame.position, frame.orientation)
+    robot.body.set_pose(frame.position, frame.orientation)
     return sim, fake, manager, robot
 
 

@@ -5,9 +5,8 @@ import math
 import pytest
 
 from racebot_sim_bridge.description import sdf_reader
-from racebot_sim_bridge.gazebo_ros_api.forces import (ForceSchedule, Job, job_due, job_over, link_address,
-                                                      shift_wrench, start_and_duration, truncate_effort,
-                                                      wrench_in_link)
+from racebot_sim_bridge.gazebo_ros_api.forces import (ForceSchedule, Job, job_due, job_over, shift_wrench,
+                                                      start_and_duration, truncate_effort, wrench_in_link)
 from racebot_sim_bridge.kinematics.rotations import rpy_to_quaternion
 from racebot_sim_bridge.engine.sim_time import NS as NSEC_PER_SEC
 from racebot_sim_bridge.engine.simulator import Simulator
@@ -154,14 +153,13 @@ def _fall(sim, seconds):
 
 def test_m_g_up_through_the_hook_cancels_gravity(box_sim):
     body = box_sim.body('box')
-    address = link_address(body, 'body')
-    weight = box_sim.world.link_dynamics(*address).mass * 9.8
+    weight = body.links['body'].dynamics().mass * 9.8
     schedule = ForceSchedule()
     schedule.add_wrench(('box', 'body'), (0, 0, weight), (0, 0, 0), 0, -1, body)
 
     def apply(t):
         for (_, link), (force, torque, owner) in schedule.due(int(round(t * NSEC_PER_SEC)))[0].items():
-            box_sim.world.apply_wrench(*link_address(owner, link), force, torque)
+            owner.links[link].apply_wrench(force, torque)
     box_sim.before_physics.append(apply)
     assert abs(_fall(box_sim, 0.5)) < 1e-6
     schedule.clear_wrenches(lambda target: True)

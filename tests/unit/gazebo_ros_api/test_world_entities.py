@@ -62,9 +62,9 @@ def test_set_model_state_moves_every_sdf_link(world):
 def test_set_model_state_zeroes_joint_velocities(world):
     e = WorldEntities(world)
     arm = world.bodies['arm']
-    world.set_joint_position(arm, 'hinge', 0.4, velocity=3.0)
+    arm.joints['hinge'].set_position(0.4, velocity=3.0)
     e.set_model_state(arm, ((0.0, 0.0, 2.0), (0.0, 0.0, 0.0, 1.0)), ((0.0, 0.0, 0.0), (0.0, 0.0, 0.0)))
-    state = world.joint_states(arm, [arm.joints['hinge'].index])[0]
+    state = arm.joint_states([arm.joints['hinge'].index])[0]
     assert state.position == pytest.approx(0.4) and state.velocity == 0.0
     assert close(e.model_state(arm)[0].position, (0, 0, 2))  # the root link's frame, not its centre of mass
 
@@ -72,7 +72,7 @@ def test_set_model_state_zeroes_joint_velocities(world):
 def test_set_link_state_of_a_urdf_child_link_carries_the_model(world):
     e = WorldEntities(world)
     arm = world.bodies['arm']
-    world.set_joint_position(arm, 'hinge', 0.5)
+    arm.joints['hinge'].set_position(0.5)
     target = ((2.0, -3.0, 2.0), YAW_90)
     e.set_link_state(arm, 'arm_link', target, ((0.0, 0.0, 0.0), (0.0, 0.0, 1.0)))
     link_pose, link_twist = e.link_state(arm, 'arm_link')
@@ -81,4 +81,4 @@ def test_set_link_state_of_a_urdf_child_link_carries_the_model(world):
     assert close(link_twist.angular, (0, 0, 1))
     # the link spins about its own origin: its centre of mass, at its origin, stands still
     assert close(link_twist.linear, (0, 0, 0), tol=1e-3)
-    assert world.joint_states(arm, [arm.joints['hinge'].index])[0].position == pytest.approx(0.5)
+    assert arm.joint_states([arm.joints['hinge'].index])[0].position == pytest.approx(0.5)

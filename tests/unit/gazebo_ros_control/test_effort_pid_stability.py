@@ -48,15 +48,15 @@ def hold(inertia, target=0.01, seconds=1.0):
     log = []
 
     def control(_t):
-        position, velocity = sim.world.joint_states(robot.body, [index])[0]
+        position, velocity = robot.body.joint_states([index])[0]
         effort = min(max(pid.compute_with_error_dot(target - position, -velocity, dt), -28.0), 28.0)
-        sim.world.apply_efforts(robot.body, [index], [effort])
+        robot.body.apply_efforts([index], [effort])
         log.append((position, velocity, effort))
 
     sim.before_physics.append(control)
     for _ in range(int(round(seconds / dt))):
         sim.step()
-    return sim.world.joint_states(robot.body, [index])[0].position, [(v, e) for _, v, e in log[-100:]]
+    return robot.body.joint_states([index])[0].position, [(v, e) for _, v, e in log[-100:]]
 
 
 def test_the_ur5_wrist_gains_hold_still_on_the_ur5_wrist_inertia():

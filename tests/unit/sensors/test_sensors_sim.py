@@ -102,7 +102,7 @@ def make_world(racebot_xml, params=None, pose=(0.0, 0.0, 0.0)):
     manager = SensorManager(fake, sim)
     robot = sim.spawn_urdf('racebot', racebot_xml, '/', pose)  # '/': spawn_model at the root
     frame = robot.body.com_pose_for_frame(pose, (0, 0, 0, 1))  # as spawn_urdf_model places it
-    sim.world.set_pose(robot.body, frame.position, frame.orientation)
+    robot.body.set_pose(frame.position, frame.orientation)
     return sim, fake, manager, robot
 
 
@@ -255,15 +255,14 @@ def test_imu_acceleration_is_over_the_last_step_before_each_update(world):
     listen(fake, '/imu')
     run(sim, 0.0495)  # sensor updates every 10 ms; stop just after one (sim time ~2.55)
     body = robot.body
-    links = [-1] + list(range(sim.world.client.getNumJoints(body.id)))
-    mass = sum(sim.world.link_dynamics(body.id, i).mass for i in links)
+    mass = sum(link.dynamics().mass for link in body.links.values())
     imu = next(s for s in manager._active if isinstance(s, ImuSensor))
     due = imu.schedule.next
     force = 5.0 * 9.8 * mass  # 5 g upwards on the whole car, for one step
 
     def push(t_end):
         if abs(t_end - due) < 1e-9:
-            sim.world.client.applyExternalForce(body.id, -1, (0.0, 0.0, force), sim.world.com_position(body.id, -1),
+            sim.world.client.applyExternalForce(body.id, -1, (0.0, 0.0, force), body.pose().position,
                                                 1)  # WORLD_FRAME
     sim.before_physics.append(push)
     while sim.time < due + 1e-9:
@@ -388,7 +387,7 @@ def test_a_preserved_fixed_link_is_a_real_frame_with_a_working_sensor(racebot_xm
         assert 'camera' not in body.link_names()  # still lumped, as Gazebo does
         listen(fake, '/scan')
         run(sim, 0.5)
-        (pose, _), frame = sim.world.link_state(body, 'lidar'), body.frame_pose()
+        (pose, _), frame = body.links['lidar'].state(), body.frame_pose()
         expected = rotations.compose((frame.position, frame.orientation),
                                      rotations.compose((0.0, 0.0, 0.032, 0.0, 0.0, 0.0),
                                                        (0.093603, 0.0, 0.12377, 0.0, 0.0, 0.0)))

@@ -2,7 +2,7 @@
 
 prepare_urdf_for_bullet rewrites a spawned robot's parsed URDF for loadURDF: Gazebo's fixed-joint lumping
 (../description/urdf_lumping.py), the links in tree order (PyBullet crashes on a root written last), negligible
-inertia where none is declared, the Gazebo-only blocks dropped. No PyBullet calls here: physics.py loads the text.
+inertia where none is declared, the Gazebo-only blocks dropped. No PyBullet calls here: urdf_spawn.py loads the text.
 """
 from __future__ import annotations
 

@@ -47,7 +47,7 @@ def implicit_damping(urdf_model: RobotModel, joint_name: str) -> float:
 
 def implicit_joints(urdf_model: RobotModel, joints: Mapping[str, object]) -> list[tuple[int, float, float | None,
                                                                                       float | None]]:
-    """(index, damping, lower, upper) of the implicitly damped joints among `joints` (name -> physics.JointInfo);
+    """(index, damping, lower, upper) of the implicitly damped joints among `joints` (name -> joint.Joint);
     limits None where the joint has none (continuous: sdformat writes it unlimited; PyBullet reports the URDF's
     numbers, or lower >= upper)."""
     result = []

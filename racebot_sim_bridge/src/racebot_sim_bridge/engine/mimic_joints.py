@@ -19,7 +19,7 @@ if TYPE_CHECKING:
     from racebot_sim_bridge.description.urdf_model import RobotModel
     from racebot_sim_bridge.engine.pybullet_client import PybulletClient
 
-# A body is given as its PyBullet id and its physics.Body.joints ({name: JointInfo}); physics imports this module.
+# A body is given as its PyBullet id and its Model.joints ({name: joint.Joint}); model.py and joint.py import this.
 
 # The gear's force bound: far above any joint effort a URDF gives, so the joints move as one (a linkage), yet
 # finite, as Bullet wants. Its position correction: measured to hold the rule to 1e-4 under gravity loads.
@@ -31,7 +31,7 @@ Coupling = namedtuple('Coupling', 'leader multiplier offset constraint')
 
 def couple(client: PybulletClient, body_id: int, joints: dict, model: RobotModel) -> dict[str, Coupling]:
     """Gear constraints for the <mimic> joints of `model` (RobotModel.mimics) on its PyBullet body, the joints
-    put where the rule says; {mimic joint: Coupling} (a Body's `mimics`), leaders before their followers."""
+    put where the rule says; {mimic joint: Coupling} (a Model's `mimics`), leaders before their followers."""
     mimics = model.mimics()
     couplings = {}
     for name in _leaders_first(mimics):

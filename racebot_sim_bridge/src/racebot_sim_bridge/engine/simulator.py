@@ -15,6 +15,7 @@ from collections.abc import Callable
 from typing import TYPE_CHECKING, Any
 
 from racebot_sim_bridge.engine import physics
+from racebot_sim_bridge.engine.control_hook import ControlHook
 from racebot_sim_bridge.description import sdf_urdf, urdf_model, urdf_reader
 from racebot_sim_bridge.kinematics.rotations import Quat, Vec3, compose
 
@@ -36,18 +37,19 @@ class SpawnError(ValueError):
 
 
 class Robot:
-    """A spawned URDF model: its PyBullet body and its parsed model (urdf_model.RobotModel).
+    """A spawned URDF model: its engine model (`body`, a physics.Model) and its parsed model
+    (urdf_model.RobotModel).
 
     spawn_namespace: the spawn request's robot_namespace (plugins without their own use it). `control`
-    is the loop that drives its joints, set by the plugin that does (gazebo_ros_control's, when the
-    URDF declares it), else None; step() runs it."""
+    is the loop that drives its joints (a control_hook.ControlHook), set by the plugin that does
+    (gazebo_ros_control's, when the URDF declares it), else None; step() runs it."""
 
-    def __init__(self, name: str, body: physics.Body, model: urdf_model.RobotModel, spawn_namespace: str = '') -> None:
+    def __init__(self, name: str, body: physics.Model, model: urdf_model.RobotModel, spawn_namespace: str = '') -> None:
         self.name = name
         self.body = body
         self.model = model
         self.spawn_namespace = spawn_namespace
-        self.control = None
+        self.control: ControlHook | None = None
 
 
 class Simulator:
@@ -74,7 +76,7 @@ class Simulator:
         # (gazebo_ros_joint_pose_trajectory turns it off while it plays a trajectory)
         self.physics_enabled = True
         self.robots = {}
-        self._controls = []  # the robots' control loops (Robot.control), in spawn order: what step() runs
+        self._controls: list[ControlHook] = []  # the robots' control loops (Robot.control), in spawn order
         self.world_models = self.world.load_world(world_spec, warn=lambda m: self.log.warn('world: %s' % m))
         # Extension points (plugins, sensors, odometry truth): on_create(robot) once a URDF robot's body is
         # built, before it joins the world (a plugin that may refuse the spawn, with SpawnError, attaches
@@ -139,6 +141,9 @@ class Simulator:
             try:
                 for hook in self.on_create:
                     hook(robot)
+                if robot.control is not None and not isinstance(robot.control, ControlHook):
+                    bad, robot.control = robot.control, None
+                    raise TypeError('its control loop %r is no ControlHook (engine/control_hook.py)' % (bad,))
             except Exception as err:
                 if robot.control is not None:
                     robot.control.close()
@@ -243,6 +248,7 @@ class Simulator:
             self._step()
 
     def _step(self) -> None:
+        """One world update: each robot's ControlHook as control_hook.py describes, the hooks, the physics step."""
         t = self.time
         world = self.world
         for c in self._controls:
@@ -286,8 +292,7 @@ class Simulator:
         reset_world, with the time since 0 as its period, and one control period after
         reset_simulation."""
         with self.lock:
-            for body in self.world.bodies.values():  # static models too: set_model_state moves them
-                self.world.reset_to_spawn(body)
+            self.world.reset()
             for c in self._controls:
                 c.last_update = 0.0
             for hook in self.on_reset:
@@ -297,7 +302,7 @@ class Simulator:
     def model_names(self) -> list[str]:
         return list(self.world.bodies)
 
-    def body(self, name: str) -> physics.Body | None:
+    def body(self, name: str) -> physics.Model | None:
         return self.world.bodies.get(name)
 
     def close(self) -> None:

@@ -1,7 +1,7 @@
 """A copy of the simulated world in another PyBullet client, posed as the world was at an instant.
 
 No rospy here. The render worker and the window (viewer_process) each hold such a copy. It is
-built only from what physics.PhysicsWorld records of every body (`Body.source`, picklable) and
+built only from what physics.PhysicsWorld records of every body (`Model.source`, picklable) and
 PhysicsWorld's own loaders, so whatever the loaders draw (shapes, meshes, colours) appears in the
 copy too.
 - snapshot(world): every body's base pose(s) and joint positions, taken on the physics thread at
@@ -17,7 +17,7 @@ from typing import TYPE_CHECKING, Dict, List, Tuple
 from racebot_sim_bridge.kinematics.rotations import Transform
 
 if TYPE_CHECKING:
-    from racebot_sim_bridge.engine.physics import Body, BodySource, PhysicsWorld
+    from racebot_sim_bridge.engine.physics import BodySource, Model, PhysicsWorld
 
 _SERIALS = itertools.count()
 
@@ -26,9 +26,9 @@ BodyKey = Tuple[str, int]  # (model name, serial): see body_key
 Snapshot = Dict[str, Tuple[BodyKey, List[Transform], Tuple[float, ...]]]
 
 
-def body_key(body: Body) -> BodyKey:
+def body_key(body: Model) -> BodyKey:
     """Identifies a body across a delete and respawn under the same name (PyBullet may even give
-    the new body the old id): a serial number kept on the Body (its copy_key) the first time it is
+    the new body the old id): a serial number kept on the Model (its copy_key) the first time it is
     asked for."""
     if body.copy_key is None:
         body.copy_key = (body.name, next(_SERIALS))
@@ -49,7 +49,7 @@ def snapshot(world: PhysicsWorld) -> Snapshot:
 
 
 def sources(world: PhysicsWorld) -> dict[str, tuple[BodyKey, BodySource]]:
-    """{name: (key, Body.source)} of every body."""
+    """{name: (key, Model.source)} of every body."""
     return {name: (body_key(body), body.source) for name, body in world.bodies.items()}
 
 

@@ -152,7 +152,7 @@ class DiffDrive(GazeboRosPlugin):
         """The wheels' velocity motors (SetParam fmax and vel); PyBullet keeps a motor's target, so the same again
         (a robot cruising: every update) is not sent."""
         if velocities != self._driven:
-            self.world.drive_velocities(self.robot.body, self.indices, velocities, [self.torque] * 2)
+            self.robot.body.drive_velocities(self.indices, velocities, [self.torque] * 2)
             self._driven = velocities
 
     # -- outputs --------------------------------------------------------------------------------

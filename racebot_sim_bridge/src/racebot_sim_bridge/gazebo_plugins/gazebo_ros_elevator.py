@@ -40,7 +40,7 @@ def push(plugin, joint, force):
     """Joint::SetForce for one update: the force clamped to the joint's effort limit (none when 0)."""
     if joint.max_effort > 0:
         force = min(max(force, -joint.max_effort), joint.max_effort)
-    plugin.world.apply_efforts(plugin.robot.body, [joint.index], [force])
+    joint.apply_effort(force)
 
 
 class Elevator(ModelPlugin):
@@ -84,8 +84,8 @@ class Elevator(ModelPlugin):
         if floor is not None and not self.states:  # MoveToFloor: ignored while busy
             self.states = [['close', None, False], ['move', floor, False], ['open', None, False],
                            ['wait', self.door_wait_time, False], ['close', None, False]]
-        (lift, _), (door, _) = [s[:2] for s in self.world.joint_states_raw(
-            self.robot.body, [self.lift.index, self.door.index])]
+        (lift, _), (door, _) = [s[:2] for s in self.robot.body.joint_states_raw(
+            [self.lift.index, self.door.index])]
         if self.states and self._state_done(self.states[0], time):
             self.states.pop(0)
         self._door(door, time)

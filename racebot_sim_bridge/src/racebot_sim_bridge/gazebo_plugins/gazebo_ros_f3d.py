@@ -41,5 +41,5 @@ class F3D(ModelPlugin):
     def before_physics(self, time):
         if self.pub.get_num_connections() == 0:
             return
-        force, torque = self.world.applied_wrench(self.robot.body.id, self.index)
+        force, torque = self.robot.body.links[self.body_name].applied_wrench()
         self.publish_wrench(time, force, torque)

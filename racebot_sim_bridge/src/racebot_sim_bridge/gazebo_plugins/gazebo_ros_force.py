@@ -36,4 +36,4 @@ class Force(ModelPlugin):
     def before_physics(self, time):
         force, torque = self.wrench
         if force != ZERO[0] or torque != ZERO[1]:
-            self.world.apply_wrench(self.robot.body.id, self.index, force, torque)
+            self.robot.body.links[self.body_name].apply_wrench(force, torque)

@@ -71,15 +71,16 @@ class FTSensor(ModelPlugin):
                                     ctx.sim.node_namespace)
         self.frame_id = tf_resolve(tf_prefix(ctx.rospy, ns, search=False), self.child)
         self.info('reporting wrench values to the frame [%s]' % self.frame_id)
-        self.world.enable_joint_wrench(robot.body, self.index)
+        robot.body.links[self.child].enable_parent_wrench()
         from geometry_msgs.msg import WrenchStamped
         self.msg_class = WrenchStamped
         self.pub = self.publisher(name_in(ns, p.string('topicName', '')), WrenchStamped)
 
     def wrench(self):
         """(force, torque) through the joint, as Joint::GetForceTorque(0).body2Force/body2Torque."""
-        force, torque = self.world.joint_wrench(self.robot.body, self.index)
-        dyn = self.world.link_dynamics(self.robot.body.id, self.index)
+        link = self.robot.body.links[self.child]
+        force, torque = link.parent_wrench()
+        dyn = link.dynamics()
         return wrench_at_link_origin(force, torque, dyn.inertial_position, dyn.inertial_orientation)
 
     def before_physics(self, time):

@@ -87,7 +87,7 @@ class HandOfGod(ModelPlugin):
         self.kl = p.number('kl', 200.0, minimum=0)  # negative: upstream's sqrt gives NaN forces
         self.ka = p.number('ka', 200.0, minimum=0)
         self.index = robot.body.link_index[self.link]
-        dynamics = self.world.link_dynamics(robot.body.id, self.index)
+        dynamics = robot.body.links[self.link].dynamics()
         self.cl = 2.0 * math.sqrt(self.kl * dynamics.mass)
         self.ca = 2.0 * math.sqrt(self.ka * dynamics.inertia_diagonal[0])
         self.weight = tuple(-dynamics.mass * g for g in self.world.gravity)  # SetGravityMode(false)'s stand-in
@@ -113,8 +113,8 @@ class HandOfGod(ModelPlugin):
         if time < self.last_time:  # reset_simulation: tf's listener clears its buffer on a jump back in time
             self.buffer.clear()
         self.last_time = time
-        body_id = self.robot.body.id
-        self.world.apply_wrench(body_id, self.index, self.weight, (0.0, 0.0, 0.0), accumulate=False)
+        link = self.robot.body.links[self.link]
+        link.apply_wrench(self.weight, (0.0, 0.0, 0.0), accumulate=False)
         try:
             desired = self.buffer.lookup_transform('world', self.frame_id + '_desired', self.ctx.rospy.Time(0))
         except self.tf2.TransformException as err:
@@ -127,6 +127,6 @@ class HandOfGod(ModelPlugin):
         position, orientation, linear, angular = link_motion(self.world, self.robot.body, self.link)
         force, torque = hand_of_god_wrench(position, orientation, linear, angular, (t.x, t.y, t.z),
                                            (r.x, r.y, r.z, r.w), self.kl, self.ka, self.cl, self.ca)
-        self.world.apply_wrench(body_id, self.index, force, rotate(orientation, torque))
+        link.apply_wrench(force, rotate(orientation, torque))
         msg = transform(self.stamp(time), 'world', self.frame_id + '_actual', position, orientation)
         self.tf_pub.publish(msg)

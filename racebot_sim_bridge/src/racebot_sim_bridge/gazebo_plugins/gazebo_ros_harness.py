@@ -63,7 +63,7 @@ class HarnessJoint:
         axis = tuple(float(v) for v in (elem.findtext('axis/xyz') or '0 0 1').split())
         norm = math.sqrt(sum(a * a for a in axis)) or 1.0
         axis = tuple(a / norm for a in axis)
-        frame, _ = self.world.link_state(body, self.link)
+        frame, _ = body.links[self.link].state()
         frame = (frame.position, frame.orientation)
         self.anchor = tuple(pose[:3])  # in the link frame
         joint_frame = compose(frame, pose)
@@ -79,9 +79,9 @@ class HarnessJoint:
 
     def anchor_state(self, body):
         """(position along the axis since attach, velocity along it) of the anchor."""
-        frame, twist = self.world.link_state(body, self.link)
+        frame, twist = body.links[self.link].state()
         anchor = compose((frame.position, frame.orientation), (self.anchor, (0.0, 0.0, 0.0, 1.0)))[0]
-        com = self.world.com_position(body.id, self.index)
+        com = body.links[self.link].com_position()
         w = twist.angular
         r = [a - c for a, c in zip(anchor, com)]
         velocity = [twist.linear[0] + w[1] * r[2] - w[2] * r[1], twist.linear[1] + w[2] * r[0] - w[0] * r[2],
@@ -172,8 +172,7 @@ class Harness(ModelPlugin):
         if winch.effort >= 0:
             force = min(max(force, -winch.effort), winch.effort)
         force -= winch.damping * speed
-        self.world.apply_wrench(body.id, winch.index, tuple(force * a for a in winch.axis), (0.0, 0.0, 0.0),
-                                accumulate=False)
+        body.links[winch.link].apply_wrench(tuple(force * a for a in winch.axis), (0.0, 0.0, 0.0), accumulate=False)
         self.prev_time = time
 
     def set_winch_velocity(self, value):

@@ -111,15 +111,14 @@ class JointPoseTrajectory(ModelPlugin):
         before = self.entities.link_state(body, reference)[0] if reference is not None else None
         for joint, position in zip(self.trajectory.joints, positions):
             if joint is not None:  # SetPosition(0, p, preserveWorldVelocity): the joint's rate is kept
-                rate = self.world.joint_states_raw(body, [joint.index])[0][1]
-                self.world.set_joint_position(body, joint.name, position, rate)
+                joint.set_position(position, joint.state().velocity)
         if reference is not None and body.link_index.get(reference, -1) >= 0:
             # Model::SetLinkWorldPose: the model moved rigidly so that the reference link is back where it was
             after = self.entities.link_state(body, reference)[0]
             root = frames.in_world(before, frames.relative_to(after, body.frame_pose()))
             com = body.com_pose_for_frame(*root)
             linear, angular = body.twist()
-            self.world.set_base_state(body.id, com.position, com.orientation, linear, angular)
+            body.set_pose(com.position, com.orientation, linear, angular)
 
     def _restore_physics(self):
         if self.saved_physics is not None:

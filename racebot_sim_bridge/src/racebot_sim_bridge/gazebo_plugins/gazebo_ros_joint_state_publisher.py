@@ -48,7 +48,7 @@ class JointStatePublisher(ModelPlugin):
     def before_physics(self, time):
         if not self.clock.due(time):
             return
-        states = self.world.joint_states_raw(self.robot.body, self.indices) if self.indices else []
+        states = self.robot.body.joint_states_raw(self.indices) if self.indices else []
         msg = self.msg_class(name=list(self.names), position=[s[0] for s in states],
                              velocity=[s[1] for s in states])
         msg.header.stamp = self.stamp(time)

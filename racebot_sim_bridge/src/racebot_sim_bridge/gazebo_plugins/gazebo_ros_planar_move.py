@@ -61,7 +61,7 @@ class PlanarMove(ModelPlugin):
             command = self.command = (0.0, 0.0, 0.0)
         position, orientation = self._pose()
         linear, angular = model_velocity(command, yaw_of(orientation))
-        self.world.set_base_velocity(self.robot.body.id, linear, angular)
+        self.robot.body.set_velocity(linear, angular)
         if self.odometry_rate > 0:
             due, since = self.clock.due(time)
             if due:

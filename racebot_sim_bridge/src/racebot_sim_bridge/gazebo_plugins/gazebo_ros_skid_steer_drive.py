@@ -50,7 +50,7 @@ class SkidSteerDrive(ModelPlugin):
         self.command = (0.0, 0.0)  # cmd_vel's (linear.x, angular.z), replaced whole by the callback
         self.clock = FixedPeriod(rate, ctx.sim.time)
         # Load: each wheel's motor gets its maximum torque (SetParam "fmax"), target speed 0 until an update
-        self.world.drive_velocities(robot.body, self.indices, [0.0] * 4, [self.torque] * 4)
+        robot.body.drive_velocities(self.indices, [0.0] * 4, [self.torque] * 4)
         from geometry_msgs.msg import Twist
         from nav_msgs.msg import Odometry
         self.odom_pub = self.publisher(name_in(ns, p.string('odometryTopic', 'odom')), Odometry)
@@ -76,7 +76,7 @@ class SkidSteerDrive(ModelPlugin):
         self._publish_odometry(time)
         vx, wz = self.command
         speeds = skid_steer.wheel_velocities(vx, wz, self.separation, self.diameter)
-        self.world.drive_velocities(self.robot.body, self.indices, list(speeds), [self.torque] * 4)
+        self.robot.body.drive_velocities(self.indices, list(speeds), [self.torque] * 4)
 
     def _publish_odometry(self, time):
         body = self.robot.body

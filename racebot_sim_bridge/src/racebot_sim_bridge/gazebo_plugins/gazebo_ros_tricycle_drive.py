@@ -78,7 +78,7 @@ class TricycleDrive(GazeboRosPlugin):
         self.encoder_twist = (0.0, 0.0, 0.0)
         self.last_encoder_ns = 0  # upstream's last_odom_update_ starts at time 0
         # Load: SetParam("fmax", wheelTorque) on the actuated wheel and the steering joint, their speed 0
-        self.world.drive_velocities(robot.body, self.indices[:2], [0.0, 0.0], [self.torque] * 2)
+        robot.body.drive_velocities(self.indices[:2], [0.0, 0.0], [self.torque] * 2)
         from geometry_msgs.msg import Twist
         from nav_msgs.msg import Odometry
         from sensor_msgs.msg import JointState
@@ -95,7 +95,7 @@ class TricycleDrive(GazeboRosPlugin):
     def before_physics(self, time):
         now = to_ns(time)
         if self.encoder:
-            left, right = self.world.joint_states_raw(self.robot.body, self.indices[2:])
+            left, right = self.robot.body.joint_states_raw(self.indices[2:])
             dt = (now - self.last_encoder_ns) / float(NS)
             self.last_encoder_ns = now
             if dt > 0:
@@ -105,7 +105,7 @@ class TricycleDrive(GazeboRosPlugin):
         if not self.clock.due(time):
             return
         stamp = self.stamp(time)
-        states = self.world.joint_states_raw(self.robot.body, self.indices)
+        states = self.robot.body.joint_states_raw(self.indices)
         self._publish_odometry(stamp)
         if self.publish_wheel_tf:
             for parent_frame, child_frame, link in self.wheel_frames:
@@ -125,13 +125,13 @@ class TricycleDrive(GazeboRosPlugin):
         speed = tricycle.wheel_speed(target_speed, states[1][1], self.acceleration, self.deceleration,
                                      self.speed_tolerance, dt)
         body = self.robot.body
-        self.world.drive_velocities(body, [self.indices[1]], [speed], [self.torque])
+        body.drive_velocities([self.indices[1]], [speed], [self.torque])
         mode, value = tricycle.steering(self.command[1], states[0][0], target_speed, self.steering_speed,
                                         self.angle_tolerance, dt)
         if mode == 'velocity':
-            self.world.drive_velocities(body, [self.indices[0]], [value], [self.torque])
+            body.drive_velocities([self.indices[0]], [value], [self.torque])
         else:  # SetPosition(0, angle, preserveWorldVelocity): the joint's rate is kept; its motor holds it there
-            self.world.set_joint_position(body, self.steering.name, value, states[0][1])
+            self.steering.set_position(value, states[0][1])
 
     def _publish_odometry(self, stamp):
         if self.encoder:

@@ -99,7 +99,5 @@ class VacuumGripper(ModelPlugin):
             return True
         target = (gripper_position, pose.orientation) if snapped else (pose.position, pose.orientation)
         self.entities.set_link_state(body, link, target, gripper_twist)
-        extra = dict(body.extra_bodies)
-        body_id, index = (extra[link], -1) if link in extra else (body.id, body.link_index[link])
-        self.world.apply_wrench(body_id, index, force, (0.0, 0.0, 0.0))
+        body.links[link].apply_wrench(force, (0.0, 0.0, 0.0))
         return True

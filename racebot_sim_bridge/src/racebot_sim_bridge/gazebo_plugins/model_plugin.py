@@ -230,7 +230,7 @@ class ModelPlugin:
         self.pub.publish(msg)
 
     def joint(self, tag, default=None):
-        """The movable joint named by <tag> (a physics.JointInfo); PluginError when it is missing or
+        """The movable joint named by <tag> (a physics.Joint); PluginError when it is missing or
         names no movable joint of the robot: nothing sensible can stand in for a wheel."""
         name = self.params.string(tag, default)
         if not name:

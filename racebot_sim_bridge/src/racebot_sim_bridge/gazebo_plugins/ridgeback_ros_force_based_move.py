@@ -102,8 +102,9 @@ class RidgebackForceBasedMove(ModelPlugin):
             command = (0.0, 0.0, 0.0)
         relative_linear, relative_angular, world_angular = self._velocities()
         force, torque = force_and_torque(command, relative_linear, world_angular[2], self.gains)
-        pose, _ = self.world.link_state(self.robot.body, self.link_name)
-        self.world.apply_wrench(self.robot.body.id, self.index, rotate(pose.orientation, force), torque)
+        link = self.robot.body.links[self.link_name]
+        pose, _ = link.state()
+        link.apply_wrench(rotate(pose.orientation, force), torque)
         if self.odometry_rate > 0:
             due, since = self.clock.due(time)
             if due:

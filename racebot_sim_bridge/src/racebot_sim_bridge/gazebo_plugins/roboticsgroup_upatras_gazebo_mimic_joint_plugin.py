@@ -55,20 +55,19 @@ class MimicJointPlugin(ModelPlugin):
             self.info("joint '%s' is also a URDF <mimic>: this plugin drives it, racebot's own <mimic> gear is off"
                       % self.mimic.name)
         if self.pid is None and math.isfinite(self.max_effort):  # SetParam("fmax", 0, maxEffort)
-            self.world.drive_velocities(body, [self.mimic.index], [0.0], [self.max_effort])
+            self.mimic.drive_velocity(0.0, self.max_effort)
         self.indices = [self.leader.index, self.mimic.index]
         self.info('MimicJointPlugin loaded! Joint: "%s", Mimic joint: "%s", Multiplier: %g, Offset: %g, MaxEffort: %g, '
                   'Sensitiveness: %g' % (self.leader.name, self.mimic.name, self.multiplier, self.offset,
                                          self.max_effort, self.sensitiveness))
 
     def before_physics(self, time):
-        (leader, _), (position, velocity) = [s[:2] for s in self.world.joint_states_raw(self.robot.body, self.indices)]
+        (leader, _), (position, velocity) = [s[:2] for s in self.robot.body.joint_states_raw(self.indices)]
         target = leader * self.multiplier + self.offset
         if abs(target - position) < self.sensitiveness:
             return
         if self.pid is None:
-            self.world.set_joint_position(self.robot.body, self.mimic.name, target, velocity)
+            self.mimic.set_position(target, velocity)
             return
         effort = self.pid.compute(target - position, self.world.step_size)
-        self.world.apply_efforts(self.robot.body, [self.mimic.index], [min(max(effort, -self.max_effort),
-                                                                            self.max_effort)])
+        self.mimic.apply_effort(min(max(effort, -self.max_effort), self.max_effort))

@@ -2,7 +2,7 @@
 
 No rospy. Callers hold `Simulator.lock`. A model's pose is its model frame (Gazebo's Model::WorldPose):
 a URDF model's root link frame (of an SDF robot spawned as a URDF, less the root link's pose in the SDF
-model, Body.model_offset); an SDF model's <pose> (its first link's body, less that link's pose in the
+model, Model.model_offset); an SDF model's <pose> (its first link's body, less that link's pose in the
 model). Links: a URDF model's links after the fixed-joint merge (what Gazebo keeps as links); an SDF
 model's links, each its own PyBullet body. Twists are PyBullet's (centre-of-mass velocities).
 
@@ -40,12 +40,12 @@ class WorldEntities:
         return entity if entity is not None and entity.link is not None else None
 
     def model_body(self, name):
-        """The Body of the model called `name` (World::ModelByName: a link's name is no model); None if none."""
+        """The physics Model of the model called `name` (World::ModelByName: a link's name is no model); None if none."""
         entity = self.resolve(name)
         return self.world.bodies[entity.model] if entity is not None and entity.link is None else None
 
     def find_joint(self, name):
-        """(Body, joint name) of the joint called `name` as Model::GetJoint finds it, model by model: its plain or
+        """(Model, joint name) of the joint called `name` as Model::GetJoint finds it, model by model: its plain or
         scoped name; (None, None) when no model has it."""
         for model, body in self.world.bodies.items():
             for joint in body.joints:
@@ -81,10 +81,7 @@ class WorldEntities:
         return pose, twist
 
     def link_state(self, body, link):
-        extra = dict(body.extra_bodies)
-        if link in extra:
-            return self.world.base_state(extra[link])
-        return self.world.link_state(body, link)
+        return body.links[link].state()
 
     # -- moves ------------------------------------------------------------------------------------
     def set_model_state(self, body, pose, twist):
@@ -95,19 +92,18 @@ class WorldEntities:
             return
         old = self.model_state(body)[0]
         root = frames.in_world(pose, offset)
-        self.world.set_base_state(body.id, root[0], root[1], twist[0], twist[1])
-        for _, body_id in body.extra_bodies:
-            link_pose = self.world.base_state(body_id)[0]
-            moved = frames.in_world(pose, frames.relative_to(old, link_pose))
-            self.world.set_base_state(body_id, moved[0], moved[1], twist[0], twist[1])
+        body.set_pose(root[0], root[1], twist[0], twist[1])
+        for name, _ in body.extra_bodies:
+            link = body.links[name]
+            moved = frames.in_world(pose, frames.relative_to(old, link.state()[0]))
+            link.set_base_state(moved[0], moved[1], twist[0], twist[1])
 
     def set_link_state(self, body, link, pose, twist):
         """Puts link `link` at `pose` (world) with `twist`; see the module's note for URDF links."""
-        extra = dict(body.extra_bodies)
-        if link in extra:
-            self.world.set_base_state(extra[link], pose[0], pose[1], twist[0], twist[1])
+        if link in dict(body.extra_bodies):
+            body.links[link].set_base_state(pose[0], pose[1], twist[0], twist[1])
             return
-        link_pose = self.world.link_state(body, link)[0]
+        link_pose = body.links[link].state()[0]
         root = body.frame_pose()
         new_root = frames.in_world(pose, frames.relative_to(link_pose, root))
         # the base's velocity that gives the link `twist` when the model moves as one rigid body
@@ -117,16 +113,16 @@ class WorldEntities:
         if body.kind is not BodyKind.SDF:
             self._place_articulated(body, new_root, (linear, twist[1]))
         else:  # an SDF model's first link: its body alone
-            self.world.set_base_state(body.id, new_root[0], new_root[1], linear, twist[1])
+            body.set_pose(new_root[0], new_root[1], linear, twist[1])
 
     def _place_articulated(self, body, frame_pose, twist):
         com = body.com_pose_for_frame(*frame_pose)
-        self.world.set_pose(body, com.position, com.orientation, twist[0], twist[1])
+        body.set_pose(com.position, com.orientation, twist[0], twist[1])
         if body.joints:
             joints = list(body.joints.values())
-            states = self.world.joint_states(body, [j.index for j in joints])
+            states = body.joint_states([j.index for j in joints])
             for joint, s in zip(joints, states):
-                self.world.set_joint_position(body, joint.name, s.position, 0.0)
+                joint.set_position(s.position, 0.0)
 
     @staticmethod
     def _root_link_in_model(body):

@@ -31,7 +31,7 @@ from racebot_sim_bridge.engine.sim_time import to_ns
 from racebot_sim_bridge.gazebo_ros_api.service_group import ServiceGroup
 
 
-# times in ns; duration < 0: until cleared; owner: the Body the target belongs to (a model deleted and
+# times in ns; duration < 0: until cleared; owner: the Model the target belongs to (a model deleted and
 # spawned again under the same name is another body, which the old jobs do not touch)
 Job = namedtuple('Job', 'target value start duration owner')
 
@@ -203,13 +203,10 @@ class GazeboForces(ServiceGroup):
         self.schedule.drop_orphans(lambda body: world.bodies.get(body.name) is body)
         wrenches, efforts = self.schedule.due(to_ns(time))
         for (_, link), (force, torque, body) in wrenches.items():
-            body_id, index = link_address(body, link)
-            world.apply_wrench(body_id, index, force, torque)
+            body.links[link].apply_wrench(force, torque)
         for (_, joint), effort, body in efforts:
             info = body.joints[joint]
-            velocity = world.joint_states(body, [info.index])[0].velocity
-            world.apply_joint_effort(body, joint, truncate_effort(effort, velocity, info.max_effort,
-                                                                  info.max_velocity))
+            info.apply_effort(truncate_effort(effort, info.state().velocity, info.max_effort, info.max_velocity))
 
     # -- names ------------------------------------------------------------------------------------
     def _now(self):
@@ -225,13 +222,3 @@ class GazeboForces(ServiceGroup):
         body, joint = self.entities.find_joint(name)
         return None if body is None else (body.name, joint)
 
-
-
-def link_address(body, link):
-    """(PyBullet body id, link index) of a model's link; None if it has no such link."""
-    if link in body.link_index:
-        return body.id, body.link_index[link]
-    for name, body_id in body.extra_bodies:
-        if name == link:
-            return body_id, -1
-    return None

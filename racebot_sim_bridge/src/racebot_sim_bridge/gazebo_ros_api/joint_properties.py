@@ -19,7 +19,7 @@ class JointProperties(ServiceGroup):
 
     def __init__(self, rospy, sim):
         super().__init__(rospy, sim)
-        self.motors = {}  # (model, joint) -> (Body, vel, fmax): ODE's joint motor as set_joint_properties left it
+        self.motors = {}  # (model, joint) -> (Model, vel, fmax): ODE's joint motor as set_joint_properties left it
         self._warned = set()
 
     def get_joint_properties(self, req):
@@ -28,7 +28,7 @@ class JointProperties(ServiceGroup):
             body, joint = self.entities.find_joint(req.joint_name)
             if body is None:
                 return refused(res, 'GetJointProperties: joint not found')
-            state = self.sim.world.joint_states(body, [body.joints[joint].index])[0]
+            state = body.joints[joint].state()
         res.type = res.REVOLUTE  # upstream's FIXME: every joint is reported revolute, damping empty
         res.damping = []
         res.position = [state.position]
@@ -60,16 +60,14 @@ class JointProperties(ServiceGroup):
                                  % req.joint_name)
             extra = sorted(k for k, v in lists.items() if len(v) > 1)
             ignored = sorted(k for k in self.IGNORED_JOINT_PARAMS if k in first)
-            world = self.sim.world
-            world.set_joint_dynamics(body, joint, damping=first.get('damping'), lower=first.get('loStop'),
-                                     upper=first.get('hiStop'))
+            info.set_dynamics(damping=first.get('damping'), lower=first.get('loStop'), upper=first.get('hiStop'))
             if 'fmax' in first or 'vel' in first:
                 owner, vel, fmax = self.motors.get((body.name, joint), (body, 0.0, 0.0))
                 if owner is not body:  # the model was deleted and spawned again: its motor starts off
                     vel, fmax = 0.0, 0.0
                 vel, fmax = first.get('vel', vel), first.get('fmax', fmax)
                 self.motors[(body.name, joint)] = (body, vel, fmax)
-                world.drive_velocities(body, [info.index], [vel], [fmax])
+                info.drive_velocity(vel, fmax)
         for what in ([('axes beyond the first (%s): the joints here have one' % ', '.join(extra))] if extra else []) + \
                 ([('%s: ODE parameters with no PyBullet counterpart' % ', '.join(ignored))] if ignored else []):
             if what not in self._warned:

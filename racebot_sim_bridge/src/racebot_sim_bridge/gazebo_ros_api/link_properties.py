@@ -8,7 +8,6 @@ the inertia is given in the link's axes (com.orientation is the identity).
 """
 from racebot_sim_bridge.engine.physics import BodyKind
 from racebot_sim_bridge.gazebo_ros_api import frames
-from racebot_sim_bridge.gazebo_ros_api.forces import link_address
 from racebot_sim_bridge.gazebo_ros_api.service_group import ServiceGroup, refused
 from racebot_sim_bridge.kinematics.rotations import matrix
 
@@ -46,10 +45,10 @@ class LinkProperties(ServiceGroup):
 
     def __init__(self, rospy, sim):
         super().__init__(rospy, sim)
-        self.no_gravity = {}  # (model, link) -> Body whose link has gravity_mode false
+        self.no_gravity = {}  # (model, link) -> Model whose link has gravity_mode false
 
     def _link(self, name):
-        """(Body, link name) of the link World::EntityByName finds under `name`; (None, None) for a
+        """(Model, link name) of the link World::EntityByName finds under `name`; (None, None) for a
         model, a joint or nothing."""
         entity = self.entities.find_link(name)
         if entity is None:
@@ -62,7 +61,7 @@ class LinkProperties(ServiceGroup):
             body, link = self._link(req.link_name)
             if body is None:
                 return refused(res, NO_LINK % 'GetLinkProperties')
-            d = self.sim.world.link_dynamics(*link_address(body, link))
+            d = body.links[link].dynamics()
             res.gravity_mode = (body.name, link) not in self.no_gravity
             spec = body.source.model.link(link) if body.static and body.source.kind is BodyKind.SDF else None
         if spec is not None:  # PyBullet holds a static body with mass 0; Gazebo reports the SDF's inertial
@@ -93,8 +92,7 @@ class LinkProperties(ServiceGroup):
             if body.static:
                 return self.fail(res, 'SetLinkProperties: link [%s] belongs to the static model [%s], which has '
                                       'no dynamics to change' % (req.link_name, body.name))
-            address = link_address(body, link)
-            d = self.sim.world.link_dynamics(*address)
+            d = body.links[link].dynamics()
             moved = max(abs(a - b) for a, b in zip(com, d.inertial_position))
             if moved > COM_TOLERANCE:
                 return self.fail(res, 'SetLinkProperties: the centre of mass of link [%s] cannot move here '
@@ -107,7 +105,7 @@ class LinkProperties(ServiceGroup):
                                       'about the principal axes it has now (PyBullet cannot turn them): give '
                                       'a tensor with the products of inertia get_link_properties implies'
                                       % req.link_name)
-            self.sim.world.set_link_mass(address[0], address[1], req.mass, diagonal)
+            body.links[link].set_mass(req.mass, diagonal)
             if req.gravity_mode:
                 self.no_gravity.pop((body.name, link), None)
             else:
@@ -126,7 +124,7 @@ class LinkProperties(ServiceGroup):
             if world.bodies.get(model) is not body:  # deleted (perhaps spawned again): another body
                 del self.no_gravity[(model, link)]
                 continue
-            body_id, index = link_address(body, link)
-            mass = world.link_dynamics(body_id, index).mass
-            world.apply_wrench(body_id, index, tuple(-mass * g for g in world.gravity), (0.0, 0.0, 0.0),
-                               accumulate=False)  # gravity off is no force in Gazebo
+            target = body.links[link]
+            mass = target.dynamics().mass
+            target.apply_wrench(tuple(-mass * g for g in world.gravity), (0.0, 0.0, 0.0),
+                                accumulate=False)  # gravity off is no force in Gazebo

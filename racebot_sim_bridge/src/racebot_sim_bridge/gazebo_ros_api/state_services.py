@@ -161,7 +161,7 @@ class StateServices(ServiceGroup):
             for joint in body.joints:
                 for key in (joint, '%s::%s' % (req.model_name, joint)):
                     if key in wanted:
-                        self.sim.world.set_joint_position(body, joint, wanted[key])
+                        body.joints[joint].set_position(wanted[key])
                         used.add(key)
                         break
             unknown = [n for n in wanted if n not in used]

@@ -12,6 +12,7 @@ manager's update when a control period has elapsed, write_sim), as the plugin's 
 WorldUpdateBegin; `read` and `write` are the RobotHWSim's own methods, so that loop calls nothing more.
 """
 from racebot_sim_bridge.description.urdf_model import UrdfError
+from racebot_sim_bridge.engine.control_hook import ControlHook
 from racebot_sim_bridge.engine.simulator import SpawnError
 from racebot_sim_bridge.gazebo_plugins import PluginKind, plugin_namespace
 from racebot_sim_bridge.gazebo_ros_control.robot_hw_sim import (DEFAULT_ROBOT_SIM_TYPE, DefaultRobotHWSim,
@@ -24,11 +25,11 @@ def control_plugin(model):
     return next((p for p in model.plugins if p.is_ros_control), None)
 
 
-class GazeboRosControlPlugin:
+class GazeboRosControlPlugin(ControlHook):
     """gazebo_ros_control for one robot: its RobotHWSim (`hw`), ControllerManager (`cm`), namespace
-    (`ns`), control period and, with rospy, its controller manager's services. The Simulator reads
-    `read`, `write`, `cm`, `control_period` and `last_update` every step, and calls close() when
-    the robot goes."""
+    (`ns`), control period and, with rospy, its controller manager's services: the robot's ControlHook
+    (engine/control_hook.py), whose `read`, `write`, `cm`, `control_period` and `last_update` the
+    Simulator uses every step, and whose close() it calls when the robot goes."""
 
     libraries = ('libgazebo_ros_control.so',)  # what gazebo_plugins/registry.py knows it by
     plugin_kind = PluginKind.ROBOT_HARDWARE

@@ -84,7 +84,7 @@ def pid_gains(get_params, log, model_name, robot_ns, joints):
 
 
 class DefaultRobotHWSim(RobotHW):
-    """The joints of one robot's transmissions on its PyBullet body (physics.Body)."""
+    """The joints of one robot's transmissions on its PyBullet body (physics.Model)."""
 
     def __init__(self, model, body, joints, gains=None):
         """joints: hardware_joints(model); gains: {joint: Pid} of position or velocity joints driven
@@ -123,7 +123,7 @@ class DefaultRobotHWSim(RobotHW):
     def read_sim(self, world):
         """readSim: one PyBullet call for all joints; raw tuples (position, velocity, ...), no per-joint objects."""
         if self.joint_handles:
-            read_joint_states(self.joint_handles, world.joint_states_raw(self.body, self.indices))
+            read_joint_states(self.joint_handles, self.body.joint_states_raw(self.indices))
 
     def write_sim(self, world, dt):
         """writeSim: `dt` is the time since the last write (one world update)."""
@@ -131,11 +131,11 @@ class DefaultRobotHWSim(RobotHW):
             return
         if self.pid_joints:
             efforts = [self._pid_effort(h, pid, dt) for h, pid, _ in self.pid_joints]
-            world.apply_efforts(self.body, [i for _, _, i in self.pid_joints], efforts)
+            self.body.apply_efforts([i for _, _, i in self.pid_joints], efforts)
         if self.effort_handles:
-            world.apply_efforts(self.body, self.effort_idx, limited_efforts(self.effort_handles))
+            self.body.apply_efforts(self.effort_idx, limited_efforts(self.effort_handles))
         for hs, drive, indices, forces in self._drives:
-            getattr(world, drive)(self.body, indices, [h.limited_command() for h in hs], forces)
+            getattr(self.body, drive)(indices, [h.limited_command() for h in hs], forces)
 
     @staticmethod
     def _pid_effort(h, pid, dt):
@@ -154,6 +154,6 @@ class DefaultRobotHWSim(RobotHW):
         """After the joints were moved from outside (set_model_configuration): readings start again
         from where the joints are, commands at 0."""
         if self.joint_handles:
-            for h, s in zip(self.joint_handles, world.joint_states(self.body, self.indices)):
+            for h, s in zip(self.joint_handles, self.body.joint_states(self.indices)):
                 h.reset_position(s.position)
             self.reset_commands()

@@ -15,7 +15,7 @@ from racebot_sim_bridge.kinematics.rotations import compose
 
 class SensorMount:
     def __init__(self, world, body, model, reference, sensor_pose=(0.0, 0.0, 0.0, 0.0, 0.0, 0.0)):
-        """`body`: physics.Body of the robot; `model`: its urdf_model.RobotModel; `reference`: the sensor's
+        """`body`: physics.Model of the robot; `model`: its urdf_model.RobotModel; `reference`: the sensor's
         link (SensorSpec.reference, after sdformat's lumping); `sensor_pose`: its <pose> (x y z r p y) in it.
         Raises KeyError when the link it is merged into is not a PyBullet link of the body."""
         self.world = world

@@ -46,7 +46,7 @@ class SceneColours:
 
     def refresh(self, models=()):
         """Colours every SDF body not coloured yet: those that carry their sdf_model.Model
-        (Body.source, as physics.PhysicsWorld records it) and those of `models`; forgets
+        (Model.source, as physics.PhysicsWorld records it) and those of `models`; forgets
         the planes of removed bodies."""
         world = self.world
         by_name = {m.name: m for m in models}
@@ -63,7 +63,7 @@ class SceneColours:
         self.done &= alive
 
     def colour_model(self, model, body=None):
-        """`model`: sdf_model.Model, already added to the world (its Body found by name)."""
+        """`model`: sdf_model.Model, already added to the world (its Model found by name)."""
         body = body if body is not None else self.world.bodies.get(model.name)
         if body is None:
             return

@@ -9,7 +9,7 @@ held in the world server's process it cost real time, and closing it killed the 
 processes can attach; the messages are pickles). The world server publishes its path as the
 parameter `~gzclient_address`. Any number of windows may attach, each at any time. About 30 times a
 second of wall time the physics thread sends each window the bodies it has not seen (their
-`Body.source`), the names of all bodies (so deleted ones go) and the world's snapshot (poses and
+`Model.source`), the names of all bodies (so deleted ones go) and the world's snapshot (poses and
 joint positions, a few kB), but only once that window has applied the previous one, written by a
 thread per window: the physics never waits for a window, and a slow window shows fewer updates,
 never old ones. A window that goes

@@ -17,6 +17,7 @@ How it ends says why, in its exit code (gzclient reads it):
   EXIT_CRASHED  anything else (the traceback on stderr); killed: the signal.
 It also ends with gzclient (child_process.helper_main).
 """
+import math
 import os
 import sys
 import traceback
@@ -63,7 +64,13 @@ class Window:
         self.copy.pose(changed)
         self.shown.update(changed)
         if follow in changed and follow in self.world.bodies:  # a user may turn the camera while the car stands
-            self.world.follow_with_camera(self.world.bodies[follow], **FOLLOW)
+            self.follow_with_camera(self.world.bodies[follow], **FOLLOW)
+
+    def follow_with_camera(self, body, distance=1.5, yaw_offset=0.0, pitch=-30.0):
+        """Puts the window's camera `distance` behind `body` (a physics.Model), looking down by `pitch` degrees."""
+        pos, orn = body.pose()
+        yaw = math.degrees(pb.getEulerFromQuaternion(orn)[2]) - 90.0 + yaw_offset
+        self.world.client.resetDebugVisualizerCamera(distance, yaw, pitch, pos)
 
     def close(self):
         self.world.close()
