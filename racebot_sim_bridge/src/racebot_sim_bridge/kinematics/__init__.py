@@ -1,5 +1,5 @@
 """The kinematics of drives and controllers as plain functions: no rospy, no PyBullet, unit-tested
-(tests/unit/test_kinematics_*.py). The plugins and controllers wrap them with their ROS plumbing.
+(tests/unit/kinematics/). The plugins and controllers wrap them with their ROS plumbing.
 
 differential.py runs every world update for every diff-drive robot, angles.py for every revolute joint (through
 ros_control's hardware_interface): CMakeLists.txt compiles them with Cython into the devel (or install) space's copy
