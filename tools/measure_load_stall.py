@@ -21,7 +21,7 @@ import rospy  # noqa: E402
 
 from bench import common  # noqa: E402
 from racebot_sim_bridge.description import sdf_reader  # noqa: E402
-from racebot_sim_bridge.ros_controllers import RosIO  # noqa: E402
+from racebot_sim_bridge.ros_control.controller_io import RosIO  # noqa: E402
 from racebot_sim_bridge.engine.simulator import Simulator  # noqa: E402
 from racebot_sim_bridge.gazebo_ros_control.gazebo_ros_control_plugin import GazeboRosControlPlugin  # noqa: E402
 

@@ -52,7 +52,7 @@ from rosgraph_msgs.msg import Clock
 
 from racebot_sim_bridge import queued_publishing
 from racebot_sim_bridge.description import model_path, sdf_reader
-from racebot_sim_bridge.ros_controllers import CommandTrace, RosIO
+from racebot_sim_bridge.ros_control.controller_io import CommandTrace, RosIO
 from racebot_sim_bridge.gazebo_ros_api.services import GazeboServices
 from racebot_sim_bridge.gazebo_ros_api.performance_metrics import PerformanceMetricsPublisher
 from racebot_sim_bridge.engine.load_trial import DEFAULT_TIMEOUT, LoadTrial

@@ -2,7 +2,7 @@
 failing plugins (the world server must never die of a plugin)."""
 import pytest
 
-from racebot_sim_bridge.gazebo_plugins import PluginKind
+from racebot_sim_bridge.gazebo_ros_api.plugin_kind import PluginKind
 from racebot_sim_bridge.gazebo_plugins.model_plugin import ModelPlugin, PluginError, PluginParams
 from racebot_sim_bridge.gazebo_plugins.plugin_manager import PluginManager
 from racebot_sim_bridge.gazebo_plugins.registry import REGISTRY, Registry

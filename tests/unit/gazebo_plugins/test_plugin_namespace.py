@@ -5,7 +5,7 @@ Pure rules, the sensors' topics, and the controller manager's namespace of a spa
 import pytest
 
 from racebot_sim_bridge.description import sdf_reader, urdf_reader
-from racebot_sim_bridge.gazebo_plugins.plugin_namespace import (after_spawn, control_namespace, resolve,
+from racebot_sim_bridge.gazebo_ros_api.plugin_namespace import (after_spawn, control_namespace, resolve,
                                                                 sensor_namespace)
 from racebot_sim_bridge.sensors.config import sensor_config
 from racebot_sim_bridge.engine.simulator import Simulator, SpawnError

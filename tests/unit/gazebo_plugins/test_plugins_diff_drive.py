@@ -8,7 +8,7 @@ import pytest
 from geometry_msgs.msg import Twist
 
 from racebot_sim_bridge.kinematics import differential as kin
-from racebot_sim_bridge.gazebo_plugins.plugin_namespace import model_plugin_namespace
+from racebot_sim_bridge.gazebo_ros_api.plugin_namespace import model_plugin_namespace
 from racebot_sim_bridge.gazebo_plugins import gazebo_ros_imu as imu_plugin
 from racebot_sim_bridge.kinematics.rotations import rpy_to_quaternion, yaw_of
 

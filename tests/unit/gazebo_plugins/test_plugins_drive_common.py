@@ -4,7 +4,7 @@ import copy
 
 import pytest
 
-from racebot_sim_bridge.gazebo_plugins.plugin_namespace import model_plugin_namespace, name_in
+from racebot_sim_bridge.gazebo_ros_api.plugin_namespace import model_plugin_namespace, name_in
 from racebot_sim_bridge.gazebo_plugins.link_motion import point_velocity
 from racebot_sim_bridge.gazebo_plugins.odometry_output import tf_prefix, tf_resolve
 from racebot_sim_bridge.gazebo_plugins.update_timing import AtLeastPeriod, FixedPeriod, SincePublished

@@ -7,13 +7,14 @@ from pathlib import Path
 
 import pytest
 
-import racebot_sim_bridge.gazebo_plugins as gazebo_plugins
-from racebot_sim_bridge.description import sdf_reader
+from racebot_sim_bridge.description import plugin_library, sdf_reader
+from racebot_sim_bridge.description.plugin_library import library_key
 from racebot_sim_bridge.engine.simulator import Simulator
-from racebot_sim_bridge.gazebo_plugins import PluginKind, library_key, registry
+from racebot_sim_bridge.gazebo_plugins import registry
 from racebot_sim_bridge.gazebo_plugins.gazebo_ros_laser import LaserSensor
 from racebot_sim_bridge.gazebo_plugins.plugin_manager import PluginManager
 from racebot_sim_bridge.gazebo_plugins.registry import REGISTRY, Registry
+from racebot_sim_bridge.gazebo_ros_api.plugin_kind import PluginKind
 from racebot_sim_bridge.sensors.sensor_manager import SensorManager
 from test_sensors_sim import FakeRospy, Log, NullIO
 
@@ -80,7 +81,7 @@ def python_sources():
 
 
 def test_one_function_turns_a_filename_into_a_library_name():
-    own = Path(gazebo_plugins.__file__).resolve()
+    own = Path(plugin_library.__file__).resolve()
     sources = list(python_sources())
     assert own in sources and len(sources) > 50
     assert STRIPPING.search(own.read_text())  # the pattern finds library_key's own stripping
@@ -88,7 +89,8 @@ def test_one_function_turns_a_filename_into_a_library_name():
                  for path in sources if path != own
                  for number, line in enumerate(path.read_text(errors='replace').splitlines(), 1)
                  if STRIPPING.search(line)]
-    assert not elsewhere, 'a filename made a library name outside gazebo_plugins.library_key:\n' + '\n'.join(elsewhere)
+    assert not elsewhere, ('a filename made a library name outside description/plugin_library.library_key:\n'
+                           + '\n'.join(elsewhere))
 
 
 def spawn(tmp_path, urdf):

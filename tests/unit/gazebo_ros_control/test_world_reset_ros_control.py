@@ -8,7 +8,7 @@ import math
 import pytest
 
 from racebot_sim_bridge.description import sdf_reader
-from racebot_sim_bridge.ros_control.controller_manager import STRICT
+from racebot_sim_bridge.ros_control.controller_switch import STRICT
 from racebot_sim_bridge.engine.simulator import Simulator
 from racebot_sim_bridge.gazebo_ros_control.gazebo_ros_control_plugin import GazeboRosControlPlugin
 

@@ -1,6 +1,6 @@
-"""hardware.py, pid.py and kinematics/differential.py run compiled (Cython, typed by the .pxd beside each; see
-racebot_sim_bridge/CMakeLists.txt): the build must have compiled them, and the compiled code must give
-what the same .py gives as plain Python, bit for bit, on any input (NaN, infinities, -0.0, ints, huge
+"""hardware.py, pid.py, kinematics/differential.py and kinematics/angles.py run compiled (Cython, typed by the
+.pxd beside each; see racebot_sim_bridge/CMakeLists.txt): the build must have compiled them, and the compiled code
+must give what the same .py gives as plain Python, bit for bit, on any input (NaN, infinities, -0.0, ints, huge
 values). The plain modules are loaded from the .py files themselves."""
 import importlib.util
 import math
@@ -11,7 +11,7 @@ from pathlib import Path
 import pytest
 from hypothesis import example, given, settings, strategies as st
 
-from racebot_sim_bridge.kinematics import differential
+from racebot_sim_bridge.kinematics import angles, differential
 from racebot_sim_bridge.ros_control import hardware_interface as hardware, pid
 
 SOURCES = Path(__file__).resolve().parents[3] / 'racebot_sim_bridge' / 'src' / 'racebot_sim_bridge'
@@ -25,7 +25,11 @@ def plain(module_name, folder='ros_control'):
     return module
 
 
+PLAIN_ANGLES = plain('angles', 'kinematics')
 PLAIN_HARDWARE = plain('hardware_interface')
+# the plain hardware_interface on the plain angle helpers (its import found the compiled ones)
+PLAIN_HARDWARE.shortest_angular_distance = PLAIN_ANGLES.shortest_angular_distance
+PLAIN_HARDWARE.shortest_angular_distance_with_limits = PLAIN_ANGLES.shortest_angular_distance_with_limits
 PLAIN_PID = plain('pid')
 PLAIN_DIFFERENTIAL = plain('differential', 'kinematics')
 
@@ -43,7 +47,7 @@ def outcome(function, *args):
         return 'raised', type(err)
 
 
-@pytest.mark.parametrize('module', [hardware, pid, differential])
+@pytest.mark.parametrize('module', [hardware, pid, differential, angles])
 def test_the_build_compiled_the_every_step_modules(module):
     # make setup installs Cython and python3-dev and the build compiles them; a plain .py here means the
     # world runs ~10 % slower than docs/BENCHMARK.md says
@@ -91,10 +95,10 @@ def test_a_joint_handle_compiled_reads_limits_and_aims_as_plain_python(kind, int
 @settings(max_examples=300, deadline=None)
 @given(a=floats, b=floats, lower=finite, upper=finite)
 def test_the_angle_functions_compiled_give_what_plain_python_gives(a, b, lower, upper):
-    assert outcome(hardware.shortest_angular_distance, a, b) == \
-        outcome(PLAIN_HARDWARE.shortest_angular_distance, a, b)
-    assert outcome(hardware.shortest_angular_distance_with_limits, a, b, lower, upper) == \
-        outcome(PLAIN_HARDWARE.shortest_angular_distance_with_limits, a, b, lower, upper)
+    assert outcome(angles.shortest_angular_distance, a, b) == \
+        outcome(PLAIN_ANGLES.shortest_angular_distance, a, b)
+    assert outcome(angles.shortest_angular_distance_with_limits, a, b, lower, upper) == \
+        outcome(PLAIN_ANGLES.shortest_angular_distance_with_limits, a, b, lower, upper)
 
 
 def test_the_loop_helpers_compiled_read_and_limit_as_plain_python():

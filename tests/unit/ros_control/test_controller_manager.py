@@ -14,8 +14,10 @@ import rospy
 
 from racebot_sim_bridge.gazebo_ros_control.robot_hw_sim import hardware_joints
 from racebot_sim_bridge.description import urdf_reader
-from racebot_sim_bridge.ros_control.controller_manager import BEST_EFFORT, STRICT, ControllerManager
-from racebot_sim_bridge.ros_controllers import CONTROLLER_TYPES, Controller
+from racebot_sim_bridge.ros_control.controller_interface import Controller
+from racebot_sim_bridge.ros_control.controller_manager import ControllerManager
+from racebot_sim_bridge.ros_control.controller_switch import BEST_EFFORT, STRICT
+from racebot_sim_bridge.ros_controllers import CONTROLLER_TYPES
 from racebot_sim_bridge.ros_control.hardware_interface import EFFORT, STATE, VELOCITY, RobotHW
 
 NS = 'racebot'
@@ -612,7 +614,7 @@ def test_namespace_normalised():
     model = urdf_reader.parse_urdf(racebot_like_urdf())
     hw = RobotHW(model, hardware_joints(model))
     for ns, expected in (('racebot', '/racebot'), ('/racebot/', '/racebot'), ('/', ''), ('', '')):
-        assert ControllerManager(ns, hw, lambda n: None, FakeIO(), log).ns == expected
+        assert ControllerManager(ns, hw, lambda n: None, FakeIO(), log, CONTROLLER_TYPES).ns == expected
 
 
 def test_a_controller_raising_in_update_is_stopped_and_the_others_keep_running():

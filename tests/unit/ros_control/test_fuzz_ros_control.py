@@ -14,6 +14,7 @@ from racebot_sim_bridge.description import urdf_reader
 from racebot_sim_bridge.ros_control.controller_manager import ControllerManager
 from racebot_sim_bridge.ros_control.hardware_interface import EFFORT, JointHandle, RobotHW
 from racebot_sim_bridge.ros_control.pid import Pid
+from racebot_sim_bridge.ros_controllers import CONTROLLER_TYPES
 
 SETTINGS = settings(max_examples=150, deadline=None, suppress_health_check=[HealthCheck.too_slow])
 
@@ -157,7 +158,8 @@ def _manager(configs):
     hw = RobotHW(model, hardware_joints(model))
     for h in hw.handles.values():
         h.read(0.0, 0.0)
-    return ControllerManager('/racebot', hw, lambda n: copy.deepcopy(configs.get(n)), _IO(), _Log()), hw
+    return ControllerManager('/racebot', hw, lambda n: copy.deepcopy(configs.get(n)), _IO(), _Log(),
+                             CONTROLLER_TYPES), hw
 
 
 names = st.one_of(st.sampled_from(sorted(CONFIGS) + ['', 'ghost', '/racebot/lrw', 'lrw ']), st.text(max_size=12))

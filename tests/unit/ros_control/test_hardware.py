@@ -12,9 +12,9 @@ import pytest
 
 from racebot_sim_bridge.gazebo_ros_control.robot_hw_sim import hardware_joints
 from racebot_sim_bridge.description import urdf_reader
+from racebot_sim_bridge.kinematics.angles import shortest_angular_distance
 from racebot_sim_bridge.ros_control.hardware_interface import (EFFORT, POSITION, STATE, VELOCITY, HardwareError,
-                                                               JointHandle, RobotHW, cpp_name,
-                                                               shortest_angular_distance)
+                                                               JointHandle, RobotHW, cpp_name)
 
 TWO_PI = 2.0 * math.pi
 
@@ -155,15 +155,6 @@ def test_reset_position_forgets_the_accumulated_turns(hw):
     assert (h.position, h.velocity) == (0.5, 0.0)
     h.read(0.6, 0.0)
     assert h.position == pytest.approx(0.6)
-
-
-def test_shortest_angular_distance():
-    assert shortest_angular_distance(0.0, 1.0) == pytest.approx(1.0)
-    assert shortest_angular_distance(3.0, -3.0) == pytest.approx(TWO_PI - 6.0)
-    assert shortest_angular_distance(-3.0, 3.0) == pytest.approx(6.0 - TWO_PI)
-    assert shortest_angular_distance(0.0, 7.0) == pytest.approx(7.0 - TWO_PI)
-    assert shortest_angular_distance(20.0, 20.0) == 0.0
-    assert -math.pi < shortest_angular_distance(0.0, math.pi) <= math.pi
 
 
 # -- limits (EffortJointSaturationHandle) --------------------------------------------------------

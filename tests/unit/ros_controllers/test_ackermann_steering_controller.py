@@ -6,7 +6,8 @@ import pytest
 from geometry_msgs.msg import Twist, Vector3
 
 from racebot_sim_bridge.description import urdf_reader
-from racebot_sim_bridge.ros_controllers import CONTROLLER_TYPES, ControllerInitError
+from racebot_sim_bridge.ros_control.controller_interface import ControllerInitError
+from racebot_sim_bridge.ros_controllers import CONTROLLER_TYPES
 from racebot_sim_bridge.kinematics.controller_odometry import AckermannOdometry, ackermann_params_from_urdf
 
 from test_controllers import FakeIO, make_hw

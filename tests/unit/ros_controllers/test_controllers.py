@@ -15,10 +15,11 @@ from std_msgs.msg import Float64
 
 from racebot_sim_bridge.gazebo_ros_control.robot_hw_sim import hardware_joints
 from racebot_sim_bridge.description import urdf_reader
-from racebot_sim_bridge.ros_controllers import (CONTROLLER_TYPES, STATE_PUBLISH_EVERY, ControllerInitError,
-                                                EffortForwardController, JointPositionController,
-                                                JointStateController, JointVelocityController,
-                                                shortest_angular_distance_with_limits)
+from racebot_sim_bridge.ros_control.controller_interface import STATE_PUBLISH_EVERY, ControllerInitError
+from racebot_sim_bridge.ros_controllers import CONTROLLER_TYPES
+from racebot_sim_bridge.ros_controllers.effort_controllers import (EffortForwardController, JointPositionController,
+                                                                   JointVelocityController)
+from racebot_sim_bridge.ros_controllers.joint_state_controller import JointStateController
 from racebot_sim_bridge.ros_control.hardware_interface import EFFORT, STATE, RobotHW
 
 NS = '/racebot'
@@ -312,19 +313,6 @@ def test_position_controller_start_resets_pid(hw, io):
     c.starting(0.01)
     assert c.pid.i_error == 0.0
     assert c.command == pytest.approx(0.2)
-
-
-@pytest.mark.parametrize('current, target, lower, upper, expected', [
-    (0.0, 1.0, -2.0, 2.0, 1.0),
-    (0.5, -0.5, -0.6, 0.6, -1.0),
-    (4.0, -0.5, -1.0, 5.0, -4.5),        # short way leaves the range: long way
-    (-0.5, 4.0, -1.0, 5.0, 4.5),
-    (3.0, -3.0, -4.0, 4.0, 2 * math.pi - 6.0),  # across pi inside wide limits: short way
-    (3.0, -3.0, -3.5, 3.1, -6.0),        # ... unless that leaves the range
-    (1.0, 1.0, -1.0, 1.0, 0.0),
-])
-def test_shortest_angular_distance_with_limits(current, target, lower, upper, expected):
-    assert shortest_angular_distance_with_limits(current, target, lower, upper) == pytest.approx(expected)
 
 
 # -- JointEffortController --------------------------------------------------------------------

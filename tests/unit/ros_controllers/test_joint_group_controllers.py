@@ -4,7 +4,8 @@ another size, the position group's start at the current positions and its clamp 
 import pytest
 from std_msgs.msg import Float64MultiArray
 
-from racebot_sim_bridge.ros_controllers import CONTROLLER_TYPES, ControllerInitError
+from racebot_sim_bridge.ros_control.controller_interface import ControllerInitError
+from racebot_sim_bridge.ros_controllers import CONTROLLER_TYPES
 from racebot_sim_bridge.ros_control.hardware_interface import EFFORT, POSITION, VELOCITY
 
 from test_controllers import FakeIO, make_hw

@@ -6,7 +6,8 @@ import math
 import pytest
 from geometry_msgs.msg import Twist, Vector3
 
-from racebot_sim_bridge.ros_controllers import CONTROLLER_TYPES, ControllerInitError
+from racebot_sim_bridge.ros_control.controller_interface import ControllerInitError
+from racebot_sim_bridge.ros_controllers import CONTROLLER_TYPES
 from racebot_sim_bridge.ros_controllers.mecanum_drive_controller import body_twist, k_from_origins, wheel_velocities
 
 from test_controllers import FakeIO, make_hw

@@ -9,10 +9,13 @@ from std_msgs.msg import Float64
 
 from racebot_sim_bridge.gazebo_ros_control.robot_hw_sim import hardware_joints
 from racebot_sim_bridge.description import urdf_reader
-from racebot_sim_bridge.ros_controllers import (CommandObserver, CommandTrace, EffortForwardController,
-                                                JointPositionController, JointVelocityController,
-                                                PositionForwardController, VelocityForwardController,
-                                                VelocityJointPositionController, CommandController)
+from racebot_sim_bridge.ros_control.controller_interface import CommandController
+from racebot_sim_bridge.ros_control.controller_io import CommandObserver, CommandTrace
+from racebot_sim_bridge.ros_controllers.effort_controllers import (EffortForwardController, JointPositionController,
+                                                                   JointVelocityController)
+from racebot_sim_bridge.ros_controllers.position_controllers import PositionForwardController
+from racebot_sim_bridge.ros_controllers.velocity_controllers import (VelocityForwardController,
+                                                                     VelocityJointPositionController)
 from racebot_sim_bridge.ros_control.hardware_interface import RobotHW
 
 NS = '/robot'

@@ -16,7 +16,7 @@ from control_msgs.msg import FollowJointTrajectoryGoal, FollowJointTrajectoryRes
 from racebot_sim_bridge.description import sdf_reader
 from racebot_sim_bridge.engine.simulator import Simulator
 from racebot_sim_bridge.gazebo_ros_control.gazebo_ros_control_plugin import GazeboRosControlPlugin
-from racebot_sim_bridge.ros_control.controller_manager import STRICT
+from racebot_sim_bridge.ros_control.controller_switch import STRICT
 
 from test_controller_load_while_stepping import Log
 from test_joint_trajectory_controller import IO, GoalHandle, trajectory

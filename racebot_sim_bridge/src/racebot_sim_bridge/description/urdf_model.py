@@ -19,7 +19,7 @@ from typing import TypeVar
 
 from racebot_sim_bridge.description import xml_values
 from racebot_sim_bridge.description.geometry import Shape
-from racebot_sim_bridge.gazebo_plugins import library_key
+from racebot_sim_bridge.description.plugin_library import library_key
 from racebot_sim_bridge.kinematics.rotations import Transform, compose
 
 __all__ = [

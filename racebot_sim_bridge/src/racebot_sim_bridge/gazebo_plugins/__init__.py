@@ -9,32 +9,11 @@ filename="libgazebo_ros_diff_drive.so"; gazebo_ros_laser.py also answers libgaze
                          by ../sensors/sensor_manager.py with the pipeline stages in ../sensors/
                          (every library by name: REGISTRY in registry.py, and docs/SUPPORTED.md)
   robot hardware         gazebo_ros_control: ../gazebo_ros_control/, hooked into the simulator at spawn
-  shared                 plugin_namespace.py (where a plugin's topics go), odometry_output.py, link_motion.py,
-                         update_timing.py, hector_reconfigure.py, gazebo_ros_utils.py, gazebo_pid.py,
-                         polled_camera_types.py
+  shared                 odometry_output.py, link_motion.py, update_timing.py, hector_reconfigure.py,
+                         gazebo_ros_utils.py, gazebo_pid.py, polled_camera_types.py
 
 A new plugin is a module here named after its library, with one class that lists its `libraries`, added to
-registry.py. This package's own namespace holds only what the description needs too (no ROS, no PyBullet):
-`library_key`, the one way a filename becomes a library name, and PluginKind.
+registry.py. What every gazebo_ros plugin shares lives below, in ../gazebo_ros_api/: PluginKind (plugin_kind.py)
+and where a plugin's topics go (plugin_namespace.py); the one way a filename becomes a library name, library_key,
+is the description's (../description/plugin_library.py).
 """
-import enum
-import os
-
-
-def library_key(filename):
-    """The library a plugin's filename names: 'libgazebo_ros_diff_drive.so', '/opt/x/libgazebo_ros_diff_drive.so'
-    and 'gazebo_ros_diff_drive' all give 'gazebo_ros_diff_drive' (as Gazebo, which adds lib and .so to a bare
-    name)."""
-    base = os.path.basename(filename or '')
-    if base.endswith('.so'):
-        base = base[:-3]
-    if base.startswith('lib'):
-        base = base[3:]
-    return base
-
-
-class PluginKind(enum.Enum):
-    """Where a plugin sits, hence who builds it."""
-    MODEL = 'model'                    # a model's <gazebo><plugin>: plugin_manager.PluginManager
-    SENSOR = 'sensor'                  # a <sensor>'s <plugin>: sensors/sensor_manager.SensorManager
-    ROBOT_HARDWARE = 'robot hardware'  # gazebo_ros_control's RobotHWSim: GazeboRosControlPlugin, at spawn

@@ -22,7 +22,7 @@ import numpy as np
 from geometry_msgs.msg import Point32
 from sensor_msgs.msg import ChannelFloat32, PointCloud
 
-from racebot_sim_bridge.gazebo_plugins.plugin_namespace import after_spawn, resolve
+from racebot_sim_bridge.gazebo_ros_api.plugin_namespace import after_spawn, resolve
 from racebot_sim_bridge.gazebo_plugins.sensor_plugin import Sensor, SensorKind
 from racebot_sim_bridge.sensors.config_types import SensorConfig, SensorConfigError, join_topic, number, set_frame
 from racebot_sim_bridge.sensors.imu_reading import quaternion_to_matrix

@@ -22,7 +22,7 @@ import functools
 import math
 
 from racebot_sim_bridge.kinematics import differential as kin
-from racebot_sim_bridge.gazebo_plugins.plugin_namespace import model_plugin_namespace, name_in
+from racebot_sim_bridge.gazebo_ros_api.plugin_namespace import model_plugin_namespace, name_in
 from racebot_sim_bridge.kinematics.rotations import yaw_of
 from racebot_sim_bridge.engine.sim_time import NS, to_ns
 from racebot_sim_bridge.gazebo_plugins.gazebo_ros_utils import GazeboRosPlugin

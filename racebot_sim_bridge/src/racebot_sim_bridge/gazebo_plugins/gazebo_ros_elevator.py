@@ -18,7 +18,7 @@ import re
 
 from racebot_sim_bridge.gazebo_plugins.gazebo_pid import GazeboPid
 from racebot_sim_bridge.gazebo_plugins.model_plugin import ModelPlugin, PluginError
-from racebot_sim_bridge.gazebo_plugins.plugin_namespace import model_plugin_namespace, name_in
+from racebot_sim_bridge.gazebo_ros_api.plugin_namespace import model_plugin_namespace, name_in
 
 OPEN, CLOSE = 1.0, 0.0  # the door's targets (DoorController::Target), metres along its joint
 _STOI = re.compile(r'\s*([+-]?\d+)')

@@ -15,7 +15,7 @@ links' torque accumulators at once.
 """
 from racebot_sim_bridge.gazebo_plugins.model_plugin import ModelPlugin, PluginError
 from racebot_sim_bridge.gazebo_plugins.odometry_output import tf_prefix, tf_resolve
-from racebot_sim_bridge.gazebo_plugins.plugin_namespace import model_plugin_namespace, name_in
+from racebot_sim_bridge.gazebo_ros_api.plugin_namespace import model_plugin_namespace, name_in
 
 
 class F3D(ModelPlugin):

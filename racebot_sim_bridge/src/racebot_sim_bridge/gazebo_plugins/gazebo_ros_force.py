@@ -8,7 +8,7 @@ no Reset. Refused: a missing bodyName or topicName, a bodyName that is no link o
 Gazebo lumps arrives as its parent (sdformat's rewrite), which the wrench then pushes.
 """
 from racebot_sim_bridge.gazebo_plugins.model_plugin import ModelPlugin, PluginError
-from racebot_sim_bridge.gazebo_plugins.plugin_namespace import model_plugin_namespace, name_in
+from racebot_sim_bridge.gazebo_ros_api.plugin_namespace import model_plugin_namespace, name_in
 
 ZERO = ((0.0, 0.0, 0.0), (0.0, 0.0, 0.0))
 

@@ -19,7 +19,7 @@ computed while nobody subscribes, and the acceleration then spans the whole gap.
 """
 import random
 
-from racebot_sim_bridge.gazebo_plugins.plugin_namespace import model_plugin_namespace, name_in
+from racebot_sim_bridge.gazebo_ros_api.plugin_namespace import model_plugin_namespace, name_in
 from racebot_sim_bridge.kinematics.rotations import quaternion_multiply, rotate, rpy_to_quaternion
 from racebot_sim_bridge.gazebo_plugins.model_plugin import ModelPlugin
 from racebot_sim_bridge.gazebo_plugins.link_motion import link_motion

@@ -23,7 +23,7 @@ import collections
 
 from racebot_sim_bridge.engine.sim_time import to_ns
 from racebot_sim_bridge.gazebo_plugins.model_plugin import ModelPlugin
-from racebot_sim_bridge.gazebo_plugins.plugin_namespace import model_plugin_namespace, name_in
+from racebot_sim_bridge.gazebo_ros_api.plugin_namespace import model_plugin_namespace, name_in
 from racebot_sim_bridge.gazebo_ros_api import frames
 from racebot_sim_bridge.gazebo_ros_api.entities import WorldEntities
 

@@ -7,7 +7,7 @@ update), robotNamespace (none or empty: the model's name). Publishes `joint_stat
 effort empty. Without jointName it publishes empty messages, as upstream; a name that is no movable
 joint of the model refuses the plugin (upstream logs a fatal error and then dereferences a null joint).
 """
-from racebot_sim_bridge.gazebo_plugins.plugin_namespace import model_plugin_namespace, name_in
+from racebot_sim_bridge.gazebo_ros_api.plugin_namespace import model_plugin_namespace, name_in
 from racebot_sim_bridge.gazebo_plugins.model_plugin import ModelPlugin, PluginError
 from racebot_sim_bridge.gazebo_plugins.update_timing import FixedPeriod
 

@@ -18,7 +18,7 @@ rpyOffset composed with the joint, as sdformat rewrites it (description/sdf_redu
 """
 import random
 
-from racebot_sim_bridge.gazebo_plugins.plugin_namespace import model_plugin_namespace, name_in
+from racebot_sim_bridge.gazebo_ros_api.plugin_namespace import model_plugin_namespace, name_in
 from racebot_sim_bridge.kinematics.rotations import (conjugate, quaternion_multiply, rotate, rotate_back,
                                                      rpy_to_quaternion)
 from racebot_sim_bridge.gazebo_plugins.model_plugin import ModelPlugin, PluginError

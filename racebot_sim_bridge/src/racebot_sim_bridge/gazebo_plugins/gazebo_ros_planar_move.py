@@ -12,7 +12,7 @@ world x, y, orientation, z left 0; twist: finite differences of the pose since t
 in the robot's axes; fixed covariances 1e-5, 1e-5, 1e-3) and the odom -> base TF, stamped with sim time.
 """
 from racebot_sim_bridge.kinematics.planar import covariance, finite_difference_twist, model_velocity
-from racebot_sim_bridge.gazebo_plugins.plugin_namespace import model_plugin_namespace, name_in
+from racebot_sim_bridge.gazebo_ros_api.plugin_namespace import model_plugin_namespace, name_in
 from racebot_sim_bridge.kinematics.rotations import yaw_of
 from racebot_sim_bridge.engine.sim_time import to_ns
 from racebot_sim_bridge.gazebo_plugins.model_plugin import ModelPlugin

@@ -14,7 +14,7 @@ be moved when its link is lumped), so the texture is projected onto nothing, on 
 camera images alike.
 """
 from racebot_sim_bridge.gazebo_plugins.model_plugin import ModelPlugin
-from racebot_sim_bridge.gazebo_plugins.plugin_namespace import model_plugin_namespace, name_in
+from racebot_sim_bridge.gazebo_ros_api.plugin_namespace import model_plugin_namespace, name_in
 
 
 class Projector(ModelPlugin):

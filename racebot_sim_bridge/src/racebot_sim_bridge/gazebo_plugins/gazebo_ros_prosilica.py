@@ -26,7 +26,7 @@ from sensor_msgs.msg import CameraInfo, Image
 
 from racebot_sim_bridge.engine.sim_time import ros_time
 from racebot_sim_bridge.gazebo_plugins.gazebo_ros_camera import CameraSensor
-from racebot_sim_bridge.gazebo_plugins.plugin_namespace import name_in
+from racebot_sim_bridge.gazebo_ros_api.plugin_namespace import name_in
 from racebot_sim_bridge.gazebo_plugins.polled_camera_types import get_polled_image
 from racebot_sim_bridge.gazebo_plugins.sensor_plugin import SensorKind
 from racebot_sim_bridge.sensors import messages as msgs

@@ -14,7 +14,7 @@ Frames are resolved with the tf_prefix parameter as tf::resolve does.
 """
 from racebot_sim_bridge.kinematics import skid_steer
 from racebot_sim_bridge.kinematics.planar import covariance, world_to_base
-from racebot_sim_bridge.gazebo_plugins.plugin_namespace import model_plugin_namespace, name_in
+from racebot_sim_bridge.gazebo_ros_api.plugin_namespace import model_plugin_namespace, name_in
 from racebot_sim_bridge.kinematics.rotations import yaw_of
 from racebot_sim_bridge.gazebo_plugins.model_plugin import ModelPlugin, PluginError
 from racebot_sim_bridge.gazebo_plugins.link_motion import link_motion

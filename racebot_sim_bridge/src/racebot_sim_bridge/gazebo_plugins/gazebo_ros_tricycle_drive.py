@@ -23,7 +23,7 @@ from racebot_sim_bridge.engine.sim_time import NS, to_ns
 from racebot_sim_bridge.gazebo_plugins.gazebo_ros_utils import GazeboRosPlugin
 from racebot_sim_bridge.gazebo_plugins.link_motion import link_motion, model_relative_pose
 from racebot_sim_bridge.gazebo_plugins.odometry_output import odometry, tf_prefix, tf_resolve, transform
-from racebot_sim_bridge.gazebo_plugins.plugin_namespace import model_plugin_namespace, name_in
+from racebot_sim_bridge.gazebo_ros_api.plugin_namespace import model_plugin_namespace, name_in
 from racebot_sim_bridge.gazebo_plugins.update_timing import FixedPeriod
 from racebot_sim_bridge.kinematics import differential, tricycle
 from racebot_sim_bridge.kinematics.rotations import rotate_back, yaw_of

@@ -20,7 +20,7 @@ import math
 
 from racebot_sim_bridge.gazebo_plugins.link_motion import link_motion
 from racebot_sim_bridge.gazebo_plugins.model_plugin import ModelPlugin, PluginError
-from racebot_sim_bridge.gazebo_plugins.plugin_namespace import model_plugin_namespace, name_in
+from racebot_sim_bridge.gazebo_ros_api.plugin_namespace import model_plugin_namespace, name_in
 from racebot_sim_bridge.gazebo_ros_api.entities import WorldEntities
 from racebot_sim_bridge.kinematics.rotations import rotate_back
 

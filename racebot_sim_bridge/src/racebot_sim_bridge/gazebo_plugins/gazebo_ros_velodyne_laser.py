@@ -29,7 +29,7 @@ import math
 import numpy as np
 from sensor_msgs.msg import PointCloud2, PointField
 
-from racebot_sim_bridge.gazebo_plugins.plugin_namespace import after_spawn, resolve
+from racebot_sim_bridge.gazebo_ros_api.plugin_namespace import after_spawn, resolve
 from racebot_sim_bridge.gazebo_plugins.sensor_plugin import Sensor, SensorKind
 from racebot_sim_bridge.sensors.config_types import SensorConfig, SensorConfigError, join_topic, number, tf_resolve
 from racebot_sim_bridge.sensors.imu_reading import quaternion_to_matrix

@@ -14,7 +14,7 @@ the video is seen nowhere, and an image cv_bridge could not turn into bgra8 is n
 throws on it).
 """
 from racebot_sim_bridge.gazebo_plugins.model_plugin import ModelPlugin
-from racebot_sim_bridge.gazebo_plugins.plugin_namespace import model_plugin_namespace, name_in
+from racebot_sim_bridge.gazebo_ros_api.plugin_namespace import model_plugin_namespace, name_in
 
 DEFAULTS = (('robotNamespace', '""'), ('topicName', 'image_raw'), ('height', '240'), ('width', '320'))
 

@@ -21,7 +21,7 @@ not offered.
 import xml.etree.ElementTree as ET
 
 from racebot_sim_bridge.gazebo_plugins.model_plugin import ModelPlugin, PluginError
-from racebot_sim_bridge.gazebo_plugins.plugin_namespace import after_spawn, resolve
+from racebot_sim_bridge.gazebo_ros_api.plugin_namespace import after_spawn, resolve
 
 # name, type, level, description, default, min, max (gazebo_plugins noetic-devel cfg/WheelSlip.cfg)
 WHEEL_SLIP_PARAMETERS = [

@@ -20,7 +20,7 @@ from racebot_sim_bridge.gazebo_plugins.hector_gazebo_ros_gps import UpdateTimer,
 from racebot_sim_bridge.gazebo_plugins.hector_gazebo_ros_magnetic import update_period
 from racebot_sim_bridge.gazebo_plugins.link_motion import link_motion
 from racebot_sim_bridge.gazebo_plugins.model_plugin import ModelPlugin
-from racebot_sim_bridge.gazebo_plugins.plugin_namespace import model_plugin_namespace, name_in
+from racebot_sim_bridge.gazebo_ros_api.plugin_namespace import model_plugin_namespace, name_in
 
 DEFAULT_ELEVATION, DEFAULT_QNH = 0.0, 1013.25
 

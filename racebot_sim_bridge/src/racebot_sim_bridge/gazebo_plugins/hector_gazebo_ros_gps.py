@@ -20,7 +20,7 @@ import math
 import random
 
 from racebot_sim_bridge.kinematics.navsat import DEFAULT_REFERENCE, ErrorModel, GeoReference
-from racebot_sim_bridge.gazebo_plugins.plugin_namespace import model_plugin_namespace, name_in
+from racebot_sim_bridge.gazebo_ros_api.plugin_namespace import model_plugin_namespace, name_in
 from racebot_sim_bridge.kinematics.rotations import yaw_of
 from racebot_sim_bridge.gazebo_plugins import hector_reconfigure
 from racebot_sim_bridge.gazebo_plugins.model_plugin import ModelPlugin

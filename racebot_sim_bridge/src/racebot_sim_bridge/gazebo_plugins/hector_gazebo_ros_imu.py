@@ -18,7 +18,7 @@ drift from now on); with a topic, dynamic_reconfigure servers `<topic>/accel`, `
 import math
 import random
 
-from racebot_sim_bridge.gazebo_plugins.plugin_namespace import model_plugin_namespace, name_in
+from racebot_sim_bridge.gazebo_ros_api.plugin_namespace import model_plugin_namespace, name_in
 from racebot_sim_bridge.kinematics.rotations import (conjugate, quaternion_multiply, rotate, rotate_back,
                                                      rpy_to_quaternion)
 from racebot_sim_bridge.gazebo_plugins import hector_reconfigure

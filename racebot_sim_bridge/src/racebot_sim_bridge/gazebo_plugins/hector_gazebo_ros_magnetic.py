@@ -21,7 +21,7 @@ from racebot_sim_bridge.gazebo_plugins import hector_reconfigure
 from racebot_sim_bridge.gazebo_plugins.hector_gazebo_ros_gps import UpdateTimer, sensor_model
 from racebot_sim_bridge.gazebo_plugins.link_motion import link_motion
 from racebot_sim_bridge.gazebo_plugins.model_plugin import ModelPlugin
-from racebot_sim_bridge.gazebo_plugins.plugin_namespace import model_plugin_namespace, name_in
+from racebot_sim_bridge.gazebo_ros_api.plugin_namespace import model_plugin_namespace, name_in
 from racebot_sim_bridge.kinematics.rotations import rotate_back
 
 DEFAULT_MAGNITUDE, DEFAULT_REFERENCE_HEADING, DEFAULT_DECLINATION, DEFAULT_INCLINATION = 1.0, 0.0, 0.0, 60.0

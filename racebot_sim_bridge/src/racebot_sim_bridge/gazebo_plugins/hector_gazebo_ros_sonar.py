@@ -20,7 +20,7 @@ from sensor_msgs.msg import Range
 
 from racebot_sim_bridge.gazebo_plugins import hector_reconfigure
 from racebot_sim_bridge.gazebo_plugins.model_plugin import _ReconfigureHandle
-from racebot_sim_bridge.gazebo_plugins.plugin_namespace import after_spawn, name_in, resolve
+from racebot_sim_bridge.gazebo_ros_api.plugin_namespace import after_spawn, name_in, resolve
 from racebot_sim_bridge.gazebo_plugins.sensor_plugin import Sensor, SensorKind
 from racebot_sim_bridge.kinematics.navsat import ErrorModel
 from racebot_sim_bridge.engine.sim_time import ros_time

@@ -16,7 +16,7 @@ assignment, atomic), which the physics thread reads.
 import math
 
 from racebot_sim_bridge.engine.sim_time import ros_time
-from racebot_sim_bridge.gazebo_plugins import PluginKind
+from racebot_sim_bridge.gazebo_ros_api.plugin_kind import PluginKind
 
 
 class PluginError(ValueError):

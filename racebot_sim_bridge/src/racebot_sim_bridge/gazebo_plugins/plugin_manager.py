@@ -10,7 +10,7 @@ its update clock says nothing is due), and what upstream does at every update wh
 encoder) is its every_update, called first.
 """
 from racebot_sim_bridge.engine.sim_time import to_ns
-from racebot_sim_bridge.gazebo_plugins import PluginKind
+from racebot_sim_bridge.gazebo_ros_api.plugin_kind import PluginKind
 from racebot_sim_bridge.gazebo_plugins.model_plugin import ModelPlugin, PluginError
 from racebot_sim_bridge.gazebo_plugins.registry import REGISTRY
 

@@ -7,7 +7,7 @@ filename="libgazebo_ros_laser.so" leads to gazebo_ros_laser.py. Filenames are lo
 path or a bare name finds the same class. A plugin that another kind of block asks for (a model plugin inside a
 <sensor>) is not found there, and warned about as Gazebo would fail to load it.
 """
-from racebot_sim_bridge.gazebo_plugins import PluginKind, library_key
+from racebot_sim_bridge.description.plugin_library import library_key
 from racebot_sim_bridge.gazebo_plugins.gazebo_ros_block_laser import BlockLaserSensor
 from racebot_sim_bridge.gazebo_plugins.gazebo_ros_bumper import BumperSensor
 from racebot_sim_bridge.gazebo_plugins.gazebo_ros_camera import CameraSensor
@@ -47,6 +47,7 @@ from racebot_sim_bridge.gazebo_plugins.hector_gazebo_ros_magnetic import HectorM
 from racebot_sim_bridge.gazebo_plugins.hector_gazebo_ros_sonar import HectorSonar
 from racebot_sim_bridge.gazebo_plugins.ridgeback_ros_force_based_move import RidgebackForceBasedMove
 from racebot_sim_bridge.gazebo_plugins.roboticsgroup_upatras_gazebo_mimic_joint_plugin import MimicJointPlugin
+from racebot_sim_bridge.gazebo_ros_api.plugin_kind import PluginKind
 from racebot_sim_bridge.gazebo_ros_control.gazebo_ros_control_plugin import GazeboRosControlPlugin
 from racebot_sim_bridge.supported_table import WHERE as SUPPORTED_TABLE
 

@@ -18,7 +18,7 @@ import math
 from racebot_sim_bridge.engine.sim_time import to_ns
 from racebot_sim_bridge.gazebo_plugins.model_plugin import ModelPlugin
 from racebot_sim_bridge.gazebo_plugins.odometry_output import odometry, tf_prefix, tf_resolve, transform
-from racebot_sim_bridge.gazebo_plugins.plugin_namespace import model_plugin_namespace, name_in
+from racebot_sim_bridge.gazebo_ros_api.plugin_namespace import model_plugin_namespace, name_in
 from racebot_sim_bridge.gazebo_plugins.update_timing import SincePublished
 from racebot_sim_bridge.kinematics.rotations import rotate, rotate_back
 

@@ -16,7 +16,7 @@ import math
 
 from racebot_sim_bridge.engine import mimic_joints
 from racebot_sim_bridge.gazebo_plugins.model_plugin import ModelPlugin, PluginError
-from racebot_sim_bridge.gazebo_plugins.plugin_namespace import model_plugin_namespace, name_in
+from racebot_sim_bridge.gazebo_ros_api.plugin_namespace import model_plugin_namespace, name_in
 from racebot_sim_bridge.ros_control.pid import Pid
 
 

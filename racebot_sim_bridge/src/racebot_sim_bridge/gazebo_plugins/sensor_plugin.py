@@ -11,7 +11,7 @@ publishes messages stamped with the sim time of the measurement. close() when th
 from enum import Enum
 
 from racebot_sim_bridge.engine.sim_time import ros_time
-from racebot_sim_bridge.gazebo_plugins import PluginKind
+from racebot_sim_bridge.gazebo_ros_api.plugin_kind import PluginKind
 from racebot_sim_bridge.sensors.mount import SensorMount
 from racebot_sim_bridge.sensors.schedule import RateMeter, UpdateSchedule
 

@@ -2,10 +2,11 @@
 
 On spawn (GazeboRosControlPlugin, hooked into a Simulator by attach()): the robotNamespace (the plugin's
 own, else the spawn request's, else the model name), the control period (controlPeriod, else the physics
-step), the DefaultRobotHWSim of the transmissions, a ControllerManager, and the controller manager's six
-services under `<ns>/controller_manager/`. The services are offered whatever ~enable_ros_network says:
-upstream's plugin reads no such flag (only gazebo_ros_api_plugin does) and its ControllerManager
-advertises them. On delete: the services and the controllers shut down.
+step), the DefaultRobotHWSim of the transmissions, a ControllerManager (given ros_controllers' types, as
+pluginlib gives upstream's), and the controller manager's six services under `<ns>/controller_manager/`.
+The services are offered whatever ~enable_ros_network says: upstream's plugin reads no such flag (only
+gazebo_ros_api_plugin does) and its ControllerManager advertises them. On delete: the services and the
+controllers shut down.
 
 Every world update the Simulator runs the plugin's loop inline (step(): read_sim, the controller
 manager's update when a control period has elapsed, write_sim), as the plugin's Update() does on
@@ -14,10 +15,12 @@ WorldUpdateBegin; `read` and `write` are the RobotHWSim's own methods, so that l
 from racebot_sim_bridge.description.urdf_model import UrdfError
 from racebot_sim_bridge.engine.control_hook import ControlHook
 from racebot_sim_bridge.engine.simulator import SpawnError
-from racebot_sim_bridge.gazebo_plugins import PluginKind, plugin_namespace
+from racebot_sim_bridge.gazebo_ros_api import plugin_namespace
+from racebot_sim_bridge.gazebo_ros_api.plugin_kind import PluginKind
 from racebot_sim_bridge.gazebo_ros_control.robot_hw_sim import (DEFAULT_ROBOT_SIM_TYPE, DefaultRobotHWSim,
                                                                 hardware_joints, pid_gains)
 from racebot_sim_bridge.ros_control.controller_manager import ControllerManager, ControllerManagerServices
+from racebot_sim_bridge.ros_controllers import CONTROLLER_TYPES
 
 
 def control_plugin(model):
@@ -35,8 +38,9 @@ class GazeboRosControlPlugin(ControlHook):
     plugin_kind = PluginKind.ROBOT_HARDWARE
     filename = libraries[0]
 
-    def __init__(self, sim, robot, spec, rospy=None):
-        """Load(): `spec` is the robot's gazebo_ros_control <plugin> (urdf_model.GazeboPlugin). Leaves
+    def __init__(self, sim, robot, spec, rospy=None, controller_types=CONTROLLER_TYPES):
+        """Load(): `spec` is the robot's gazebo_ros_control <plugin> (urdf_model.GazeboPlugin);
+        `controller_types` (type name -> class) are what its controller manager can load. Leaves
         robot.control unset when the transmissions cannot be simulated (the robot stays, without a
         controller manager, as in Gazebo); SpawnError when the spawn must fail (the namespace of
         another robot's controller manager, joints that are not movable)."""
@@ -82,7 +86,8 @@ class GazeboRosControlPlugin(ControlHook):
             sim.log.warn('%s: %s' % (name, w))
         self.read, self.write = self.hw.read_sim, self.hw.write_sim  # what step() calls: no layer between
         ns = self.ns
-        self.cm = ControllerManager(ns, self.hw, lambda c: sim.get_params('%s/%s' % (ns, c)), sim.io, sim.log)
+        self.cm = ControllerManager(ns, self.hw, lambda c: sim.get_params('%s/%s' % (ns, c)), sim.io, sim.log,
+                                    controller_types)
         self.read(sim.world)
         if rospy is not None:
             self.services = ControllerManagerServices(rospy, self.cm)
@@ -107,13 +112,14 @@ class GazeboRosControlPlugin(ControlHook):
             self.cm.shutdown()
 
     @classmethod
-    def attach(cls, sim, rospy=None):
+    def attach(cls, sim, rospy=None, controller_types=CONTROLLER_TYPES):
         """Hooks gazebo_ros_control into `sim` (sim.on_create): every robot spawned from now on that declares
-        the plugin gets one, with its controller manager's services when `rospy` is given. Returns the hook."""
+        the plugin gets one, with its controller manager's services when `rospy` is given, loading
+        `controller_types` (type name -> class; ros_controllers' by default). Returns the hook."""
         def on_create(robot):
             spec = control_plugin(robot.model)
             if spec is not None:
-                cls(sim, robot, spec, rospy)
+                cls(sim, robot, spec, rospy, controller_types)
             elif robot.model.transmissions:
                 sim.log.warn("%s has <transmission>s but declares no %s plugin: no controller manager for it, so "
                              "its controllers cannot be loaded; add <gazebo><plugin name=\"gazebo_ros_control\" "

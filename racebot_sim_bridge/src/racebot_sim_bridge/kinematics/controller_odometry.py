@@ -1,7 +1,7 @@
 """diff_drive_controller's (ros_controllers noetic-devel) kinematics: its Odometry (wheel positions ->
 pose by exact integration, velocities as a rolling mean), its SpeedLimiter (velocity, acceleration
 and jerk limits on one command component) and the wheel separation and radius it reads from the
-URDF when the parameters are not given. Pure Python; the controller (controllers/diff_drive.py)
+URDF when the parameters are not given. Pure Python; the controller (ros_controllers/diff_drive_controller.py)
 wraps them."""
 import math
 from collections import deque
@@ -40,6 +40,11 @@ class Odometry:
         self._left_old, self._right_old = left, right
         linear = (right_step + left_step) * 0.5
         angular = (right_step - left_step) / self.wheel_separation
+        return self._step(linear, angular, time)
+
+    def _step(self, linear, angular, time):
+        """The pose moved by `linear` (m) and `angular` (rad) since the last update, and the rolling means of
+        the velocities updated unless the interval to `time` is too small (then False)."""
         self.integrate_exact(linear, angular)
         dt = time - self.timestamp
         if dt < MIN_INTEGRATION_DT:
@@ -111,9 +116,7 @@ def wheel_params_from_urdf(model, left_joint, right_joint, need_separation, need
     separation = radius = None
     if not (need_separation or need_radius):
         return separation, radius
-    for name in (left_joint, right_joint):
-        if name not in model.joints:
-            raise ValueError('%s couldn\'t be retrieved from model description' % name)
+    _require_joints(model, left_joint, right_joint)
     left, right = model.joints[left_joint], model.joints[right_joint]
     if need_separation:
         separation = math.dist(left.origin_xyz, right.origin_xyz)
@@ -132,6 +135,13 @@ def wheel_params_from_urdf(model, left_joint, right_joint, need_separation, need
     return separation, radius
 
 
+def _require_joints(model, *names):
+    """ValueError with upstream's words for the first of `names` the model does not have."""
+    for name in names:
+        if name not in model.joints:
+            raise ValueError('%s couldn\'t be retrieved from model description' % name)
+
+
 class AckermannOdometry(Odometry):
     """ackermann_steering_controller's Odometry: the rear wheel's travel and the front steering angle
     (a bicycle model) instead of two wheels; the same integration and rolling means."""
@@ -144,16 +154,7 @@ class AckermannOdometry(Odometry):
         linear = rear - self._left_old
         self._left_old = rear
         angular = math.tan(front_steer_pos) * linear / self.wheel_separation_h
-        self.integrate_exact(linear, angular)
-        dt = time - self.timestamp
-        if dt < MIN_INTEGRATION_DT:
-            return False
-        self.timestamp = time
-        self._lin.append(linear / dt)
-        self._ang.append(angular / dt)
-        self.linear = sum(self._lin) / len(self._lin)
-        self.angular = sum(self._ang) / len(self._ang)
-        return True
+        return self._step(linear, angular, time)
 
 
 def ackermann_params_from_urdf(model, rear_joint, steer_joint, need_separation_h, need_radius):
@@ -163,9 +164,7 @@ def ackermann_params_from_urdf(model, rear_joint, steer_joint, need_separation_h
     separation_h = radius = None
     if not (need_separation_h or need_radius):
         return separation_h, radius
-    for name in (rear_joint, steer_joint):
-        if name not in model.joints:
-            raise ValueError('%s couldn\'t be retrieved from model description' % name)
+    _require_joints(model, rear_joint, steer_joint)
     if need_separation_h:
         separation_h = abs(model.joints[rear_joint].origin_xyz[0] - model.joints[steer_joint].origin_xyz[0])
     if need_radius:

@@ -20,7 +20,7 @@ import bisect
 import math
 from dataclasses import dataclass, field, replace
 
-from racebot_sim_bridge.ros_control.hardware_interface import shortest_angular_distance
+from racebot_sim_bridge.kinematics.angles import shortest_angular_distance
 
 
 class TrajectoryError(ValueError):

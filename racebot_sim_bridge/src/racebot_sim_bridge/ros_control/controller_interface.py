@@ -1,5 +1,6 @@
 """What every controller shares: ros_control's Controller life cycle over an injected I/O, the
-init error, and the single-joint command controllers' `command` topic with its limits."""
+init error, a controller template made for one hardware interface (`instantiate`), the action controllers'
+goal (`GoalController`), and the single-joint command controllers' `command` topic with its limits."""
 import math
 from enum import Enum
 
@@ -7,8 +8,6 @@ from std_msgs.msg import Float64
 from control_msgs.msg import JointControllerState
 
 from racebot_sim_bridge.ros_control import hardware_interface as hardware
-from racebot_sim_bridge.ros_control.hardware_interface import (shortest_angular_distance,  # noqa: F401 (re-exported)
-                                                               shortest_angular_distance_with_limits)
 from racebot_sim_bridge.ros_control.pid import Pid
 
 
@@ -89,19 +88,18 @@ class Controller:
         return float(value)
 
     def _flag(self, path, default):
-        value = self._lookup(path)
-        if value is None:
-            return default
-        if not isinstance(value, bool):
-            raise ControllerInitError('%s/%s must be true or false, got %r' % (self.param_ns, path, value))
-        return value
+        return self._typed(path, default, bool, 'true or false')
 
     def _text(self, path, default):
+        return self._typed(path, default, str, 'a string')
+
+    def _typed(self, path, default, kind, what):
+        """The parameter at `path` (`default` when unset), which must be a `kind` (`what` says so)."""
         value = self._lookup(path)
         if value is None:
             return default
-        if not isinstance(value, str):
-            raise ControllerInitError('%s/%s must be a string, got %r' % (self.param_ns, path, value))
+        if not isinstance(value, kind):
+            raise ControllerInitError('%s/%s must be %s, got %r' % (self.param_ns, path, what, value))
         return value
 
     def _joint_param(self):
@@ -109,8 +107,13 @@ class Controller:
         if not isinstance(joint, str) or not joint:
             raise ControllerInitError("No joint given (namespace: %s): set '%s/joint' to one of the robot's "
                                       "joints (%s)" % (self.param_ns, self.param_ns, ', '.join(self.hw.names)))
+        return self._handle(joint)
+
+    def _handle(self, joint, interface=None):
+        """The hardware's handle of `joint` through `interface` (the controller's own when None), as init()
+        claims it: a joint or interface the robot does not offer is a ControllerInitError naming the controller."""
         try:
-            return self.hw.handle(joint, self.interface)
+            return self.hw.handle(joint, interface or self.interface)
         except hardware.HardwareError as err:
             raise ControllerInitError('%s: %s' % (self.param_ns, err))
 
@@ -123,6 +126,37 @@ class Controller:
             return Pid.from_params(pid, self.param_ns + '/pid')
         except ValueError as err:
             raise ControllerInitError(str(err))
+
+
+class GoalController(Controller):
+    """What the action controllers share (joint_trajectory_controller's, gripper_action_controller's): one
+    accepted goal at a time (`active_goal`), changed under `_lock` with `running`; stopping cancels it, as
+    upstream's preemptActiveGoal does."""
+
+    def stopping(self, time):
+        with self._lock:
+            self.running = False
+            goal, self.active_goal = self.active_goal, None
+        if goal is not None:
+            goal.set_canceled()
+
+
+INTERFACE_KINDS = {hardware.POSITION: 'Position', hardware.VELOCITY: 'Velocity', hardware.EFFORT: 'Effort'}
+
+
+def instantiate(template, interface, module, name='{Kind}{template}', type_name='{kind}_controllers/{template}',
+                **attributes):
+    """`template` (a controller class written for any command interface) made for `interface`, as upstream's C++
+    instantiates its controller templates in typedefs (position_controllers::JointTrajectoryController is
+    JointTrajectoryController<..., PositionJointInterface>): a subclass with that `interface`, its own `type_name`
+    and `attributes`, defined in `module` (the caller's __name__). `name` and `type_name` are formats of {Kind}
+    ('Position'), {kind} ('position') and {template} (the template's class name)."""
+    kind = INTERFACE_KINDS[interface]
+    words = {'Kind': kind, 'kind': kind.lower(), 'template': template.__name__}
+    full_type = type_name.format(**words)
+    body = dict(attributes, type_name=full_type, interface=interface, __module__=module,
+                __doc__='%s: %s on a %s.' % (full_type, template.__name__, interface))
+    return type(name.format(**words), (template,), body)
 
 
 class Setpoint(str, Enum):

@@ -6,53 +6,35 @@ update) and knows no ROS; `ControllerManagerServices` serves it under
 simulator's node is not named `<ns>/controller_manager`: the tutorial's spawner takes that name.
 Every refusal is logged as an error saying what was wrong and what to do, and answered ok=false.
 
-A switch is controller_manager 0.20's: checked when asked (request_switch), carried out by the
-next update() in the simulation loop, its caller waiting for that (wait_for_switch), so a
-switch_controller call while the world is paused waits for the unpause, or gives up after its
-timeout + 1 s of wall time.
+A switch is controller_manager 0.20's: checked when asked (request_switch, with controller_switch.py's
+checks), carried out by the next update() in the simulation loop, its caller waiting for that
+(wait_for_switch), so a switch_controller call while the world is paused waits for the unpause, or
+gives up after its timeout + 1 s of wall time. The controller types are given to the manager (type
+name -> class), as pluginlib's loader gives them upstream: it imports no controller.
 """
 import collections
 import threading
 from time import monotonic
 
-from racebot_sim_bridge.ros_controllers import CONTROLLER_TYPES, ControllerInitError
+from racebot_sim_bridge.ros_control.controller_interface import ControllerInitError
+from racebot_sim_bridge.ros_control.controller_switch import BEST_EFFORT, plan_switch
 from racebot_sim_bridge.ros_control.hardware_interface import cpp_name
 from racebot_sim_bridge.supported_table import WHERE
-
-BEST_EFFORT = 1
-STRICT = 2
 
 Entry = collections.namedtuple('Entry', 'controller type_name')
 
 
-class SwitchRequest:
-    """An accepted switch_controller call, waiting for the update loop (ros_control's realtime side)."""
-
-    def __init__(self, start, stop, start_asap, timeout):
-        self.start = start  # loaded controllers' names, as requested (BEST_EFFORT's unknown ones dropped)
-        self.stop = stop
-        self.start_asap = start_asap
-        self.timeout = timeout  # s; bounds the caller's wait (wait_for_switch)
-        self.ok = False
-        self.done = threading.Event()
-
-    def finish(self, ok):
-        self.ok = ok
-        self.done.set()
-
-    def cancel(self):
-        self.finish(False)
-
-
 class ControllerManager:
-    def __init__(self, ns, hw, get_params, io, log, types=None):
-        """get_params(name) -> the dict under <ns>/<name>, or None; log has error/warn/info."""
+    def __init__(self, ns, hw, get_params, io, log, types):
+        """get_params(name) -> the dict under <ns>/<name>, or None; log has error/warn/info; types: controller
+        type name -> class, what load() builds from (given by whoever builds the manager, as pluginlib's
+        loader gives upstream's: gazebo_ros_control's plugin passes ros_controllers' CONTROLLER_TYPES)."""
         self.ns = '/' + ns.strip('/') if ns.strip('/') else ''
         self.hw = hw
         self.get_params = get_params
         self.io = io
         self.log = log
-        self.types = dict(types or CONTROLLER_TYPES)
+        self.types = dict(types)
         self.loaded = collections.OrderedDict()  # name -> Entry, in load order (= update order)
         self.state = {}  # name -> 'initialized' | 'running' | 'stopped'
         self.pending = None  # the accepted SwitchRequest the next update carries out
@@ -144,85 +126,16 @@ class ControllerManager:
         return True
 
     def request_switch(self, start, stop, strictness, start_asap=False, timeout=0.0):
-        """switch_controller's checks, as controller_manager 0.20 makes them; returns the accepted
-        SwitchRequest, which the next update() carries out, or None when refused (nothing changes).
-
-        Unknown names: STRICT refuses, BEST_EFFORT skips them. Then, per loaded controller: stopping
-        one that is not running, or starting one that runs (and is not also stopped), is refused
-        under STRICT and dropped from the check under BEST_EFFORT; a name left in both lists is
-        refused whatever the strictness. Last, no joint may be claimed by two controllers that would
-        run afterwards, whatever the interfaces (RobotHW::checkForConflict)."""
+        """switch_controller's checks (controller_switch.plan_switch); returns the accepted SwitchRequest,
+        which the next update() carries out, or None when refused (nothing changes)."""
         with self.lock:
             if self.pending is not None:
                 self.log.error('Could not switch controllers: the previous switch is still waiting for the '
                                'simulation to update (is it paused?); unpause it, or call again later')
                 return None
-            if strictness == 0:
-                self.log.warn('Controller Manager: To switch controllers you need to specify a strictness level of '
-                              'controller_manager_msgs::SwitchController::STRICT (%d) or ::BEST_EFFORT (%d). '
-                              'Defaulting to ::BEST_EFFORT.' % (STRICT, BEST_EFFORT))
-                strictness = BEST_EFFORT
-            elif strictness not in (BEST_EFFORT, STRICT):  # ros_control treats these as BEST_EFFORT, silently
-                self.log.warn('Controller Manager: strictness %d is neither STRICT (%d) nor BEST_EFFORT (%d); '
-                              'it is treated as BEST_EFFORT' % (strictness, STRICT, BEST_EFFORT))
-            strict = strictness == STRICT
-            requested = {}
-            for verb, names in (('stop', stop), ('start', start)):
-                requested[verb] = []
-                for n in names:
-                    if n in self.loaded:
-                        requested[verb].append(n)
-                        continue
-                    problem = ("Could not %s controller with name '%s' because no controller with this name exists "
-                               "(loaded: %s)" % (verb, n, ', '.join(self.loaded) or 'none'))
-                    if strict:
-                        self.log.error(problem + '; STRICT switch refused; nothing was changed')
-                        return None
-                    self.log.warn(problem + ' (BEST_EFFORT: skipped)')
-            stop_names, start_names = requested['stop'], requested['start']
-            after = []  # the controllers that would run after the switch, in load order
-            for n in self.loaded:
-                running = self.state[n] == 'running'
-                in_stop, in_start = n in stop_names, n in start_names
-                if not running and in_stop:
-                    if strict:
-                        self.log.error("Could not stop controller '%s' since it is not running; STRICT switch "
-                                       "refused; nothing was changed" % n)
-                        return None
-                    self.log.warn("Controller '%s' is not running (BEST_EFFORT: not stopped)" % n)
-                    in_stop = False
-                if running and not in_stop and in_start:
-                    if strict:
-                        self.log.error("Controller '%s' is already running; STRICT switch refused; nothing was "
-                                       "changed" % n)
-                        return None
-                    self.log.warn("Controller '%s' is already running (BEST_EFFORT: %s)"
-                                  % (n, 'left running' if start_asap else 'restarted'))
-                    in_start = False
-                if in_stop and in_start:  # "Could no", sic: ros_control 0.20's words
-                    self.log.error("Could no start or stop controller '%s' because of conflicting switching command; "
-                                   "to restart it, stop it in one switch and start it in the next" % n)
-                    return None
-                if (running and not in_stop) or in_start:
-                    after.append(n)
-            if self._in_conflict(after):
-                self.log.error('Could not switch controllers, due to resource conflict; stop the controller that '
-                               'holds the joint in the same switch')
-                return None
-            self.pending = SwitchRequest(start_names, stop_names, bool(start_asap), timeout)
+            self.pending = plan_switch(self.loaded, self.state, start, stop, strictness, start_asap, timeout,
+                                       self.log)
             return self.pending
-
-    def _in_conflict(self, names):
-        """RobotHW::checkForConflict: a joint claimed by two of these controllers, through any interfaces."""
-        claims = {}
-        for n in names:
-            for _iface, resources in self.loaded[n].controller.claimed_resources():
-                for r in resources:
-                    claims.setdefault(r, []).append(n)
-        conflicts = sorted((r, who) for r, who in claims.items() if len(who) > 1)
-        for r, who in conflicts:
-            self.log.warn('Resource conflict on [%s].  Controllers = [%s, ]' % (r, ', '.join(who)))
-        return bool(conflicts)
 
     def wait_for_switch(self, request, keep_waiting=lambda: True, clock=monotonic, poll=0.01):
         """Waits, as switch_controller's caller waits, for the update loop to carry `request` out;

@@ -1,14 +1,11 @@
-# Types for hardware.py when it is compiled (CMakeLists.txt): Cython reads this beside the .py, whose
-# code stays the one source; without the build, hardware.py runs as plain Python, the same results.
+# Types for hardware_interface.py when it is compiled (CMakeLists.txt): Cython reads this beside the .py, whose
+# code stays the one source; without the build, hardware_interface.py runs as plain Python, the same results.
+# The angle helpers are kinematics/angles.py's, compiled there: cimported, they are called as C functions.
 cimport cython
+from racebot_sim_bridge.kinematics.angles cimport shortest_angular_distance, shortest_angular_distance_with_limits
 
 cdef double _PI
 cdef int _EFFORT_MODE, _VELOCITY_MODE, _POSITION_MODE, _OTHER
-
-cpdef double shortest_angular_distance(double a, double b)
-
-@cython.locals(delta=double, other=double)
-cpdef double shortest_angular_distance_with_limits(double current, double target, double lower, double upper)
 
 
 cdef class JointHandle:

@@ -9,6 +9,8 @@ velocity limit. No ROS and no PyBullet here: the simulator passes joint states i
 """
 import math
 
+from racebot_sim_bridge.kinematics.angles import shortest_angular_distance, shortest_angular_distance_with_limits
+
 EFFORT = 'hardware_interface/EffortJointInterface'
 VELOCITY = 'hardware_interface/VelocityJointInterface'
 POSITION = 'hardware_interface/PositionJointInterface'
@@ -26,29 +28,6 @@ def cpp_name(interface):
     return interface.replace('/', '::')
 
 
-def shortest_angular_distance(a, b):
-    """Signed smallest angle that takes a to b, in (-pi, pi]."""
-    d = math.fmod(b - a, 2.0 * math.pi)
-    if d > math.pi:
-        d -= 2.0 * math.pi
-    elif d <= -math.pi:
-        d += 2.0 * math.pi
-    return d
-
-
-def shortest_angular_distance_with_limits(current, target, lower, upper):
-    """Error that takes `current` to `target` without leaving [lower, upper] (angles' idea of
-    shortest_angular_distance_with_large_limits): the short way round if it stays inside the
-    limits, else the long way."""
-    delta = shortest_angular_distance(current, target)
-    if lower - 1e-12 <= current + delta <= upper + 1e-12:
-        return delta
-    other = delta - math.copysign(2.0 * _PI, delta) if delta != 0.0 else 0.0
-    if lower - 1e-12 <= current + other <= upper + 1e-12:
-        return other
-    return delta
-
-
 class HardwareError(ValueError):
     """A controller asked for a joint or an interface this robot does not offer."""
 
@@ -56,7 +35,7 @@ class HardwareError(ValueError):
 class JointHandle:
     """State of one joint and its command, as the controllers see it.
 
-    When built (CMakeLists.txt), hardware.pxd compiles this class with typed fields: read() and
+    When built (CMakeLists.txt), hardware_interface.pxd compiles this class with typed fields: read() and
     limited_command() run every world update for every joint."""
 
     __slots__ = ('name', 'kind', 'interface', 'lower', 'upper', 'max_effort', 'max_velocity',

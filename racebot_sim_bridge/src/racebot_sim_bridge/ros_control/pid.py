@@ -1,6 +1,6 @@
 """A PID controller with control_toolbox's (ROS 1, Noetic) semantics.
 
-Pure Python: no rospy. The effort controllers of ``controllers.py`` own one ``Pid`` each.
+Pure Python: no rospy. The PID controllers of ``../ros_controllers/`` own one ``Pid`` each.
 
 Semantics (read from control_toolbox ``src/pid.cpp``, noetic-devel):
 

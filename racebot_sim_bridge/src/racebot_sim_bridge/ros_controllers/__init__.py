@@ -1,9 +1,10 @@
 """The ros_controllers this simulator offers, with ros_control's parameters, topics and semantics.
 
 A controller is built from its parameters (the dict under `<ns>/<name>` on the parameter server),
-the robot's hardware (hardware.RobotHW) and an I/O object that makes publishers and subscribers
-(`io.RosIO` for the real thing; tests pass their own). Construction is ros_control's init():
-it raises ControllerInitError with a message that says what is wrong and what to do.
+the robot's hardware (ros_control/hardware_interface.RobotHW) and an I/O object that makes publishers and
+subscribers (ros_control/controller_io.RosIO for the real thing; tests pass their own). Construction is
+ros_control's init(): it raises ControllerInitError (ros_control/controller_interface.py) with a message that
+says what is wrong and what to do.
 
 Types:
   joint_state_controller/JointStateController
@@ -15,7 +16,8 @@ Types:
   mecanum_drive_controller/MecanumDriveController (ridgeback_control's, the Ridgeback's own)
 
 One module per ros_controllers package; each lists its classes in TYPES, and CONTROLLER_TYPES
-(type name -> class) is what the controller manager loads from. A new controller type is a class
+(type name -> class) is what the controller manager loads from (gazebo_ros_control's plugin gives it to the
+manager, which imports no controller). Import a class from its own module. A new controller type is a class
 with `type_name`, `interface` and ros_control's init (constructor) / starting / update / stopping,
 added to its module's TYPES and to MODULES below.
 """
@@ -26,17 +28,6 @@ from racebot_sim_bridge.ros_controllers import (ackermann_steering_controller as
                                                 joint_trajectory_controller as joint_trajectory,
                                                 mecanum_drive_controller as mecanum_drive, position_controllers,
                                                 velocity_controllers)
-from racebot_sim_bridge.ros_control.controller_interface import (LIMIT_WARN_TOLERANCE, STATE_PUBLISH_EVERY,  # noqa: F401
-                                                                 CommandController, Controller, ControllerInitError,
-                                                                 PidCommandController,
-                                                                 shortest_angular_distance_with_limits)
-from racebot_sim_bridge.ros_controllers.effort_controllers import (EffortForwardController, JointPositionController,  # noqa: F401
-                                                                   JointVelocityController)
-from racebot_sim_bridge.ros_control.controller_io import CommandObserver, CommandTrace, RosIO  # noqa: F401
-from racebot_sim_bridge.ros_controllers.joint_state_controller import JointStateController  # noqa: F401
-from racebot_sim_bridge.ros_controllers.position_controllers import PositionForwardController  # noqa: F401
-from racebot_sim_bridge.ros_controllers.velocity_controllers import (VelocityForwardController,  # noqa: F401
-                                                                     VelocityJointPositionController)
 
 MODULES = (joint_state, effort_controllers, velocity_controllers, position_controllers, diff_drive,
            ackermann_steering, joint_trajectory, gripper_action, mecanum_drive)

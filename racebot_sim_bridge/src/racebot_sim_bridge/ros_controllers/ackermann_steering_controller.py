@@ -7,7 +7,6 @@ import math
 
 from racebot_sim_bridge.ros_control.hardware_interface import POSITION, VELOCITY
 from racebot_sim_bridge.kinematics.controller_odometry import AckermannOdometry, ackermann_params_from_urdf
-from racebot_sim_bridge.ros_control.controller_interface import ControllerInitError
 from racebot_sim_bridge.ros_controllers.diff_drive_controller import OdometryDriveController
 
 
@@ -22,20 +21,11 @@ class AckermannSteeringController(OdometryDriveController):
         self.separation_h_multiplier = self._number('wheel_separation_h_multiplier', 1.0)
         self.radius_multiplier = self._number('wheel_radius_multiplier', 1.0)
         self.steer_pos_multiplier = self._number('steer_pos_multiplier', 1.0)
-        self.separation_h = self._geometry_param('wheel_separation_h')
-        self.radius = self._geometry_param('wheel_radius')
-        try:
-            separation_h, radius = ackermann_params_from_urdf(self.hw.model, rear, steer, self.separation_h is None,
-                                                              self.radius is None)
-        except ValueError as err:
-            raise ControllerInitError('%s: %s' % (self.param_ns, err))
-        self.separation_h = float(self.separation_h if self.separation_h is not None else separation_h)
-        self.radius = float(self.radius if self.radius is not None else radius)
-        if not (self.separation_h > 0 and self.radius > 0):
-            raise ControllerInitError('%s: wheel_separation_h %g and wheel radius %g must both be > 0 (from the '
-                                      'URDF: the rear wheel and the steering joint at the same x?); set '
-                                      'wheel_separation_h and wheel_radius' % (self.param_ns, self.separation_h,
-                                                                               self.radius))
+        self.separation_h, self.radius = self._wheel_geometry(
+            ('wheel_separation_h', 'wheel_radius'),
+            lambda *missing: ackermann_params_from_urdf(self.hw.model, rear, steer, *missing),
+            'wheel_separation_h %g and wheel radius %g must both be > 0 (from the URDF: the rear wheel and the '
+            'steering joint at the same x?); set wheel_separation_h and wheel_radius')
         self.rear = self._handle(rear, VELOCITY)
         self.steer = self._handle(steer, POSITION)
 

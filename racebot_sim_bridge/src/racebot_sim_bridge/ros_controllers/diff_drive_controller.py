@@ -10,7 +10,6 @@ from geometry_msgs.msg import Twist
 from nav_msgs.msg import Odometry as OdometryMsg
 from tf2_msgs.msg import TFMessage
 
-from racebot_sim_bridge.ros_control import hardware_interface as hardware
 from racebot_sim_bridge.ros_control.hardware_interface import VELOCITY
 from racebot_sim_bridge.kinematics.controller_odometry import Odometry, SpeedLimiter, wheel_params_from_urdf
 from racebot_sim_bridge.ros_control.controller_interface import Controller, ControllerInitError
@@ -103,11 +102,20 @@ class OdometryDriveController(Controller):
                                       'the URDF' % (self.param_ns, key, value))
         return value
 
-    def _handle(self, joint, interface):
+    def _wheel_geometry(self, keys, from_urdf, problem):
+        """The geometry parameters `keys` (m), each one not given measured on the URDF: from_urdf(one flag per
+        key, True where it is missing) gives the values in `keys` order, or raises ValueError with upstream's
+        reason. ControllerInitError unless every value is > 0 (`problem`, formatted with the values, says what
+        to set)."""
+        given = [self._geometry_param(key) for key in keys]
         try:
-            return self.hw.handle(joint, interface)
-        except hardware.HardwareError as err:
+            measured = from_urdf(*[value is None for value in given])
+        except ValueError as err:
             raise ControllerInitError('%s: %s' % (self.param_ns, err))
+        values = tuple(float(g if g is not None else m) for g, m in zip(given, measured))
+        if not all(v > 0 for v in values):
+            raise ControllerInitError('%s: %s' % (self.param_ns, problem % values))
+        return values
 
     def _limiter(self, prefix):
         lim = SpeedLimiter(self._flag(prefix + '/has_velocity_limits', False),
@@ -202,19 +210,11 @@ class DiffDriveController(OdometryDriveController):
             self.io.warn_throttle(self.param_ns + '/state', 0.0, '%s: publish_wheel_joint_controller_state is not '
                                   'simulated by racebot (see %s); the controller runs without it'
                                   % (self.param_ns, SUPPORTED_TABLE))
-        self.separation = self._geometry_param('wheel_separation')
-        self.radius = self._geometry_param('wheel_radius')
-        try:
-            separation, radius = wheel_params_from_urdf(self.hw.model, left_names[0], right_names[0],
-                                                        self.separation is None, self.radius is None)
-        except ValueError as err:
-            raise ControllerInitError('%s: %s' % (self.param_ns, err))
-        self.separation = float(self.separation if self.separation is not None else separation)
-        self.radius = float(self.radius if self.radius is not None else radius)
-        if not (self.separation > 0 and self.radius > 0):
-            raise ControllerInitError('%s: wheel separation %g and radius %g must both be > 0 (from the URDF: the '
-                                      'wheel joints coincide, or a zero radius); set wheel_separation and wheel_radius'
-                                      % (self.param_ns, self.separation, self.radius))
+        self.separation, self.radius = self._wheel_geometry(
+            ('wheel_separation', 'wheel_radius'),
+            lambda *missing: wheel_params_from_urdf(self.hw.model, left_names[0], right_names[0], *missing),
+            'wheel separation %g and radius %g must both be > 0 (from the URDF: the wheel joints coincide, or a zero '
+            'radius); set wheel_separation and wheel_radius')
         self.left = [self._handle(n, VELOCITY) for n in left_names]
         self.right = [self._handle(n, VELOCITY) for n in right_names]
 

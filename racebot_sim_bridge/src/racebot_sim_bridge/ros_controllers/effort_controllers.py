@@ -2,14 +2,9 @@
 JointPositionController (PID on the error, effort out)."""
 from racebot_sim_bridge.ros_control.hardware_interface import EFFORT, position_error
 from racebot_sim_bridge.ros_control.controller_interface import STATE_PUBLISH_EVERY, PidCommandController, Setpoint
-from racebot_sim_bridge.ros_controllers.forward_command_controller import (ForwardCommandController,
-                                                                           ForwardJointGroupCommandController)
+from racebot_sim_bridge.ros_controllers.forward_command_controller import forward_controllers
 
-
-class EffortForwardController(ForwardCommandController):
-    type_name = 'effort_controllers/JointEffortController'
-    interface = EFFORT
-    setpoint = Setpoint.EFFORT
+EffortForwardController, JointGroupEffortController = forward_controllers(EFFORT, __name__)
 
 
 class JointVelocityController(PidCommandController):
@@ -62,11 +57,6 @@ class JointPositionController(PidCommandController):
             self._publish_state(time, period, target, j.position, j.velocity, error, out)
         if self.observer is not None:
             self.observer.command_applied(self, cmd)
-
-
-class JointGroupEffortController(ForwardJointGroupCommandController):
-    type_name = 'effort_controllers/JointGroupEffortController'
-    interface = EFFORT
 
 
 TYPES = (JointGroupEffortController, EffortForwardController, JointVelocityController, JointPositionController)

@@ -1,14 +1,14 @@
 """forward_command_controller: the command goes to the joint as it is (the base of
 effort_controllers/JointEffortController, velocity_controllers/JointVelocityController and
 position_controllers/JointPositionController), and to a group of joints (the base of the
-JointGroup{Effort,Velocity,Position}Controllers)."""
+JointGroup{Effort,Velocity,Position}Controllers); `forward_controllers` makes both for one interface."""
 import math
 
 from std_msgs.msg import Float64MultiArray
 
-from racebot_sim_bridge.ros_control import hardware_interface as hardware
 from racebot_sim_bridge.ros_control.hardware_interface import POSITION
-from racebot_sim_bridge.ros_control.controller_interface import CommandController, Controller, ControllerInitError
+from racebot_sim_bridge.ros_control.controller_interface import (INTERFACE_KINDS, CommandController, Controller,
+                                                                 ControllerInitError, Setpoint, instantiate)
 
 
 class ForwardCommandController(CommandController):
@@ -40,10 +40,7 @@ class ForwardJointGroupCommandController(Controller):
         if not names:
             raise ControllerInitError('List of joint names is empty (namespace: %s): list the joints in %s/joints'
                                       % (self.param_ns, self.param_ns))
-        try:
-            self.joints = [self.hw.handle(n, self.interface) for n in names]
-        except hardware.HardwareError as err:
-            raise ControllerInitError('%s: %s' % (self.param_ns, err))
+        self.joints = [self._handle(n) for n in names]
         self.commands = (0.0,) * len(self.joints)
         self._sub(self.topic('command'), Float64MultiArray, self._on_command)
 
@@ -74,3 +71,15 @@ class ForwardJointGroupCommandController(Controller):
 
     def claimed_resources(self):
         return [(self.interface, sorted(j.name for j in self.joints))]
+
+
+def forward_controllers(interface, module):
+    """A <kind>_controllers package's two forward controllers, as upstream's typedefs of forward_command_controller's
+    templates give them: <kind>_controllers/Joint<Kind>Controller (one joint; <Kind>ForwardController here) and
+    <kind>_controllers/JointGroup<Kind>Controller, defined in `module` (the caller's __name__)."""
+    setpoint = Setpoint(INTERFACE_KINDS[interface].lower())  # what the command sets: the interface's quantity
+    single = instantiate(ForwardCommandController, interface, module, '{Kind}ForwardController',
+                         '{kind}_controllers/Joint{Kind}Controller', setpoint=setpoint)
+    group = instantiate(ForwardJointGroupCommandController, interface, module, 'JointGroup{Kind}Controller',
+                        '{kind}_controllers/JointGroup{Kind}Controller')
+    return single, group

@@ -14,8 +14,7 @@ from control_msgs.msg import GripperCommandAction, GripperCommandResult
 
 from racebot_sim_bridge.ros_control.hardware_interface import EFFORT, POSITION
 from racebot_sim_bridge.ros_control.pid import Pid
-from racebot_sim_bridge.ros_control.controller_interface import Controller, ControllerInitError
-from racebot_sim_bridge.ros_control import hardware_interface as hardware
+from racebot_sim_bridge.ros_control.controller_interface import ControllerInitError, GoalController, instantiate
 
 
 def gripper_outcome(error_position, velocity, time, last_movement, goal_tolerance, stall_velocity, stall_timeout):
@@ -29,9 +28,8 @@ def gripper_outcome(error_position, velocity, time, last_movement, goal_toleranc
     return None, last_movement
 
 
-class GripperActionController(Controller):
-    type_name = None
-    interface = None
+class GripperActionController(GoalController):
+    """The template of both variants (position and effort), which instantiate() makes below."""
 
     def __init__(self, name, ns, params, hw, io):
         super().__init__(name, ns, params, hw, io)
@@ -40,10 +38,7 @@ class GripperActionController(Controller):
             raise ControllerInitError("Could not find joint name on param server (namespace: %s): set '%s/joint' to "
                                       "the gripper's joint (%s)" % (self.param_ns, self.param_ns,
                                                                     ', '.join(self.hw.names)))
-        try:
-            self.joint = self.hw.handle(joint, self.interface)
-        except hardware.HardwareError as err:
-            raise ControllerInitError('%s: %s' % (self.param_ns, err))
+        self.joint = self._handle(joint)
         self.monitor_period = 1.0 / self._number('action_monitor_rate', 20.0, positive=True)
         self.goal_tolerance = abs(self._number('goal_tolerance', 0.01))
         self.default_max_effort = abs(self._number('max_effort', 0.0))
@@ -82,13 +77,6 @@ class GripperActionController(Controller):
             self.joint.command = 0.0
         else:
             self.joint.command = self.joint.position
-
-    def stopping(self, time):
-        with self._lock:
-            self.running = False
-            goal, self.active_goal = self.active_goal, None
-        if goal is not None:
-            goal.set_canceled()
 
     def update(self, time, period):
         j = self.joint
@@ -143,14 +131,6 @@ class GripperActionController(Controller):
         gh.set_canceled()
 
 
-class PositionGripperActionController(GripperActionController):
-    type_name = 'position_controllers/GripperActionController'
-    interface = POSITION
-
-
-class EffortGripperActionController(GripperActionController):
-    type_name = 'effort_controllers/GripperActionController'
-    interface = EFFORT
-
-
-TYPES = (PositionGripperActionController, EffortGripperActionController)
+# {position,effort}_controllers/GripperActionController
+TYPES = tuple(instantiate(GripperActionController, interface, __name__) for interface in (POSITION, EFFORT))
+PositionGripperActionController, EffortGripperActionController = TYPES

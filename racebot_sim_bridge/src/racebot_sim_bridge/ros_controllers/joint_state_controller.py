@@ -3,7 +3,6 @@ import math
 
 from sensor_msgs.msg import JointState
 
-from racebot_sim_bridge.ros_control import hardware_interface as hardware
 from racebot_sim_bridge.ros_control.hardware_interface import STATE
 from racebot_sim_bridge.ros_control.controller_interface import Controller, ControllerInitError
 
@@ -22,10 +21,7 @@ class JointStateController(Controller):
         names = self.params.get('joints') or self.hw.names
         if not isinstance(names, list) or not all(isinstance(n, str) for n in names):
             raise ControllerInitError("'%s/joints' must be a list of joint names, got %r" % (self.param_ns, names))
-        try:
-            self.handles = [self.hw.handle(n, STATE) for n in names]
-        except hardware.HardwareError as err:
-            raise ControllerInitError('%s: %s' % (self.param_ns, err))
+        self.handles = [self._handle(n, STATE) for n in names]
         extra = self.params.get('extra_joints') or []
         if not isinstance(extra, list):
             raise ControllerInitError("'%s/extra_joints' must be a list of {name: ..., position: ..., velocity: ..., "

@@ -9,7 +9,7 @@ An action goal succeeds when every joint is within its goal tolerance after the 
 aborted with PATH_TOLERANCE_VIOLATED or GOAL_TOLERANCE_VIOLATED as upstream decides; a new goal or a
 command preempts it (canceled); a cancel holds the joints where they are (or brings them to rest in
 stop_trajectory_duration). `state` (JointTrajectoryControllerState) at state_publish_rate,
-`query_state` (control_msgs/QueryTrajectoryState). The trajectory maths is kinematics/joint_trajectory.py.
+`query_state` (control_msgs/QueryTrajectoryState). The trajectory maths is kinematics/trajectory.py.
 
 Threads: the topic, action and service callbacks run on rospy's threads, the update on the physics
 thread. The running trajectory and the active goal change under `_lock`; goal handles are told of an
@@ -24,11 +24,11 @@ from control_msgs.msg import (FollowJointTrajectoryAction, FollowJointTrajectory
 from control_msgs.srv import QueryTrajectoryState, QueryTrajectoryStateResponse
 from trajectory_msgs.msg import JointTrajectory
 
-from racebot_sim_bridge.ros_control import hardware_interface as hardware
 from racebot_sim_bridge.ros_control.hardware_interface import EFFORT, POSITION, VELOCITY
 from racebot_sim_bridge.kinematics import trajectory as jt
+from racebot_sim_bridge.kinematics.angles import shortest_angular_distance
 from racebot_sim_bridge.ros_control.pid import Pid
-from racebot_sim_bridge.ros_control.controller_interface import Controller, ControllerInitError
+from racebot_sim_bridge.ros_control.controller_interface import ControllerInitError, GoalController, instantiate
 
 
 def _points(msg):
@@ -36,9 +36,8 @@ def _points(msg):
             for p in msg.points]
 
 
-class JointTrajectoryController(Controller):
-    type_name = None
-    interface = None
+class JointTrajectoryController(GoalController):
+    """The template of the three variants (position, velocity, effort), which instantiate() makes below."""
 
     def __init__(self, name, ns, params, hw, io):
         super().__init__(name, ns, params, hw, io)
@@ -47,10 +46,7 @@ class JointTrajectoryController(Controller):
             raise ControllerInitError("Could not find joint name array parameter 'joints' (namespace: %s): set "
                                       "'%s/joints' to a list of the robot's joints (%s)"
                                       % (self.param_ns, self.param_ns, ', '.join(self.hw.names)))
-        try:
-            self.joints = [self.hw.handle(n, self.interface) for n in names]
-        except hardware.HardwareError as err:
-            raise ControllerInitError("%s: %s" % (self.param_ns, err))
+        self.joints = [self._handle(n) for n in names]
         self.joint_names = list(names)
         self.wraps = [j.kind == 'continuous' for j in self.joints]
         rate = self._number('state_publish_rate', 50.0)
@@ -122,13 +118,6 @@ class JointTrajectoryController(Controller):
             for j in self.joints:
                 j.command = j.position
 
-    def stopping(self, time):
-        with self._lock:
-            self.running = False
-            goal, self.active_goal = self.active_goal, None
-        if goal is not None:
-            goal.set_canceled()
-
     def _hold(self, time):
         """The hold trajectory: where the joints are, or from the desired state to rest in stop_trajectory_duration."""
         if self.stop_duration == 0.0:
@@ -144,7 +133,7 @@ class JointTrajectoryController(Controller):
             for i, j in enumerate(self.joints):
                 index, d = jt.sample(traj[i], time)
                 self.desired[i] = d
-                error = (jt.shortest_angular_distance(j.position, d[0]), d[1] - j.velocity, 0.0)
+                error = (shortest_angular_distance(j.position, d[0]), d[1] - j.velocity, 0.0)
                 errors.append(error)
                 if goal is None or outcome is not None:
                     continue
@@ -306,19 +295,6 @@ class JointTrajectoryController(Controller):
         return res
 
 
-class PositionJointTrajectoryController(JointTrajectoryController):
-    type_name = 'position_controllers/JointTrajectoryController'
-    interface = POSITION
-
-
-class VelocityJointTrajectoryController(JointTrajectoryController):
-    type_name = 'velocity_controllers/JointTrajectoryController'
-    interface = VELOCITY
-
-
-class EffortJointTrajectoryController(JointTrajectoryController):
-    type_name = 'effort_controllers/JointTrajectoryController'
-    interface = EFFORT
-
-
-TYPES = (PositionJointTrajectoryController, VelocityJointTrajectoryController, EffortJointTrajectoryController)
+# {position,velocity,effort}_controllers/JointTrajectoryController
+TYPES = tuple(instantiate(JointTrajectoryController, interface, __name__) for interface in (POSITION, VELOCITY, EFFORT))
+PositionJointTrajectoryController, VelocityJointTrajectoryController, EffortJointTrajectoryController = TYPES
