@@ -80,20 +80,17 @@ def block_cloud(shape_ranges, retro, ray, range_min, range_max):
 
 
 class BlockLaserSensor(Sensor, libraries=('libgazebo_ros_block_laser.so',), sensor_types=('ray',),
-                       kind=SensorKind.BLOCK_LASER, main_topic='cloud'):
-    """gazebo_ros_block_laser: sensor_msgs/PointCloud of the interpolated rays, intensity in channels[0]."""
-
-    block = 'ray'
+                       kind=SensorKind.BLOCK_LASER, main_topic='cloud', block='ray', topic_param='topicName'):
+    """gazebo_ros_block_laser: sensor_msgs/PointCloud of the interpolated rays, intensity in channels[0]. An empty
+    topicName advertises nothing (upstream says "topic name not set" at every scan)."""
 
     @classmethod
     def load(cls, config, sdf):
-        """As GazeboRosBlockLaser::Load reads the plugin (None: no topic, nothing published)."""
+        """As GazeboRosBlockLaser::Load reads the plugin."""
         params, what, warnings, ray = sdf.params, sdf.what, config.warnings, sdf.spec.ray
         text = sdf.own_namespace()
         ns = sdf.resolve('' if text is None else text + '/')
         topic = params.get('topicName')
-        if topic == '':
-            return None  # upstream advertises nothing (and says "topic name not set" at every scan)
         if topic is None:
             topic = '/world'
             warnings.append('%s has no <topicName>; publishing on /world as gazebo_ros_block_laser does' % what)

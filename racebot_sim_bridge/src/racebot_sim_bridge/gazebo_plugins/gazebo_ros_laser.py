@@ -18,16 +18,14 @@ from racebot_sim_bridge.sensors.raycast import cast_rays
 
 
 class LaserSensor(Sensor, libraries=('libgazebo_ros_laser.so', 'libgazebo_ros_gpu_laser.so'),
-                  sensor_types=('ray', 'gpu_ray'), kind=SensorKind.LASER, main_topic='scan'):
+                  sensor_types=('ray', 'gpu_ray'), kind=SensorKind.LASER, main_topic='scan', block='ray',
+                  topic_param='topicName'):
     """gazebo_ros_laser and gazebo_ros_gpu_laser: sensor_msgs/LaserScan of the ray sensor's beams."""
-    block = 'ray'
 
     @classmethod
     def load(cls, config, sdf):
         params, what, warnings = sdf.params, sdf.what, config.warnings
         topic = params.get('topicName')
-        if topic == '':
-            return None  # gazebo_ros_laser advertises nothing for an empty <topicName>
         if topic is None:
             topic = '/world'  # gazebo_ros_laser's default, odd as it is
             warnings.append('%s has no <topicName>; publishing on /world as gazebo_ros_laser does' % what)

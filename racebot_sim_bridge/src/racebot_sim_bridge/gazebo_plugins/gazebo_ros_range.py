@@ -21,16 +21,13 @@ from racebot_sim_bridge.sensors.schedule import FrameThrottle
 
 # a gpu_ray is refused: gazebo_ros_range needs a RaySensor (gzthrow upstream)
 class RangeSensor(Sensor, libraries=('libgazebo_ros_range.so',), sensor_types=('ray',),
-                  kind=SensorKind.RANGE, main_topic='range'):
+                  kind=SensorKind.RANGE, main_topic='range', block='ray', topic_param='topicName'):
     """gazebo_ros_range: the ray sensor's shortest ray as sensor_msgs/Range (range_reading.py)."""
-    block = 'ray'
 
     @classmethod
     def load(cls, config, sdf):
         params, what, warnings = sdf.params, sdf.what, config.warnings
         topic = params.get('topicName')
-        if topic == '':
-            return None  # gazebo_ros_range advertises nothing for an empty <topicName>
         radiation = params.get('radiation')
         if radiation is None:
             radiation = 'ultrasound'

@@ -7,19 +7,16 @@ Upstream's cameras share one parent sensor: a trigger of either enables it, so e
 cameras' frames and takes one off each camera's counter (never below 0). One trigger on either side: one stereo
 pair; a trigger on each side at once: still one pair. racebot does the same (gazebo_ros_triggered_camera.Shutter).
 """
-from racebot_sim_bridge.gazebo_plugins.gazebo_ros_multicamera import load_cameras
+from racebot_sim_bridge.gazebo_plugins.gazebo_ros_multicamera import MultiCameraSensor
 from racebot_sim_bridge.gazebo_plugins.gazebo_ros_triggered_camera import Shutter, TriggeredCameraSensor
 from racebot_sim_bridge.gazebo_plugins.sensor_plugin import SensorKind
 
 
-class TriggeredMultiCameraSensor(TriggeredCameraSensor, libraries=('libgazebo_ros_triggered_multicamera.so',),
+class TriggeredMultiCameraSensor(TriggeredCameraSensor, MultiCameraSensor,
+                                 libraries=('libgazebo_ros_triggered_multicamera.so',),
                                  sensor_types=('multicamera',), kind=SensorKind.MULTICAMERA):
-    """One camera of a triggered multicamera sensor: its own pose, topics and trigger, the sensor's Shutter."""
-    block = None  # it reads every <camera> (load_cameras)
-
-    @classmethod
-    def load(cls, config, sdf):
-        return load_cameras(config, sdf)
+    """One camera of a triggered multicamera sensor: its own pose, topics and trigger, the sensor's Shutter. Loaded
+    as a multicamera (MultiCameraSensor.load), run as a triggered camera."""
 
     @classmethod
     def create(cls, manager, robot, spec, config):

@@ -106,21 +106,17 @@ def velodyne_cloud(stamp, frame_id, xyz, intensity, ring, layout, organize=False
 
 
 class VelodyneLaser(Sensor, libraries=('libgazebo_ros_velodyne_laser.so',), sensor_types=('ray',),
-                    kind=SensorKind.VELODYNE, main_topic='points'):
+                    kind=SensorKind.VELODYNE, main_topic='points', block='ray', topic_param='topicName'):
     """velodyne_gazebo_plugins' GazeboRosVelodyneLaser: sensor_msgs/PointCloud2 of the scan."""
-
-    block = 'ray'
 
     @classmethod
     def load(cls, config, sdf):
-        """As GazeboRosVelodyneLaser::Load reads the plugin (None: no topic)."""
+        """As GazeboRosVelodyneLaser::Load reads the plugin."""
         params, what, warnings = sdf.params, sdf.what, config.warnings
         text = sdf.own_namespace()
         robot_namespace = '/' if text is None else text
         ns = sdf.resolve(robot_namespace)
         topic = params.get('topicName')
-        if topic == '':
-            return None
         config.topics['points'] = join_topic(ns, '/points' if topic is None else topic)
         frame = params.get('frameName')
         config.params['frame_name'] = '/world' if frame is None else frame

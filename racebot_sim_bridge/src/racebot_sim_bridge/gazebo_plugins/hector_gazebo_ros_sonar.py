@@ -54,10 +54,8 @@ def sonar_reading(ray_ranges, range_min, range_max, model=None, dt=0.0):
 
 
 class HectorSonar(Sensor, libraries=('libhector_gazebo_ros_sonar.so',), sensor_types=('ray',),
-                  kind=SensorKind.SONAR, main_topic='range'):
+                  kind=SensorKind.SONAR, main_topic='range', block='ray'):
     """hector_gazebo_plugins' GazeboRosSonar: the shortest ray through hector's error model, on its own timer."""
-
-    block = 'ray'
 
     @classmethod
     def load(cls, config, sdf):

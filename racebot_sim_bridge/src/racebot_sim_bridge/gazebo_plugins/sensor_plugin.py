@@ -73,8 +73,8 @@ class Sensor:
     """One simulated sensor: its loading, schedule, mount, publishers and rate meter.
 
     A plugin class declares in its class line what registry.py and configure() read of it:
-    `class RangeSensor(Sensor, libraries=('libgazebo_ros_range.so',), sensor_types=('ray',), kind=..., main_topic=...)`,
-    and reads its own parameters in load().
+    `class RangeSensor(Sensor, libraries=('libgazebo_ros_range.so',), sensor_types=('ray',), kind=..., main_topic=...,
+    block='ray', topic_param='topicName')`, and reads its own parameters in load().
     """
     libraries = ()     # upstream's library names it answers, e.g. ('libgazebo_ros_range.so',): registry.py
     plugin_kind = PluginKind.SENSOR
@@ -82,11 +82,14 @@ class Sensor:
     kind = None        # a SensorKind
     main_topic = None  # the role whose rate is reported
     block = None       # the <sensor>'s block it reads ('ray', 'camera': SensorSpec's); without it, refused
+    topic_param = None  # the parameter naming its topic (topicName) when, written empty, nothing is advertised
     counts_frames = False  # a camera: its updates are frames (performance_metrics reports their rate as fps)
 
-    def __init_subclass__(cls, libraries=None, sensor_types=None, kind=None, main_topic=None, **kwargs):
+    def __init_subclass__(cls, libraries=None, sensor_types=None, kind=None, main_topic=None, block=None,
+                          topic_param=None, **kwargs):
         super().__init_subclass__(**kwargs)
-        declared = {'libraries': libraries, 'sensor_types': sensor_types, 'kind': kind, 'main_topic': main_topic}
+        declared = {'libraries': libraries, 'sensor_types': sensor_types, 'kind': kind, 'main_topic': main_topic,
+                    'block': block, 'topic_param': topic_param}
         for name, value in declared.items():
             if value is not None:  # not declared: inherited (a multicamera's main topic is the camera's)
                 setattr(cls, name, value)
@@ -103,6 +106,8 @@ class Sensor:
                                     % (sdf.what, plugin.filename, cls.kind, spec.type, ' or '.join(cls.sensor_types)))
         if cls.block is not None and getattr(spec, cls.block) is None:
             raise SensorConfigError('%s: the sensor has no <%s> block' % (sdf.what, cls.block))
+        if cls.topic_param is not None and sdf.params.get(cls.topic_param) == '':
+            return None  # upstream advertises nothing
         config = SensorConfig(spec.name, cls.kind, spec.reference, '', spec.update_rate, warnings=sdf.warnings,
                               sensor_class=cls)
         return cls.load(config, sdf)
