@@ -9,7 +9,6 @@ import importlib.util
 import math
 import os
 import re
-import shlex
 import signal
 import subprocess
 import sys
@@ -102,7 +101,8 @@ class ReadmeDriveTest(unittest.TestCase):
         shapes = footprints()
         nearest, t, x, y = min((clearance((x, y), shapes)[0], t, x, y) for t, x, y, _, _ in drive)
         self.assertGreaterEqual(nearest, CLEARANCE, 'the README command (%s) took the car within %.2f m of a wall '
-                                'or object at (%.2f, %.2f), %.1f s into the drive' % (command, nearest, x, y, t - start))
+                                'or object at (%.2f, %.2f), %.1f s into the drive'
+                                % (command, nearest, x, y, t - start))
         worst = max(max(abs(r), abs(p)) for _, _, _, r, p in drive)
         self.assertLess(worst, 0.3, 'the car tipped: roll or pitch %.2f rad' % worst)
 

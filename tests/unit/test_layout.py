@@ -416,19 +416,19 @@ def test_a_missing_annotation_is_named(tmp_path):
 
 
 def test_an_import_up_a_layer_is_found_and_one_down_is_not(tmp_path):
-    rooms = ['racebot_sim_bridge/', 'racebot_sim_bridge/src/racebot_sim_bridge/engine/', 'racebot_sim_bridge/src/racebot_sim_bridge/sensors/',
-             'tools/']
+    package = 'racebot_sim_bridge/src/racebot_sim_bridge/'
+    rooms = ['racebot_sim_bridge/', package + 'engine/', package + 'sensors/', 'tools/']
     files = {'racebot_sim_bridge/src/racebot_sim_bridge/__init__.py': '',
              'racebot_sim_bridge/src/racebot_sim_bridge/engine/__init__.py': '',
              'racebot_sim_bridge/src/racebot_sim_bridge/engine/world.py': 'import math\n',
              'racebot_sim_bridge/src/racebot_sim_bridge/sensors/__init__.py': '',
-             'racebot_sim_bridge/src/racebot_sim_bridge/sensors/ray.py': 'from racebot_sim_bridge.engine import world\n',
+             package + 'sensors/ray.py': 'from racebot_sim_bridge.engine import world\n',
              'tools/bench/__init__.py': '', 'tools/bench/run.py': 'from racebot_sim_bridge.sensors.ray import x\n'}
     for rel, text in files.items():
         (tmp_path / rel).parent.mkdir(parents=True, exist_ok=True)
         (tmp_path / rel).write_text(text)
     assert layer_violations(tmp_path, rooms) == []
-    (tmp_path / files_key(files, 'engine/world.py')).write_text('def f():\n    from racebot_sim_bridge.sensors import ray\n')
+    (tmp_path / package / 'engine/world.py').write_text('def f():\n    from racebot_sim_bridge.sensors import ray\n')
     assert layer_violations(tmp_path, rooms) == [
         'racebot_sim_bridge/src/racebot_sim_bridge/engine/world.py line 2: imports racebot_sim_bridge.sensors '
         '(racebot_sim_bridge/src/racebot_sim_bridge/sensors/, above racebot_sim_bridge/src/racebot_sim_bridge/engine/)',
@@ -436,10 +436,6 @@ def test_an_import_up_a_layer_is_found_and_one_down_is_not(tmp_path):
         '(racebot_sim_bridge/src/racebot_sim_bridge/sensors/, above racebot_sim_bridge/src/racebot_sim_bridge/engine/)']
     (tmp_path / 'tools/loose.py').parent.mkdir(exist_ok=True)
     assert room_of('tools/loose.py', rooms) == 3 and room_of('upstream_compat/x.py', rooms) is None
-
-
-def files_key(files, tail):
-    return next(rel for rel in files if rel.endswith(tail))
 
 
 def test_the_layer_list_is_read_from_its_block():

@@ -105,7 +105,7 @@ def measure():
     from racebot_sim_bridge.description import sdf_reader, urdf_reader
     from racebot_sim_bridge.engine.physics import PhysicsWorld
     from racebot_sim_bridge.sensors.camera import PinholeCamera
-    from racebot_sim_bridge.sensors.config import sensor_config
+    from racebot_sim_bridge.gazebo_plugins.sensor_manager import sensor_config
     from racebot_sim_bridge.sensors.noise import make_noise
     from racebot_sim_bridge.sensors.render import CameraFrames, load_renderer
     from racebot_sim_bridge.sensors.scene import SceneColours

@@ -59,7 +59,7 @@ from racebot_sim_bridge.engine.load_trial import DEFAULT_TIMEOUT, LoadTrial
 from racebot_sim_bridge.engine.physics import PhysicsError
 from racebot_sim_bridge.gazebo_plugins.plugin_manager import PluginManager
 from racebot_sim_bridge.gazebo_ros_control.gazebo_ros_control_plugin import GazeboRosControlPlugin
-from racebot_sim_bridge.sensors.sensor_manager import SensorManager
+from racebot_sim_bridge.gazebo_plugins.sensor_manager import SensorManager
 from racebot_sim_bridge.engine.sim_time import ros_time
 from racebot_sim_bridge.engine.simulator import Simulator
 from racebot_sim_bridge.window.viewer import SYNC_PERIOD as VIEWER_SYNC_PERIOD, AttachedWindows

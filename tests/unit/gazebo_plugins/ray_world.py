@@ -8,7 +8,7 @@ import math
 
 from racebot_sim_bridge.description import sdf_reader
 from racebot_sim_bridge.engine.simulator import Simulator
-from racebot_sim_bridge.sensors.sensor_manager import SensorManager
+from racebot_sim_bridge.gazebo_plugins.sensor_manager import SensorManager
 from test_sensors_sim import FakeRospy, Log, NullIO, listen, run  # noqa: F401 (run, listen: for the tests)
 
 WALL_X = 2.0

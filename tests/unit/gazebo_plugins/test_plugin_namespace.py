@@ -7,7 +7,7 @@ import pytest
 from racebot_sim_bridge.description import sdf_reader, urdf_reader
 from racebot_sim_bridge.gazebo_ros_api.plugin_namespace import (after_spawn, control_namespace, resolve,
                                                                 sensor_namespace)
-from racebot_sim_bridge.sensors.config import sensor_config
+from racebot_sim_bridge.gazebo_plugins.sensor_manager import sensor_config
 from racebot_sim_bridge.engine.simulator import Simulator, SpawnError
 from racebot_sim_bridge.gazebo_ros_control.gazebo_ros_control_plugin import GazeboRosControlPlugin
 

@@ -10,7 +10,7 @@ import pytest
 from racebot_sim_bridge.description import sdf_reader
 from racebot_sim_bridge.engine.simulator import Simulator
 from racebot_sim_bridge.gazebo_plugins.polled_camera_types import get_polled_image
-from racebot_sim_bridge.sensors.sensor_manager import SensorManager
+from racebot_sim_bridge.gazebo_plugins.sensor_manager import SensorManager
 
 from model_plugin_sim import PluginRospy
 from test_plugins_triggered_cameras import CAMERA, WORLD

@@ -10,7 +10,7 @@ from std_msgs.msg import Empty
 
 from racebot_sim_bridge.description import sdf_reader
 from racebot_sim_bridge.engine.simulator import Simulator
-from racebot_sim_bridge.sensors.sensor_manager import SensorManager
+from racebot_sim_bridge.gazebo_plugins.sensor_manager import SensorManager
 
 from model_plugin_sim import PluginRospy
 from test_sensors_sim import Log, NullIO, listen, run

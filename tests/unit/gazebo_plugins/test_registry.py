@@ -15,7 +15,7 @@ from racebot_sim_bridge.gazebo_plugins.gazebo_ros_laser import LaserSensor
 from racebot_sim_bridge.gazebo_plugins.plugin_manager import PluginManager
 from racebot_sim_bridge.gazebo_plugins.registry import REGISTRY, Registry
 from racebot_sim_bridge.gazebo_ros_api.plugin_kind import PluginKind
-from racebot_sim_bridge.sensors.sensor_manager import SensorManager
+from racebot_sim_bridge.gazebo_plugins.sensor_manager import SensorManager
 from test_sensors_sim import FakeRospy, Log, NullIO
 
 REPO = Path(__file__).resolve().parents[3]

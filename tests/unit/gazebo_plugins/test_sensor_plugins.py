@@ -11,7 +11,8 @@ from racebot_sim_bridge.kinematics.rotations import rpy_to_quaternion
 from racebot_sim_bridge.sensors import messages as msgs
 from racebot_sim_bridge.sensors.camera import PinholeCamera, mask_depth
 from racebot_sim_bridge.gazebo_plugins.registry import REGISTRY
-from racebot_sim_bridge.sensors.config import SensorConfigError, resolve_frame, sensor_config, tf_resolve
+from racebot_sim_bridge.gazebo_plugins.sensor_manager import sensor_config
+from racebot_sim_bridge.sensors.config_types import SensorConfigError, resolve_frame, tf_resolve
 from racebot_sim_bridge.sensors.contact_points import read_contacts
 from racebot_sim_bridge.sensors.contact import (CollisionKind, ContactPoint, NamedShape,
                                                 friction_reversed, group_contacts,

@@ -9,7 +9,7 @@ import pybullet as pb
 import pytest
 
 from racebot_sim_bridge.description import sdf_reader
-from racebot_sim_bridge.sensors.sensor_manager import SensorManager
+from racebot_sim_bridge.gazebo_plugins.sensor_manager import SensorManager
 from racebot_sim_bridge.engine.simulator import Simulator
 
 from racebot_sim_bridge.gazebo_ros_api.performance_metrics import PerformanceMetricsPublisher

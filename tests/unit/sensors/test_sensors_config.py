@@ -3,7 +3,8 @@ and rates come from the URDF (no master, no physics)."""
 import pytest
 
 from racebot_sim_bridge.description import urdf_reader
-from racebot_sim_bridge.sensors.config import resolve_frame, SensorConfigError, join_topic, sensor_config
+from racebot_sim_bridge.gazebo_plugins.sensor_manager import sensor_config
+from racebot_sim_bridge.sensors.config_types import resolve_frame, SensorConfigError, join_topic
 
 
 @pytest.fixture(scope='module')

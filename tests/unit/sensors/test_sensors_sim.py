@@ -14,7 +14,7 @@ from racebot_sim_bridge.description import sdf_reader, urdf_reader
 from racebot_sim_bridge.gazebo_plugins import gazebo_ros_laser, gazebo_ros_range
 from racebot_sim_bridge.gazebo_plugins.gazebo_ros_imu_sensor import ImuSensor
 from racebot_sim_bridge.sensors import render
-from racebot_sim_bridge.sensors.sensor_manager import SensorManager
+from racebot_sim_bridge.gazebo_plugins.sensor_manager import SensorManager
 from racebot_sim_bridge.engine.simulator import Simulator
 
 REPO = Path(__file__).resolve().parents[3]

@@ -15,7 +15,7 @@ from bench import common, fleet  # noqa: E402
 
 import model_plugin_sim as mps  # noqa: E402
 from racebot_sim_bridge.sensors.imu_reading import quaternion_to_matrix  # noqa: E402
-from racebot_sim_bridge.sensors.sensor_manager import SensorManager  # noqa: E402
+from racebot_sim_bridge.gazebo_plugins.sensor_manager import SensorManager  # noqa: E402
 
 
 def test_the_ceilings_laser_casts_the_laser_sensors_rays(tmp_path):

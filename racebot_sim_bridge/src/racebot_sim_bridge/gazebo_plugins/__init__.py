@@ -5,8 +5,9 @@ filename="libgazebo_ros_diff_drive.so"; gazebo_ros_laser.py also answers libgaze
                          warning about a library racebot does not simulate
   model plugins          gazebo_plugins' (noetic-devel), hector_gazebo_plugins', roboticsgroup's mimic joint,
                          ridgeback's: subclasses of model_plugin.py, built and run by plugin_manager.py
-  sensor plugins         gazebo_plugins', hector's sonar, velodyne's: subclasses of sensor_plugin.py, built and run
-                         by ../sensors/sensor_manager.py with the pipeline stages in ../sensors/
+  sensor plugins         gazebo_plugins', hector's sonar, velodyne's: subclasses of sensor_plugin.py (the cameras of
+                         gazebo_ros_camera_utils.py), loaded, built and run by sensor_manager.py with the pipeline
+                         stages in ../sensors/
                          (every library by name: REGISTRY in registry.py, and docs/SUPPORTED.md)
   robot hardware         gazebo_ros_control: ../gazebo_ros_control/, hooked into the simulator at spawn
   shared                 odometry_output.py, link_motion.py, update_timing.py, hector_reconfigure.py,

@@ -22,9 +22,8 @@ import numpy as np
 from geometry_msgs.msg import Point32
 from sensor_msgs.msg import ChannelFloat32, PointCloud
 
-from racebot_sim_bridge.gazebo_ros_api.plugin_namespace import after_spawn, resolve
 from racebot_sim_bridge.gazebo_plugins.sensor_plugin import Sensor, SensorKind
-from racebot_sim_bridge.sensors.config_types import SensorConfig, SensorConfigError, join_topic, number, set_frame
+from racebot_sim_bridge.sensors.config_types import join_topic, set_frame
 from racebot_sim_bridge.sensors.imu_reading import quaternion_to_matrix
 from racebot_sim_bridge.sensors.messages import header
 from racebot_sim_bridge.sensors.ray import range_count
@@ -81,34 +80,28 @@ def block_cloud(shape_ranges, retro, ray, range_min, range_max):
 
 
 class BlockLaserSensor(Sensor, libraries=('libgazebo_ros_block_laser.so',), sensor_types=('ray',),
-                       kind=SensorKind.BLOCK_LASER, main_topic='cloud'):
-    """gazebo_ros_block_laser: sensor_msgs/PointCloud of the interpolated rays, intensity in channels[0]."""
+                       kind=SensorKind.BLOCK_LASER, main_topic='cloud', block='ray', topic_param='topicName'):
+    """gazebo_ros_block_laser: sensor_msgs/PointCloud of the interpolated rays, intensity in channels[0]. An empty
+    topicName advertises nothing (upstream says "topic name not set" at every scan)."""
 
     @classmethod
-    def configure(cls, spec, plugin, what, spawn_namespace, model_name, node_namespace):
-        """The SensorConfig as GazeboRosBlockLaser::Load reads the plugin (None: no topic, nothing published)."""
-        if spec.ray is None:
-            raise SensorConfigError('%s: the sensor has no <ray> block' % what)
-        params = plugin.params
-        warnings = []
-        text = after_spawn(params.get('robotNamespace'), spawn_namespace)
-        ns = resolve('' if text is None else text + '/', node_namespace)
+    def load(cls, config, sdf):
+        """As GazeboRosBlockLaser::Load reads the plugin."""
+        params, what, warnings, ray = sdf.params, sdf.what, config.warnings, sdf.spec.ray
+        text = sdf.own_namespace()
+        ns = sdf.resolve('' if text is None else text + '/')
         topic = params.get('topicName')
-        if topic == '':
-            return None  # upstream advertises nothing (and says "topic name not set" at every scan)
         if topic is None:
             topic = '/world'
             warnings.append('%s has no <topicName>; publishing on /world as gazebo_ros_block_laser does' % what)
-        if max(1, int(spec.ray.samples)) == 1 or max(1, int(spec.ray.vertical_samples)) == 1:
+        if max(1, int(ray.samples)) == 1 or max(1, int(ray.vertical_samples)) == 1:
             warnings.append('%s: a single horizontal or vertical sample gives NaN point coordinates in '
                             'gazebo_ros_block_laser (its angle divides 0 by samples - 1); published as upstream' % what)
-        config = SensorConfig(spec.name, cls.kind, spec.reference, '', spec.update_rate, warnings=warnings,
-                              sensor_class=cls)
         set_frame(config, params, '/world', ns)
         config.topics['cloud'] = join_topic(ns, topic)
-        config.params['gaussian_noise'] = number(params, 'gaussianNoise', 0.0, warnings, what)
-        config.params['hokuyo_min_intensity'] = number(params, 'hokuyoMinIntensity', 101.0, warnings, what)
-        config.params['update_rate'] = number(params, 'updateRate', 0.0, warnings, what)
+        config.params['gaussian_noise'] = sdf.number('gaussianNoise', 0.0)
+        config.params['hokuyo_min_intensity'] = sdf.number('hokuyoMinIntensity', 101.0)
+        config.params['update_rate'] = sdf.number('updateRate', 0.0)
         return config
 
     def __init__(self, manager, robot, spec, config, rng=None):

@@ -1,10 +1,15 @@
 """libgazebo_ros_bumper.so (gazebo_plugins noetic-devel): a contact sensor's gazebo_msgs/ContactsState. Gazebo's
 collision names, contact groups and wrenches: ../sensors/contact.py; PyBullet's contact points: contact_points.py.
+
+Parameters as its Load(): robotNamespace (text + '/'; none: the node's namespace), bumperTopicName
+(bumper_states), frameName (world) resolved with the tf_prefix parameter of its namespace. The contact sensor must
+name one of its link's collisions (<contact><collision>), else it is refused.
 """
 from gazebo_msgs.msg import ContactsState
 
 from racebot_sim_bridge.gazebo_plugins.sensor_plugin import Sensor, SensorKind
 from racebot_sim_bridge.sensors import messages as msgs
+from racebot_sim_bridge.sensors.config_types import SensorConfigError, join_topic, set_frame
 from racebot_sim_bridge.sensors.contact import group_contacts, urdf_collision_shapes
 from racebot_sim_bridge.sensors.contact_points import CollisionKinds, CollisionNames, link_com, read_contacts
 
@@ -13,6 +18,18 @@ class BumperSensor(Sensor, libraries=('libgazebo_ros_bumper.so',), sensor_types=
                    kind=SensorKind.BUMPER, main_topic='bumper'):
     """gazebo_ros_bumper: the contacts of the sensor's <contact><collision>s as
     gazebo_msgs/ContactsState, every sensor update (an empty list when nothing touches)."""
+
+    @classmethod
+    def load(cls, config, sdf):
+        spec = sdf.spec
+        if not spec.contact_collisions or not all(spec.contact_collisions):
+            raise SensorConfigError("%s: the contact sensor needs <contact><collision>NAME</collision></contact> "
+                                    "naming one of its link's collisions" % sdf.what)
+        ns = sdf.namespace(cls.kind)
+        set_frame(config, sdf.params, 'world', ns)
+        config.topics['bumper'] = join_topic(ns, sdf.params.get('bumperTopicName') or 'bumper_states')
+        config.params['collisions'] = list(spec.contact_collisions)
+        return config
 
     def __init__(self, manager, robot, spec, config):
         super().__init__(manager, robot, spec, config)

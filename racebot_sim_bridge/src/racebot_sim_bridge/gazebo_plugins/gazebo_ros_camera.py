@@ -4,15 +4,21 @@ camera_info_manager's set_camera_info service.
 Frames are rendered in a worker process (../sensors/render_worker.py) from the world's poses at the frame's sim time
 and published from its reader thread when ready, still stamped with that sim time; without the worker, in the
 physics thread within the render budget (../sensors/render.py). Pinhole maths: ../sensors/camera.py.
+
+Parameters: gazebo_ros_camera_utils.py's (topics image_raw and camera_info), updateRate (0): it does not change the
+rate frames come at but skips whole frames (../sensors/schedule.py's FrameThrottle), as upstream's OnNewFrame; and
+triggerTopicName (image_trigger, which only the triggered cameras subscribe to).
 """
 import time as walltime
 
 from sensor_msgs.msg import CameraInfo, Image
 from sensor_msgs.srv import SetCameraInfo
 
-from racebot_sim_bridge.gazebo_plugins.sensor_plugin import Sensor, SensorKind
+from racebot_sim_bridge.gazebo_plugins.gazebo_ros_camera_utils import CameraUtils
+from racebot_sim_bridge.gazebo_plugins.sensor_plugin import SensorKind
 from racebot_sim_bridge.sensors import messages as msgs
 from racebot_sim_bridge.sensors.camera import PinholeCamera
+from racebot_sim_bridge.sensors.config_types import join_topic
 from racebot_sim_bridge.sensors.frame_publisher import FramePublisher
 from racebot_sim_bridge.sensors.imu_reading import quaternion_to_matrix
 from racebot_sim_bridge.sensors.noise import make_noise
@@ -35,9 +41,15 @@ def _serialized(msg):
     return buf.getvalue()
 
 
-class CameraSensor(Sensor, libraries=('libgazebo_ros_camera.so',), sensor_types=('camera',),
+class CameraSensor(CameraUtils, libraries=('libgazebo_ros_camera.so',), sensor_types=('camera',),
                    kind=SensorKind.CAMERA, main_topic='image'):
     """gazebo_ros_camera: image + camera_info."""
+
+    @classmethod
+    def load_camera(cls, config, sdf, ns):
+        config.params['update_rate'] = sdf.number('updateRate', 0.0)
+        # gazebo_ros_camera_utils reads it for every camera; only the triggered cameras subscribe to it
+        config.params['trigger_topic'] = join_topic(ns, sdf.params.get('triggerTopicName') or 'image_trigger')
 
     def __init__(self, manager, robot, spec, config):
         super().__init__(manager, robot, spec, config)

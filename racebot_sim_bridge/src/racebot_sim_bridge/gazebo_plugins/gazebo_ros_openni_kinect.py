@@ -1,12 +1,19 @@
 """libgazebo_ros_openni_kinect.so and libgazebo_ros_depth_camera.so (gazebo_plugins noetic-devel): a depth
 sensor's rgb image, depth image, point cloud and their camera_infos, on the camera's rendering (gazebo_ros_camera.py).
+
+Parameters: gazebo_ros_camera_utils.py's (topics ir/image_raw and ir/camera_info; updateRate throttles nothing here:
+every frame is published), depthImageTopicName (depth/image_raw), depthImageCameraInfoTopicName (depth/camera_info; the
+often written depthImageInfoTopicName is not read: warned), pointCloudTopicName (points), pointCloudCutoff (0.4 m),
+pointCloudCutoffMax (5 m), useDepth16UC1Format (false; openni_kinect's only).
 """
 from sensor_msgs.msg import CameraInfo, Image, PointCloud2
 
+from racebot_sim_bridge.description.plugin_library import library_key
 from racebot_sim_bridge.gazebo_plugins.gazebo_ros_camera import CameraSensor
 from racebot_sim_bridge.gazebo_plugins.sensor_plugin import SensorKind
 from racebot_sim_bridge.sensors import messages as msgs
 from racebot_sim_bridge.sensors.camera import mask_depth
+from racebot_sim_bridge.sensors.config_types import join_topic
 
 
 class DepthCameraSensor(CameraSensor,
@@ -14,6 +21,28 @@ class DepthCameraSensor(CameraSensor,
                         sensor_types=('depth',), kind=SensorKind.DEPTH, main_topic='depth'):
     """gazebo_ros_openni_kinect: rgb image, depth image (32FC1 m), point cloud, two camera_infos.
     Depth is worked out only while its depth image or point cloud has a subscriber."""
+    image_topic = 'ir/image_raw'
+    info_topic = 'ir/camera_info'
+
+    @classmethod
+    def load_camera(cls, config, sdf, ns):
+        params, what, warnings = sdf.params, sdf.what, config.warnings
+        config.topics['depth'] = join_topic(ns, params.get('depthImageTopicName') or 'depth/image_raw')
+        config.topics['depth_info'] = join_topic(ns, params.get('depthImageCameraInfoTopicName')
+                                                 or 'depth/camera_info')
+        config.topics['points'] = join_topic(ns, params.get('pointCloudTopicName') or 'points')
+        if 'depthImageInfoTopicName' in params and 'depthImageCameraInfoTopicName' not in params:
+            warnings.append('%s: <depthImageInfoTopicName> is not read by %s (it reads '
+                            '<depthImageCameraInfoTopicName>); depth camera_info goes to %s, as upstream'
+                            % (what, sdf.plugin.filename, config.topics['depth_info']))
+        config.params['cutoff'] = sdf.number('pointCloudCutoff', 0.4)
+        # gazebo_ros_openni_kinect's useDepth16UC1Format (sdformat's bool: true/1, false/0)
+        flag = (params.get('useDepth16UC1Format') or 'false').strip().lower()
+        config.params['depth_16uc1'] = (flag in ('true', '1')
+                                        and library_key(sdf.plugin.filename) == 'gazebo_ros_openni_kinect')
+        if flag not in ('true', '1', 'false', '0'):
+            warnings.append('%s: <useDepth16UC1Format> %r is not true or false; 32FC1 it is' % (what, flag))
+        config.params['cutoff_max'] = sdf.number('pointCloudCutoffMax', 5.0)
 
     def __init__(self, manager, robot, spec, config):
         super().__init__(manager, robot, spec, config)

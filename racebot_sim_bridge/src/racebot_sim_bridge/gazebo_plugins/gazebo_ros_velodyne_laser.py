@@ -29,9 +29,8 @@ import math
 import numpy as np
 from sensor_msgs.msg import PointCloud2, PointField
 
-from racebot_sim_bridge.gazebo_ros_api.plugin_namespace import after_spawn, resolve
 from racebot_sim_bridge.gazebo_plugins.sensor_plugin import Sensor, SensorKind
-from racebot_sim_bridge.sensors.config_types import SensorConfig, SensorConfigError, join_topic, number, tf_resolve
+from racebot_sim_bridge.sensors.config_types import join_topic, tf_resolve
 from racebot_sim_bridge.sensors.imu_reading import quaternion_to_matrix
 from racebot_sim_bridge.sensors.messages import header
 from racebot_sim_bridge.sensors.noise import make_noise
@@ -107,24 +106,17 @@ def velodyne_cloud(stamp, frame_id, xyz, intensity, ring, layout, organize=False
 
 
 class VelodyneLaser(Sensor, libraries=('libgazebo_ros_velodyne_laser.so',), sensor_types=('ray',),
-                    kind=SensorKind.VELODYNE, main_topic='points'):
+                    kind=SensorKind.VELODYNE, main_topic='points', block='ray', topic_param='topicName'):
     """velodyne_gazebo_plugins' GazeboRosVelodyneLaser: sensor_msgs/PointCloud2 of the scan."""
 
     @classmethod
-    def configure(cls, spec, plugin, what, spawn_namespace, model_name, node_namespace):
-        """The SensorConfig as GazeboRosVelodyneLaser::Load reads the plugin (None: no topic)."""
-        if spec.ray is None:
-            raise SensorConfigError('%s: the sensor has no <ray> block' % what)
-        params = plugin.params
-        warnings = []
-        text = after_spawn(params.get('robotNamespace'), spawn_namespace)
+    def load(cls, config, sdf):
+        """As GazeboRosVelodyneLaser::Load reads the plugin."""
+        params, what, warnings = sdf.params, sdf.what, config.warnings
+        text = sdf.own_namespace()
         robot_namespace = '/' if text is None else text
-        ns = resolve(robot_namespace, node_namespace)
+        ns = sdf.resolve(robot_namespace)
         topic = params.get('topicName')
-        if topic == '':
-            return None
-        config = SensorConfig(spec.name, cls.kind, spec.reference, '', spec.update_rate, warnings=warnings,
-                              sensor_class=cls)
         config.topics['points'] = join_topic(ns, '/points' if topic is None else topic)
         frame = params.get('frameName')
         config.params['frame_name'] = '/world' if frame is None else frame
@@ -134,10 +126,10 @@ class VelodyneLaser(Sensor, libraries=('libgazebo_ros_velodyne_laser.so',), sens
         else:
             config.params['prefix'] = robot_namespace
         config.frame_id = tf_resolve(config.params['prefix'].rstrip('/'), config.params['frame_name'])
-        config.params['min_range'] = number(params, 'min_range', 0.0, warnings, what)
-        config.params['max_range'] = number(params, 'max_range', math.inf, warnings, what)
-        config.params['min_intensity'] = number(params, 'min_intensity', -math.inf, warnings, what)
-        config.params['gaussian_noise'] = number(params, 'gaussianNoise', 0.0, warnings, what)
+        config.params['min_range'] = sdf.number('min_range', 0.0)
+        config.params['max_range'] = sdf.number('max_range', math.inf)
+        config.params['min_intensity'] = sdf.number('min_intensity', -math.inf)
+        config.params['gaussian_noise'] = sdf.number('gaussianNoise', 0.0)
         organize = params.get('organize_cloud')
         config.params['layout'] = LAYOUT_1_0_9 if organize is None else LAYOUT_1_0_11
         flag = (organize or 'false').strip().lower()

@@ -16,10 +16,9 @@ the PointStamped's, as upstream copies it: without a height topic its stamp stay
 import random
 
 from racebot_sim_bridge.gazebo_plugins import hector_reconfigure
-from racebot_sim_bridge.gazebo_plugins.hector_gazebo_ros_gps import UpdateTimer, sensor_model
+from racebot_sim_bridge.gazebo_plugins.hector_gazebo_ros_gps import HectorTimedPlugin, UpdateTimer, sensor_model
 from racebot_sim_bridge.gazebo_plugins.hector_gazebo_ros_magnetic import update_period
 from racebot_sim_bridge.gazebo_plugins.link_motion import link_motion
-from racebot_sim_bridge.gazebo_plugins.model_plugin import ModelPlugin
 from racebot_sim_bridge.gazebo_ros_api.plugin_namespace import model_plugin_namespace, name_in
 
 DEFAULT_ELEVATION, DEFAULT_QNH = 0.0, 1013.25
@@ -30,14 +29,13 @@ def pressure(altitude, qnh):
     return (1.0 - altitude / 44330.0) ** 5.263157 * qnh
 
 
-class HectorBaro(ModelPlugin):
+class HectorBaro(HectorTimedPlugin):
     libraries = ('libhector_gazebo_ros_baro.so',)
+    error_models = ('model',)
 
     def __init__(self, ctx, robot, spec, rng=None):
         super().__init__(ctx, robot, spec)
         p = self.params
-        self.body_name = self.link_param('bodyName', None, default=self.root_link())
-        self.frame_id = p.string('frameId', self.body_name)
         height_topic = p.string('topicName', 'pressure_height')
         altimeter_topic = p.string('altimeterTopicName', 'altimeter')
         self.elevation = p.number('elevation', DEFAULT_ELEVATION)
@@ -58,12 +56,8 @@ class HectorBaro(ModelPlugin):
                                 hector_reconfigure.sensor_model_callback(self.model, scalar=True))
         self.reset()
 
-    def reset(self):
-        self.timer.reset()
-        self.model.reset()
-
     def before_physics(self, time):
-        dt = self.timer.tick(time, self.ctx.sim.step_size)
+        dt = self.due(time)
         if dt is None:
             return
         position, _, _, _ = link_motion(self.world, self.robot.body, self.body_name)

@@ -71,13 +71,36 @@ def sensor_model(params, rng, prefix='', scalar=False):
                       values['scaleError'])
 
 
-class HectorGps(ModelPlugin):
+class HectorTimedPlugin(ModelPlugin):
+    """What hector's GPS, IMU, magnetometer and barometer share: the link (bodyName, default the root link, read
+    first) and frame (frameId) they report, an UpdateTimer (`self.timer`) on the world's clock and the error models
+    restarted with it (reset); due() asks the timer at each world update."""
+    error_models = ()     # the names of its ErrorModel attributes
+    frame_default = None  # frameId's default; None: bodyName
+
+    def __init__(self, ctx, robot, spec):
+        super().__init__(ctx, robot, spec)
+        self.body_name = self.link_param('bodyName', None, default=self.root_link())
+        self.frame_id = self.params.string('frameId', self.frame_default or self.body_name)
+
+    def reset(self):
+        self.timer.reset()
+        for name in self.error_models:
+            getattr(self, name).reset()
+
+    def due(self, time):
+        """None when no update is due at `time`, else the time since the last update (UpdateTimer.tick)."""
+        return self.timer.tick(time, self.ctx.sim.step_size)
+
+
+class HectorGps(HectorTimedPlugin):
     libraries = ('libhector_gazebo_ros_gps.so',)
+    error_models = ('position_error', 'velocity_error')
+    frame_default = '/world'
 
     def __init__(self, ctx, robot, spec, rng=None):
         super().__init__(ctx, robot, spec)
         p = self.params
-        self.body_name = self.link_param('bodyName', None, default=self.root_link())
         if p.boolean('useWorldSphericalCoordinates', False):
             self.warn('<useWorldSphericalCoordinates> is not supported (the world\'s <spherical_coordinates> are '
                       'not read); the reference parameters are used')
@@ -85,7 +108,6 @@ class HectorGps(ModelPlugin):
         self.reference = GeoReference(p.number('referenceLatitude', lat), p.number('referenceLongitude', lon),
                                       math.radians(p.number('referenceHeading', heading)),
                                       p.number('referenceAltitude', alt))
-        self.frame_id = p.string('frameId', '/world')
         self.status = p.integer('status', 0)
         self.service_bits = p.integer('service', 0)
         self.rng = rng or random.Random()
@@ -124,13 +146,8 @@ class HectorGps(ModelPlugin):
             self.reset()
         return self.SetReferenceGeoPoseResponse()
 
-    def reset(self):
-        self.timer.reset()
-        self.position_error.reset()
-        self.velocity_error.reset()
-
     def before_physics(self, time):
-        dt = self.timer.tick(time, self.ctx.sim.step_size)
+        dt = self.due(time)
         if dt is None:
             return
         position, _, linear, _ = link_motion(self.world, self.robot.body, self.body_name)

@@ -22,8 +22,7 @@ from racebot_sim_bridge.gazebo_ros_api.plugin_namespace import model_plugin_name
 from racebot_sim_bridge.kinematics.rotations import (conjugate, quaternion_multiply, rotate, rotate_back,
                                                      rpy_to_quaternion)
 from racebot_sim_bridge.gazebo_plugins import hector_reconfigure
-from racebot_sim_bridge.gazebo_plugins.model_plugin import ModelPlugin
-from racebot_sim_bridge.gazebo_plugins.hector_gazebo_ros_gps import UpdateTimer, sensor_model
+from racebot_sim_bridge.gazebo_plugins.hector_gazebo_ros_gps import HectorTimedPlugin, UpdateTimer, sensor_model
 from racebot_sim_bridge.gazebo_plugins.link_motion import link_motion
 
 
@@ -44,14 +43,13 @@ def rate_from_rotation(previous, current, dt):
     return tuple(angle * c / n / dt for c in axis)
 
 
-class HectorImu(ModelPlugin):
+class HectorImu(HectorTimedPlugin):
     libraries = ('libhector_gazebo_ros_imu.so',)
+    error_models = ('accel_model', 'rate_model', 'yaw_model')
 
     def __init__(self, ctx, robot, spec, rng=None):
         super().__init__(ctx, robot, spec)
         p = self.params
-        self.body_name = self.link_param('bodyName', None, default=self.root_link())
-        self.frame_id = p.string('frameId', self.body_name)
         topic = p.string('topicName', 'imu')
         bias_topic = p.string('biasTopicName', topic + '/bias' if topic else '')
         service = p.string('serviceName', topic + '/calibrate')
@@ -101,16 +99,14 @@ class HectorImu(ModelPlugin):
         return self.EmptyResponse()
 
     def reset(self):
-        self.timer.reset()
+        super().reset()
         self.orientation = (0.0, 0.0, 0.0, 1.0)
         self.velocity = (0.0, 0.0, 0.0)
         self.accel = (0.0, 0.0, 0.0)
         self.rate = (0.0, 0.0, 0.0)
-        for m in (self.accel_model, self.rate_model, self.yaw_model):
-            m.reset()
 
     def before_physics(self, time):
-        dt = self.timer.tick(time, self.ctx.sim.step_size)
+        dt = self.due(time)
         if dt is None:
             return
         _, pose_rot, velocity, _ = link_motion(self.world, self.robot.body, self.body_name)
@@ -134,11 +130,7 @@ class HectorImu(ModelPlugin):
         reported = quaternion_multiply(error, rot)
         stamp = self.stamp(time)
         if self.pub is not None:
-            msg = self.Imu()
-            msg.header.stamp, msg.header.frame_id = stamp, self.frame_id
-            msg.orientation.x, msg.orientation.y, msg.orientation.z, msg.orientation.w = reported
-            msg.angular_velocity.x, msg.angular_velocity.y, msg.angular_velocity.z = rate
-            msg.linear_acceleration.x, msg.linear_acceleration.y, msg.linear_acceleration.z = accel
+            msg = self._imu(stamp, reported, rate, accel)
             an, rn, yn = self.accel_model.gaussian_noise, self.rate_model.gaussian_noise, self.yaw_model.gaussian_noise
             oc = [0.0] * 9
             oc[8] = yn[0] * yn[0]
@@ -151,9 +143,13 @@ class HectorImu(ModelPlugin):
             msg.linear_acceleration_covariance = [an[0] ** 2, 0.0, 0.0, 0.0, an[1] ** 2, 0.0, 0.0, 0.0, an[2] ** 2]
             self.pub.publish(msg)
         if self.bias_pub is not None:
-            bias = self.Imu()
-            bias.header.stamp, bias.header.frame_id = stamp, self.frame_id
-            bias.orientation.x, bias.orientation.y, bias.orientation.z, bias.orientation.w = error
-            bias.angular_velocity.x, bias.angular_velocity.y, bias.angular_velocity.z = rate_bias
-            bias.linear_acceleration.x, bias.linear_acceleration.y, bias.linear_acceleration.z = accel_bias
-            self.bias_pub.publish(bias)
+            self.bias_pub.publish(self._imu(stamp, error, rate_bias, accel_bias))
+
+    def _imu(self, stamp, orientation, rate, accel):
+        """A sensor_msgs/Imu in this plugin's frame: orientation (x, y, z, w), angular velocity, acceleration."""
+        msg = self.Imu()
+        msg.header.stamp, msg.header.frame_id = stamp, self.frame_id
+        msg.orientation.x, msg.orientation.y, msg.orientation.z, msg.orientation.w = orientation
+        msg.angular_velocity.x, msg.angular_velocity.y, msg.angular_velocity.z = rate
+        msg.linear_acceleration.x, msg.linear_acceleration.y, msg.linear_acceleration.z = accel
+        return msg

@@ -18,9 +18,8 @@ import math
 import random
 
 from racebot_sim_bridge.gazebo_plugins import hector_reconfigure
-from racebot_sim_bridge.gazebo_plugins.hector_gazebo_ros_gps import UpdateTimer, sensor_model
+from racebot_sim_bridge.gazebo_plugins.hector_gazebo_ros_gps import HectorTimedPlugin, UpdateTimer, sensor_model
 from racebot_sim_bridge.gazebo_plugins.link_motion import link_motion
-from racebot_sim_bridge.gazebo_plugins.model_plugin import ModelPlugin
 from racebot_sim_bridge.gazebo_ros_api.plugin_namespace import model_plugin_namespace, name_in
 from racebot_sim_bridge.kinematics.rotations import rotate_back
 
@@ -41,14 +40,13 @@ def update_period(params, default_rate=0.0):
     return params.number('updatePeriod', period, minimum=0.0)
 
 
-class HectorMagnetic(ModelPlugin):
+class HectorMagnetic(HectorTimedPlugin):
     libraries = ('libhector_gazebo_ros_magnetic.so',)
+    error_models = ('model',)
 
     def __init__(self, ctx, robot, spec, rng=None):
         super().__init__(ctx, robot, spec)
         p = self.params
-        self.body_name = self.link_param('bodyName', None, default=self.root_link())
-        self.frame_id = p.string('frameId', self.body_name)
         if p.boolean('useWorldSphericalCoordinates', False):
             self.warn('<useWorldSphericalCoordinates> is not supported (the world\'s <spherical_coordinates> are '
                       'not read); <referenceHeading> is used')
@@ -72,12 +70,8 @@ class HectorMagnetic(ModelPlugin):
         self.reconfigure_server(name_in(ns, topic), model_config, hector_reconfigure.sensor_model_callback(self.model))
         self.reset()
 
-    def reset(self):
-        self.timer.reset()
-        self.model.reset()
-
     def before_physics(self, time):
-        dt = self.timer.tick(time, self.ctx.sim.step_size)
+        dt = self.due(time)
         if dt is None:
             return
         _, rotation, _, _ = link_motion(self.world, self.robot.body, self.body_name)

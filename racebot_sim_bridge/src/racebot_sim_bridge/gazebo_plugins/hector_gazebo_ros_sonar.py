@@ -20,12 +20,11 @@ from sensor_msgs.msg import Range
 
 from racebot_sim_bridge.gazebo_plugins import hector_reconfigure
 from racebot_sim_bridge.gazebo_plugins.model_plugin import _ReconfigureHandle
-from racebot_sim_bridge.gazebo_ros_api.plugin_namespace import after_spawn, name_in, resolve
+from racebot_sim_bridge.gazebo_ros_api.plugin_namespace import name_in
 from racebot_sim_bridge.gazebo_plugins.sensor_plugin import Sensor, SensorKind
 from racebot_sim_bridge.kinematics.navsat import ErrorModel
 from racebot_sim_bridge.engine.sim_time import ros_time
 from racebot_sim_bridge.sensors import messages as msgs
-from racebot_sim_bridge.sensors.config_types import SensorConfig, SensorConfigError, number
 from racebot_sim_bridge.sensors.imu_reading import quaternion_to_matrix
 from racebot_sim_bridge.sensors.range_reading import ULTRASOUND
 from racebot_sim_bridge.sensors.ray_shape import RayShape
@@ -55,16 +54,13 @@ def sonar_reading(ray_ranges, range_min, range_max, model=None, dt=0.0):
 
 
 class HectorSonar(Sensor, libraries=('libhector_gazebo_ros_sonar.so',), sensor_types=('ray',),
-                  kind=SensorKind.SONAR, main_topic='range'):
+                  kind=SensorKind.SONAR, main_topic='range', block='ray'):
     """hector_gazebo_plugins' GazeboRosSonar: the shortest ray through hector's error model, on its own timer."""
 
     @classmethod
-    def configure(cls, spec, plugin, what, spawn_namespace, model_name, node_namespace):
-        if spec.ray is None:
-            raise SensorConfigError('%s: the sensor has no <ray> block' % what)
-        params = plugin.params
-        warnings = []
-        ns = resolve(after_spawn(params.get('robotNamespace'), spawn_namespace) or '', node_namespace)
+    def load(cls, config, sdf):
+        params, what, warnings = sdf.params, sdf.what, config.warnings
+        ns = sdf.resolve(sdf.own_namespace() or '')
         topic = params.get('topicName', 'sonar')
         if not topic:
             warnings.append('%s: an empty <topicName>; nothing is published' % what)
@@ -73,18 +69,17 @@ class HectorSonar(Sensor, libraries=('libhector_gazebo_ros_sonar.so',), sensor_t
         if frame is None and params.get('frameName') is not None:
             warnings.append("%s: hector's sonar reads <frameId>, not <frameName>; frame_id /sonar_link, as upstream"
                             % what)
-        ray = spec.ray
-        fov = min(abs(ray.max_angle - ray.min_angle), abs(ray.vertical_max_angle - ray.vertical_min_angle))
-        config = SensorConfig(spec.name, cls.kind, spec.reference, '/sonar_link' if frame is None else frame, 0.0,
-                              warnings=warnings, sensor_class=cls)
+        ray = sdf.spec.ray
+        config.frame_id = '/sonar_link' if frame is None else frame
         config.topics['range'] = name_in(ns, topic)
-        config.params['fov'] = fov
+        config.params['fov'] = min(abs(ray.max_angle - ray.min_angle),
+                                   abs(ray.vertical_max_angle - ray.vertical_min_angle))
         for name, default in MODEL_PARAMETERS:
-            config.params[name] = number(params, name, default, warnings, what)
-        rate = number(params, 'updateRate', 10.0, warnings, what)
+            config.params[name] = sdf.number(name, default)
+        rate = sdf.number('updateRate', 10.0)
         period = 1.0 / rate if rate > 0.0 else 0.0
-        config.params['update_period'] = number(params, 'updatePeriod', period, warnings, what)
-        config.params['update_offset'] = number(params, 'updateOffset', 0.0, warnings, what)
+        config.params['update_period'] = sdf.number('updatePeriod', period)
+        config.params['update_offset'] = sdf.number('updateOffset', 0.0)
         period = config.params['update_period']
         config.rate = 1.0 / period if period > 0 else 0.0  # for the log: step() keeps hector's timer
         return config

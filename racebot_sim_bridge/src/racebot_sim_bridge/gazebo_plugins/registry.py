@@ -93,7 +93,7 @@ REGISTRY = Registry((
     DiffDrive, SkidSteerDrive, PlanarMove, P3D, JointStatePublisher, Imu, HectorGps, HectorImu, FTSensor,
     Force, F3D, Template, TricycleDrive, HandOfGod, VacuumGripper, JointPoseTrajectory, HectorMagnetic, HectorBaro,
     Video, Projector, RidgebackForceBasedMove, MimicJointPlugin, Elevator, Harness, WheelSlip,
-    # sensor plugins: sensors/sensor_manager.SensorManager
+    # sensor plugins: sensor_manager.SensorManager
     LaserSensor, CameraSensor, MultiCameraSensor, DepthCameraSensor, ImuSensor, RangeSensor, BumperSensor,
     TriggeredCameraSensor, TriggeredMultiCameraSensor, ProsilicaCameraSensor,
     BlockLaserSensor, VelodyneLaser, VelodyneGpuLaser, HectorSonar,

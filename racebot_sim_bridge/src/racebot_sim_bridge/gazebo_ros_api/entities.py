@@ -40,7 +40,7 @@ class WorldEntities:
         return entity if entity is not None and entity.link is not None else None
 
     def model_body(self, name):
-        """The physics Model of the model called `name` (World::ModelByName: a link's name is no model); None if none."""
+        """The physics Model called `name` (World::ModelByName: a link's name is no model); None if none."""
         entity = self.resolve(name)
         return self.world.bodies[entity.model] if entity is not None and entity.link is None else None
 

@@ -7,7 +7,8 @@ rate in sim time and in wall time and, for a camera, its frames per second (-1 f
 gazebo_ros fills a missing fps). Sensors are named as Gazebo scopes them, world::model::link::sensor,
 the link being the one the sensor's link is lumped into. A sensor keeps its last rates through an
 interval in which it did not measure (Gazebo keeps them too). Here a sensor measures only while its
-topics have subscribers (sensors/manager.py), so an unread sensor is absent.
+topics have subscribers (gazebo_plugins/sensor_manager.py), so an unread sensor is absent. A camera is a
+sensor whose rate meter counts frames (sensors/schedule.py's RateMeter.frames).
 
 MetricsWindow is the arithmetic (no ROS); PerformanceMetricsPublisher the thread and the topic.
 """
@@ -71,8 +72,8 @@ class PerformanceMetricsPublisher:
         self._thread.start()
 
     def sensors(self):
-        """[(scoped name, measurements so far, is camera)] of the sensors now in the world."""
-        from racebot_sim_bridge.gazebo_plugins.gazebo_ros_camera import CameraSensor
+        """[(scoped name, measurements so far, is camera)] of the sensors now in the world (the sensor manager's
+        `sensors`: robot name -> sensors with their spec, config and meter)."""
         out, seen = [], set()
         with self.sim.lock:
             for robot_name, group in self.sensor_manager.sensors.items():
@@ -85,7 +86,7 @@ class PerformanceMetricsPublisher:
                     name = '%s::%s::%s::%s' % (self.sim.spec.name, robot_name, link, s.config.name)
                     if name not in seen:  # a multicamera's cameras are one Gazebo sensor: its first counts
                         seen.add(name)
-                        out.append((name, s.meter.total, isinstance(s, CameraSensor)))
+                        out.append((name, s.meter.total, s.meter.frames))
         return out
 
     def publish_once(self):

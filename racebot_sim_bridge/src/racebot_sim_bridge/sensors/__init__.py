@@ -1,11 +1,11 @@
 """The pipeline behind the simulated sensor plugins. The plugins themselves (laser, camera, multicamera, openni_kinect
-/ depth camera, imu_sensor, range, bumper: one class each, what they publish) are in ../gazebo_plugins/, each in the
-module named after its library (gazebo_ros_laser.py, ...), on the base gazebo_plugins/sensor_plugin.Sensor.
+/ depth camera, imu_sensor, range, bumper: one class each, what they read and publish) are in ../gazebo_plugins/,
+each in the module named after its library (gazebo_ros_laser.py, ...), on the base gazebo_plugins/sensor_plugin.Sensor;
+gazebo_plugins/sensor_manager.py loads them when a robot spawns and steps them. Nothing here imports a layer above.
 
 The stages, module by module:
-  config.py          which sensors, topics, frames and rates a URDF's <sensor> blocks declare, and which
-                     registered plugin class runs each (../gazebo_plugins/registry.py); config_types.py:
-                     SensorConfig and the helpers a plugin's own `configure` uses
+  config_types.py    SensorConfig (a sensor's topics, frame, rate and parameters) and the topic, frame and number
+                     helpers each plugin's own load() reads its <sensor> and <plugin> with
   schedule.py        when: update times in sim time, achieved rates, the in-thread render budget
   mount.py           where: a sensor's pose on its robot
   raycast.py         laser, range: the ray casts; ray.py: beam geometry and ranges as Gazebo reports them;
@@ -20,7 +20,6 @@ The stages, module by module:
   contact.py         bumper: Gazebo's collision names, contact groups and wrenches;
                      contact_points.py: PyBullet's contact points of a link
   messages.py        the ROS messages, filled as gazebo_ros fills them
-  sensor_manager.py  SensorManager: the sensors of every spawned robot, hooked into the Simulator
-Only sensor_manager.py and messages.py (and the plugin classes) touch ROS: message classes; the manager gets rospy
-passed in. This package's namespace is empty on purpose: the plugins import its stages, the registry the plugins.
+Only messages.py (and the plugin classes) touch ROS: message classes; the render worker's parts get a log passed in.
+This package's namespace is empty on purpose: the plugins import its stages.
 """

@@ -1,8 +1,8 @@
-"""SensorConfig (what config.py makes of a sensor block) and the helpers sensor plugins read their parameters
-with: topics, frames, numbers, as gazebo_ros's plugins resolve them.
+"""SensorConfig (what a sensor plugin's load makes of its <sensor> block) and the helpers sensor plugins read their
+parameters with: topics, frames, numbers, as gazebo_ros's plugins resolve them.
 
-No rospy, no pybullet, no registry: a plugin module that reads its own parameters (a `configure` classmethod,
-which config.py calls) imports this, where importing config.py would make a cycle through the registry.
+No rospy, no pybullet, no registry: each plugin's load() (../gazebo_plugins/sensor_plugin.py's Sensor.configure calls
+it) fills a SensorConfig with these.
 """
 from dataclasses import dataclass, field
 

@@ -48,9 +48,11 @@ class RateMeter:
     Thread-safe: a camera ticks on the render worker's reader thread, other sensors tick and skip
     on the physics thread, snapshots come from the diagnostics timer. `+=` is a read and a write
     that another thread may come between (a lost count), and a snapshot must read the counts once
-    (or the ticks in between are counted in two snapshots): all under one lock."""
+    (or the ticks in between are counted in two snapshots): all under one lock.
+    `frames`: the events are a camera's frames, whose wall rate Gazebo also reports as the sensor's fps."""
 
-    def __init__(self):
+    def __init__(self, frames=False):
+        self.frames = frames
         self.count = 0
         self.skipped = 0
         self.total = 0

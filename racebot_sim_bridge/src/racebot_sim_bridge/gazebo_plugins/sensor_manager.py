@@ -1,9 +1,9 @@
 """SensorManager: the simulated sensors of every spawned robot, hooked into a Simulator.
 
 When a URDF robot spawns, every <gazebo reference><sensor> block of its URDF that carries a
-gazebo_ros plugin becomes a sensor (config.py says which topics, frame and rate and which class of
-../gazebo_plugins/ runs it: one module per plugin library, found through the registry); after every
-physics step each sensor whose update is due in sim time measures the world and publishes, stamped
+gazebo_ros plugin becomes a sensor: the first of its plugins the registry has a sensor class for (one module per
+plugin library) reads its <sensor> and <plugin> in its own configure() (sensor_plugin.py: topics, frame, rate);
+after every physics step each sensor whose update is due in sim time measures the world and publishes, stamped
 with that sim time.
 
 Cost is paid only for what somebody reads: a sensor whose topics have no subscriber does no ray
@@ -34,9 +34,10 @@ import math
 import threading
 import time as walltime
 
+from racebot_sim_bridge.gazebo_ros_api.plugin_kind import PluginKind
 from racebot_sim_bridge.gazebo_plugins.plugin_manager import dynamic_reconfigure_server
 from racebot_sim_bridge.gazebo_plugins.registry import REGISTRY
-from racebot_sim_bridge.sensors.config import SensorConfigError, resolve_frame, sensor_config
+from racebot_sim_bridge.sensors.config_types import SensorConfigError, resolve_frame
 from racebot_sim_bridge.sensors.render import RENDERER_CHOICES, RENDERER_NAMES, TINY
 from racebot_sim_bridge.sensors.render_worker import RenderWorker
 from racebot_sim_bridge.sensors.scene import SceneColours
@@ -45,6 +46,19 @@ from racebot_sim_bridge.engine.world_copy import snapshot
 
 DEFAULT_RENDER_BUDGET = 0.5
 DEFAULT_REPORT_PERIOD = 10.0
+
+
+def sensor_config(spec, spawn_namespace='', model_name='', node_namespace='/'):
+    """The SensorConfig of a urdf_model.SensorSpec, as the first of its plugins that the registry has a sensor class
+    for reads it (that class's configure()), or None when none of them publishes to ROS (Gazebo would run such a
+    sensor for nobody). Raises SensorConfigError for a plugin that does not fit its sensor (e.g. a camera plugin
+    in a ray sensor). spawn_namespace: the spawn request's robot_namespace; model_name: the spawned model's name;
+    node_namespace: the world server's."""
+    for plugin in spec.plugins:
+        cls = REGISTRY.find(plugin.filename, PluginKind.SENSOR)
+        if cls is not None:
+            return cls.configure(spec, plugin, spawn_namespace, model_name, node_namespace)
+    return None
 
 
 class RospyLog:
