@@ -1,4 +1,4 @@
-"""The command-path observer of the command controllers (controllers.CommandObserver) and make bench's
+"""The command-path observer of the command controllers (ros_control/command_trace.py: CommandObserver) and make bench's
 CommandTrace on it: a line when a command is taken, a line after the first update that applies it,
 the controllers' own methods left in place (no method of a live controller replaced). No master."""
 import math

@@ -7,7 +7,7 @@ rate in sim time and in wall time and, for a camera, its frames per second (-1 f
 gazebo_ros fills a missing fps). Sensors are named as Gazebo scopes them, world::model::link::sensor,
 the link being the one the sensor's link is lumped into. A sensor keeps its last rates through an
 interval in which it did not measure (Gazebo keeps them too). Here a sensor measures only while its
-topics have subscribers (sensors/manager.py), so an unread sensor is absent.
+topics have subscribers (sensors/sensor_manager.py), so an unread sensor is absent.
 
 MetricsWindow is the arithmetic (no ROS); PerformanceMetricsPublisher the thread and the topic.
 """

@@ -1,7 +1,7 @@
 """diff_drive_controller's (ros_controllers noetic-devel) kinematics: its Odometry (wheel positions ->
 pose by exact integration, velocities as a rolling mean), its SpeedLimiter (velocity, acceleration
 and jerk limits on one command component) and the wheel separation and radius it reads from the
-URDF when the parameters are not given. Pure Python; the controller (controllers/diff_drive.py)
+URDF when the parameters are not given. Pure Python; the controller (ros_controllers/diff_drive_controller.py)
 wraps them."""
 import math
 from collections import deque

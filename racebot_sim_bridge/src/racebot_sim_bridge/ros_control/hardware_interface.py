@@ -56,7 +56,7 @@ class HardwareError(ValueError):
 class JointHandle:
     """State of one joint and its command, as the controllers see it.
 
-    When built (CMakeLists.txt), hardware.pxd compiles this class with typed fields: read() and
+    When built (CMakeLists.txt), hardware_interface.pxd compiles this class with typed fields: read() and
     limited_command() run every world update for every joint."""
 
     __slots__ = ('name', 'kind', 'interface', 'lower', 'upper', 'max_effort', 'max_velocity',

@@ -9,7 +9,7 @@ An action goal succeeds when every joint is within its goal tolerance after the 
 aborted with PATH_TOLERANCE_VIOLATED or GOAL_TOLERANCE_VIOLATED as upstream decides; a new goal or a
 command preempts it (canceled); a cancel holds the joints where they are (or brings them to rest in
 stop_trajectory_duration). `state` (JointTrajectoryControllerState) at state_publish_rate,
-`query_state` (control_msgs/QueryTrajectoryState). The trajectory maths is kinematics/joint_trajectory.py.
+`query_state` (control_msgs/QueryTrajectoryState). The trajectory maths is kinematics/trajectory.py.
 
 Threads: the topic, action and service callbacks run on rospy's threads, the update on the physics
 thread. The running trajectory and the active goal change under `_lock`; goal handles are told of an
