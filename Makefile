@@ -82,10 +82,10 @@ demo: setup
 # About 8 minutes; bench-quick runs every part briefly (~1.5 min). Keep this run's figures as the
 # reference (then commit the file): make bench ARGS=--save.
 bench: setup
-	@$(IN_WS) $(VENV)/bin/python3 tools/bench.py $(ARGS)
+	@$(IN_WS) $(VENV)/bin/python3 tools/run_bench.py $(ARGS)
 
 bench-quick: setup
-	@$(IN_WS) $(VENV)/bin/python3 tools/bench.py --quick
+	@$(IN_WS) $(VENV)/bin/python3 tools/run_bench.py --quick
 
 # The soak: 30 min of sim time driving the room as fast as possible (memory, logs, /clock); report in
 # out/soak/. Shorter or other: make soak ARGS='--sim-minutes 5'.

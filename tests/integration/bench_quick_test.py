@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""tools/bench.py --quick completes, exits 0 and writes bench.json with every part's figures, the
+"""tools/run_bench.py --quick completes, exits 0 and writes bench.json with every part's figures, the
 table and three PNG plots. Checks that figures exist and are physically possible (finite, positive,
 all commands delivered, determinism exact), never that they reach a target: the suite must not
 fail on a busy machine, and a quick run's timings are not measurements.
@@ -26,7 +26,7 @@ class BenchQuickTest(unittest.TestCase):
 
     @classmethod
     def setUpClass(cls):
-        cmd = [sys.executable, os.path.join(ROOT, 'tools', 'bench.py'), '--quick', '--out', OUT]
+        cmd = [sys.executable, os.path.join(ROOT, 'tools', 'run_bench.py'), '--quick', '--out', OUT]
         run = subprocess.run(cmd, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, timeout=TIMEOUT_S, cwd=ROOT)
         cls.code, cls.output = run.returncode, run.stdout.decode(errors='replace')
         cls.results = None

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Black-box test of the odometry nodes (racebot_sim_bridge gazebo_odometry.launch) on a straight
+"""Black-box test of the odometry nodes (racebot_gazebo gazebo_odometry.launch) on a straight
 2 m drive: the four wheel controllers get 10 rad/s until /gazebo/model_states says the car has
 covered 2 m, then 0.
 

@@ -1,6 +1,6 @@
 """make bench: racebot_sim_bridge's speed against the physics ceiling, and its fidelity.
 
-tools/bench.py is the command; these modules are its parts:
+tools/run_bench.py is the command; these modules are its parts:
   common        paths, worlds, processes (/proc), launches on private masters
   stats         medians, percentiles, the median of repeated pairs with its spread (min-max)
   ceiling       bare PyBullet stepping of the racebot: the speed ceiling

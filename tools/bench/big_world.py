@@ -216,7 +216,7 @@ def generated(root, count):
             'models': world_models(world['world_file'])}
 
 
-# -- one start (a child process of tools/bench.py, --scenario big_world) ---------------------------------
+# -- one start (a child process of tools/run_bench.py, --scenario big_world) ---------------------------------
 def start(p, out):
     """roslaunch with no master running -> the first /clock, and all p['models'] in get_world_properties;
     the world server's RSS and CPU time then; how many meshes the cache holds."""
@@ -283,7 +283,7 @@ def scenario(p, out):
 # -- the part -------------------------------------------------------------------------------------------------
 def run(cfg, out, run_scenario):
     """cfg: runs (cold and warm starts each), world ('auto': the house when its clone is here, else the
-    generated world; 'generated'), models (of the generated world), timeout_s. run_scenario is tools/bench.py's."""
+    generated world; 'generated'), models (of the generated world), timeout_s. run_scenario is tools/run_bench.py's."""
     root = common.clean_dir(os.path.join(out, 'tmp', 'big_world'))
     spec, why_not_house = (None, 'asked for the generated world') if cfg['world'] == 'generated' else house()
     if spec is None:

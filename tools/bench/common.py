@@ -26,7 +26,7 @@ WHEELBASE = 0.26     # m, rear axle to the steering hinges; racecar.xacro
 # empty world, the car spawned, the seven controllers by the spawner (joint_states at 50 Hz), and
 # servo_commands when asked. Written under the output folder at run time (tools/ is no ROS package).
 BRIDGE_LAUNCH = """<?xml version="1.0"?>
-<!-- written by tools/bench.py: the simulator under test, as racebot.launch starts it minus
+<!-- written by tools/run_bench.py: the simulator under test, as racebot.launch starts it minus
      robot_state_publisher, transform and the keyboard (the bench drives and reads the car itself) -->
 <launch>
   <arg name="world_name"/>

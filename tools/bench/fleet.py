@@ -140,7 +140,7 @@ def _spawn(n, urdf_xml):
 def fleet(p, out):
     """The fleet part, one master for all counts: for each count in p['counts'] a fresh world server with that
     many robots, p['rounds'] pairs of p['window_s'] wall seconds each after p['warmup_s']."""
-    from .ros_node import WORLD_SERVER, World, init_node, measure_window, node_pid
+    from .ros_node import WORLD_SERVER, GazeboClient, init_node, measure_window, node_pid
     port = p['port']
     world_file = common.fast_world(common.EMPTY_WORLD, os.path.join(out, 'empty_fast.world'))
     urdf_xml = render_urdf()
@@ -153,7 +153,7 @@ def fleet(p, out):
                                       port, os.path.join(out, 'logs', 'fleet%d_roslaunch.log' % n))
             keep = []
             try:
-                world = World()
+                world = GazeboClient()
                 counts, keep = _spawn(n, urdf_xml)
                 pid = node_pid(WORLD_SERVER, port)
                 with common.quiet_stdout():

@@ -1,8 +1,8 @@
 """The bench's kept figures: the key figures of the last saved run, committed in the repository
 (last_figures.json next to this file), and each new figure printed beside its kept one with the
-change, so that a regression shows in the next run. Pure (no ROS); tools/bench.py does the I/O.
+change, so that a regression shows in the next run. Pure (no ROS); tools/run_bench.py does the I/O.
 
-The file is written only when asked (`tools/bench.py --save`), never by every run: it is a
+The file is written only when asked (`tools/run_bench.py --save`), never by every run: it is a
 reference chosen on purpose (a full run on a quiet machine, committed with the change that moved
 it). Written by every run, a loaded laptop's or a --quick run's figures would become the reference,
 the tree would be dirty after each bench, and a slow drift would only ever be compared with its
@@ -26,7 +26,7 @@ REGRESSION = 'REGRESSION'
 
 
 def key_figures(r):
-    """The figures worth keeping, from the results dictionary of tools/bench.py: {key: figure}."""
+    """The figures worth keeping, from the results dictionary of tools/run_bench.py: {key: figure}."""
     out = {}
 
     def add(key, label, value, unit='', better=None, fmt='%.2f', tolerance=TOLERANCE, resolution=0.0):
@@ -113,12 +113,12 @@ def load(path=KEPT_FILE):
         with open(path) as f:
             kept = json.load(f)
     except FileNotFoundError:
-        return {}, 'no kept figures yet (%s): `tools/bench.py --save` writes them' % os.path.relpath(path)
+        return {}, 'no kept figures yet (%s): `tools/run_bench.py --save` writes them' % os.path.relpath(path)
     except (OSError, ValueError) as err:
-        return {}, 'kept figures unreadable (%s: %s): compared with nothing; `tools/bench.py --save` rewrites ' \
+        return {}, 'kept figures unreadable (%s: %s): compared with nothing; `tools/run_bench.py --save` rewrites ' \
                    'the file' % (os.path.relpath(path), err)
     if not isinstance(kept, dict) or kept.get('format') != FORMAT or not isinstance(kept.get('figures'), dict):
-        return {}, 'kept figures in %s are not in format %d: compared with nothing; `tools/bench.py --save` ' \
+        return {}, 'kept figures in %s are not in format %d: compared with nothing; `tools/run_bench.py --save` ' \
                    'rewrites the file' % (os.path.relpath(path), FORMAT)
     kept['figures'] = {k: f for k, f in kept['figures'].items() if _valid(f)}
     return kept, None

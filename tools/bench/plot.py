@@ -25,6 +25,15 @@ def save(fig, path):
     return path
 
 
+def finish_axes(ax, title, xlabel, ylabel, legend_loc='best'):
+    """One panel's title, axis labels, light grid and small legend, as every figure here has them."""
+    ax.set_title(title)
+    ax.set_xlabel(xlabel)
+    ax.set_ylabel(ylabel)
+    ax.grid(True, alpha=0.3)
+    ax.legend(loc=legend_loc, fontsize='small')
+
+
 # -- fidelity --------------------------------------------------------------------------------------
 def turning_circles_figure(runs):
     """runs: {mode: [circle results]} -> one panel per steering mode; None without runs."""
@@ -46,11 +55,7 @@ def turning_circles_figure(runs):
                     % (c['steering_rad'], c['measured_m'], r, c['error_pct']))
         ax.plot([], [], label='bicycle model, R = L / tan δ', **REFERENCE_STYLE)
         ax.set_aspect('equal', adjustable='datalim')
-        ax.set_title('%s steering: rear-axle path' % mode)
-        ax.set_xlabel('x (m)')
-        ax.set_ylabel('y (m)')
-        ax.grid(True, alpha=0.3)
-        ax.legend(loc='upper right', fontsize='small')
+        finish_axes(ax, '%s steering: rear-axle path' % mode, 'x (m)', 'y (m)', 'upper right')
     fig.tight_layout()
     return fig
 
@@ -75,11 +80,8 @@ def hinge_step_figure(samples, figures, target):
         transform=ax.transAxes, ha='right', va='bottom', fontsize='small',
         bbox=dict(facecolor='white', edgecolor='0.7'))
     ax.set_xlim(0.0, t_end)
-    ax.set_title('steering hinge step 0 → %.1f rad' % target)
-    ax.set_xlabel('time after the step (s)')
-    ax.set_ylabel('hinge angle (rad)')
-    ax.grid(True, alpha=0.3)
-    ax.legend(loc='center right', fontsize='small')
+    finish_axes(ax, 'steering hinge step 0 → %.1f rad' % target, 'time after the step (s)', 'hinge angle (rad)',
+                'center right')
     fig.tight_layout()
     return fig
 
@@ -141,11 +143,7 @@ def room_path_figure(shapes, path):
     ax.plot([path[0][1]], [path[0][2]], 'o', color='tab:green', label='start')
     ax.plot([path[-1][1]], [path[-1][2]], 'o', color='tab:red', label='end')
     ax.set_aspect('equal', adjustable='datalim')
-    ax.set_title('racebot demo: path in the room')
-    ax.set_xlabel('x (m)')
-    ax.set_ylabel('y (m)')
-    ax.grid(True, alpha=0.3)
-    ax.legend(loc='upper right', fontsize='small')
+    finish_axes(ax, 'racebot demo: path in the room', 'x (m)', 'y (m)', 'upper right')
     fig.tight_layout()
     return fig
 
@@ -173,11 +171,9 @@ def fleet_figure(fleet):
     ax.set_xscale('log', base=2)
     ax.set_xticks(n)
     ax.set_xticklabels([str(k) for k in n])
-    ax.set_xlabel('differential-drive robots (laser 360 rays at 10 Hz, IMU at 50 Hz, each)')
-    ax.set_ylabel('real-time factor, as fast as possible')
-    ax.set_title('fleet: racebot / bare PyBullet (numbers: the ratio)')
-    ax.grid(True, alpha=0.3)
-    ax.legend(fontsize='small')
+    finish_axes(ax, 'fleet: racebot / bare PyBullet (numbers: the ratio)',
+                'differential-drive robots (laser 360 rays at 10 Hz, IMU at 50 Hz, each)',
+                'real-time factor, as fast as possible')
     fig.tight_layout()
     return fig
 

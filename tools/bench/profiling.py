@@ -55,6 +55,7 @@ def summarize_stacks(path, thread):
 
 
 def _frame_name(frame):
-    """'Simulator.step (racebot_sim_bridge/simulator.py:184)' -> 'Simulator.step (racebot_sim_bridge/simulator.py)'."""
+    """'Simulator.step (racebot_sim_bridge/engine/simulator.py:184)'
+    -> 'Simulator.step (racebot_sim_bridge/engine/simulator.py)'."""
     name, _, where = frame.partition(' (')
     return '%s (%s)' % (name, where.rsplit(':', 1)[0]) if where else name

@@ -29,163 +29,177 @@ def _met(ok):
     return 'yes' if ok else 'NO'
 
 
-def rows(r):
-    """[(figure, ours, reference, target, met)] from the results dictionary of tools/bench.py."""
-    out = []
-    add = lambda *row: out.append(tuple(str(x) for x in row))
-    errors = r.get('errors', {})
+CEILING_REFERENCE = '11-15 (bare PyBullet, 1 core)'  # steps per ms of sim time: 11,000-15,000 steps/s measured
 
-    sp = r.get('speed')
-    if sp:
-        plain = sp['plain']
-        spread = _spreads(plain)
-        add('ceiling: bare PyBullet, our URDF, 1 ms step (real-time factor)', '%s, %.0f steps/s' % (
-            stats.with_spread(spread['ceiling_rtf'], '%.1f'), plain['ceiling_steps_per_s']),
-            '11-15 (ENVIRONMENT.md)', '-', '-')
-        add('bridge as fast as possible: real-time factor', stats.with_spread(spread['bridge_rtf']),
-            'Gazebo: 0.5-0.9', '-', '-')
-        add('bridge / ceiling: median of %d side-by-side pairs (min-max)' % len(plain['rounds']),
-            stats.with_spread(spread['ratio']), '-', '>= %.2f' % RATIO_TARGET, _met(plain['ratio'] >= RATIO_TARGET))
-        sens = sp.get('sensors', {})
-        if sens.get('available'):
-            s_spread = _spreads(sens)
-            add('bridge / ceiling, all sensors subscribed (min-max)', '%s, RTF %s' % (
-                stats.with_spread(s_spread['ratio']), stats.with_spread(s_spread['bridge_rtf'])), '-', 'reported', '-')
-        else:
-            add('bridge / ceiling, all sensors subscribed', 'not available', '-', 'reported', '-')
-        add('simulator RSS after start / after the sensor rounds / at %.0f s of sim time' % sp['memory_sim_s'],
-            '%.0f / %.0f / %.0f MB' % (sp['rss_start_bytes'] / MB, sp['rss_after_sensors_bytes'] / MB,
-                                       sp['rss_end_bytes'] / MB), '-', 'reported', '-')
-    elif 'speed' in errors:
-        add('speed (ceiling, bridge)', 'ERROR', '-', '-', 'NO')
 
-    fleet = r.get('fleet')
-    if fleet:
-        for f in sorted(fleet.values(), key=lambda f: f['robots']):
-            sp_ = f['spread']
-            add('fleet: %d diff-drive robot%s with laser and IMU, as fast as possible: RTF racebot / bare PyBullet '
-                '(ratio)' % (f['robots'], '' if f['robots'] == 1 else 's'),
-                '%s / %s (%s)' % (stats.with_spread(sp_['rtf']), stats.with_spread(sp_['ceiling_rtf']),
-                                  stats.with_spread(sp_['ratio'])), '-', 'reported', '-')
-    elif 'fleet' in errors:
-        add('fleet (1 to 8 robots)', 'ERROR', '-', '-', 'NO')
+def _one(condition):
+    """A row spec's `each` that gives its section's data once when condition(data) holds, else nothing."""
+    return lambda x: [x] if condition(x) else []
 
-    rt = r.get('realtime')
-    if rt:
-        w = rt['window']
-        add('real time (world settings): real-time factor over %.0f s wall' % w['wall_s'], '%.3f' % w['rtf'],
-            'Gazebo: 1.00', '1.00 +- 0.02', _met(abs(w['rtf'] - 1.0) <= 0.02))
-        cpu = '%.1f %%' % (100 * w['cpu'])
-        if len(w.get('parts_cpu') or []) > 1:
-            cpu += ' (%.1f-%.1f over %d parts of %.0f s)' % (100 * min(w['parts_cpu']), 100 * max(w['parts_cpu']),
-                                                          len(w['parts_cpu']), w['wall_s'] / len(w['parts_cpu']))
-        add('real time: simulator CPU (one core = 100 %), sensors off', cpu, '-', '<= %.0f %%' % (
-            100 * REALTIME_CPU_TARGET), _met(w['cpu'] <= REALTIME_CPU_TARGET))
-        lat = rt['latency']
-        a, c = lat['applied_ms'], lat['callback_ms']
-        add('command path: publish -> wheel commands applied, p50 / p99', '%s / %s ms' % (
-            _fmt(a['p50']), _fmt(a['p99'])), '-', 'p99 <= 5 ms', _met(a['p99'] is not None and a['p99'] <= 5.0))
-        add('command path: publish -> controller callback, p50 / p99', '%s / %s ms' % (
-            _fmt(c['p50']), _fmt(c['p99'])), '-', '-', '-')
-        add('delivery: %d distinct commands at 100 Hz' % lat['sent'], '%d arrived, %d applied' % (
-            lat['delivered'], lat['applied']), '-', 'all %d' % lat['sent'], _met(lat['delivered'] == lat['sent']))
-    elif 'realtime' in errors:
-        add('real time, command path', 'ERROR', '-', '-', 'NO')
 
-    sens = r.get('sensors')
-    if sens and sens.get('new'):
-        new, old = sens['new'], sens.get('old')
-        add('sensors in real time, all subscribed, render worker: real-time factor',
-            '%.3f' % new['rtf'], 'old path: %s' % (_fmt(old['rtf'], '%.3f') if old else '-'),
-            '>= %.2f' % SENSOR_RTF_TARGET, _met(new['rtf'] >= SENSOR_RTF_TARGET))
-        for label, topic, declared, target in SENSOR_ROWS:
-            hz = new['topics'].get(topic, {}).get('wall_hz')
-            was = old['topics'].get(topic, {}).get('wall_hz') if old else None
-            add('sensors in real time: %s, messages per wall second (declared %g Hz)' % (label, declared),
-                _fmt(hz, '%.1f Hz'), 'old path: %s' % _fmt(was, '%.1f Hz'), '>= %g Hz' % target,
-                _met(hz is not None and hz >= target))
-    elif 'sensors' in errors:
-        add('sensors in real time', 'ERROR', '-', '-', 'NO')
+def _speed_ceiling(sp):
+    plain = sp['plain']
+    return '%s, %.0f steps/s' % (stats.with_spread(_spreads(plain)['ceiling_rtf'], '%.1f'),
+                                 plain['ceiling_steps_per_s'])
 
+
+def _realtime_cpu(w):
+    cpu = '%.1f %%' % (100 * w['cpu'])
+    if len(w.get('parts_cpu') or []) > 1:
+        cpu += ' (%.1f-%.1f over %d parts of %.0f s)' % (100 * min(w['parts_cpu']), 100 * max(w['parts_cpu']),
+                                                      len(w['parts_cpu']), w['wall_s'] / len(w['parts_cpu']))
+    return cpu
+
+
+def _cold_startup(r):
     su = r.get('startup')
-    if su and su.get('cold_s'):
-        add('start-up: racebot.launch to 7 controllers running (median of %d, cold; min-max)' % len(su['cold_runs']),
-            stats.with_spread(stats.spread(su['cold_runs']), unit=' s'), '-', '<= 5 s', _met(su['cold_s'] <= 5.0))
-    if rt:
-        add('start-up with the master already running', '%.2f s' % rt['startup_warm_s'], '-',
-            '<= 5 s' if not (su and su.get('cold_s')) else '-',
-            _met(rt['startup_warm_s'] <= 5.0) if not (su and su.get('cold_s')) else '-')
+    return bool(su and su.get('cold_s'))
 
-    bw = r.get('big_world')
-    if bw:
-        w, c, conv = bw['warm'], bw['cold'], bw['conversion']
-        add('big world, %s, %d models: roslaunch -> all models listed, warm mesh cache' % (
-            bw['world_kind'], bw['models']), stats.with_spread(w['models_s'], unit=' s'),
-            'Gazebo: minutes (gazebo_ros_pkgs#680)', '<= %g s' % BIG_WORLD_TARGET_S,
-            _met(w['models_s']['median'] <= BIG_WORLD_TARGET_S))
-        add('big world: roslaunch -> first /clock, warm', stats.with_spread(w['clock_s'], unit=' s'), '-',
-            '<= %g s' % BIG_WORLD_TARGET_S, _met(w['clock_s']['median'] <= BIG_WORLD_TARGET_S))
-        add('big world, empty mesh cache: roslaunch -> all models / first /clock', '%s / %s' % (
-            stats.with_spread(c['models_s'], unit=' s'), stats.with_spread(c['clock_s'], unit=' s')), '-',
-            'reported', '-')
-        add('big world, warm: of it, roslaunch -> master up / world server CPU time to all models in', '%s / %s' % (
-            stats.with_spread(w['master_s'], unit=' s'), stats.with_spread(w['cpu_s'], unit=' s')), '-', 'reported',
-            '-')
-        add('big world: mesh conversion in a cold start, world server CPU cold - warm; %d meshes alone' % conv['files'],
-            '%.2f of %.2f s; alone %.2f s CPU (%.2f s wall)' % (
-                bw['cold_minus_warm_cpu_s'], c['cpu_s']['median'], conv['cpu_s'], conv['wall_s']),
-            '-', 'reported', '-')
-        add('big world: world server RSS, all models in, warm / cold', '%s / %s' % (
-            stats.with_spread(w['rss_mb'], '%.0f', ' MB'), stats.with_spread(c['rss_mb'], '%.0f', ' MB')), '-',
-            'reported', '-')
-    elif 'big_world' in errors:
-        add('big world (roslaunch -> all models)', 'ERROR', '-', '-', 'NO')
 
-    fi = r.get('fidelity', {})
-    par = fi.get('parallel')
-    if par:
-        for s in par['speeds']:
-            add('steady speed at %.1f m/s (model_states)' % s['commanded'], '%.3f m/s (%.1f %%)' % (
-                s['measured'], s['error_pct']), '%.1f' % s['commanded'], '<= 5 %', _met(s['error_pct'] <= 5.0))
-    for mode in ('parallel', 'ackermann'):
-        f = fi.get(mode)
-        if not f:
-            if mode in fi.get('skipped', []):
-                add('turning circles, %s steering' % mode, 'skipped (quick)', '-', '-', '-')
-            continue
-        for c in f['circles']:
-            add('turning radius, %s, steering %.1f rad, 0.5 m/s' % (mode, c['steering_rad']), '%.3f m (%.1f %%)' % (
-                c['measured_m'], c['error_pct']), '%.3f (L/tan d)' % c['reference_m'], '<= 10 %',
-                _met(c['error_pct'] <= 10.0))
-    if par:
-        for lock in par['full_lock']:
-            add('full lock %+.1f rad at %.0f m/s for %.0f s' % (lock['steering_rad'], lock['speed'], lock['sim_s']),
-                'max tilt %s deg, %s' % (_fmt(lock['max_tilt_deg'], '%.1f'),
-                                         'finite' if lock['finite'] else 'NOT finite'),
-                '-', 'no flip, finite', _met(lock['ok']))
-    for mode in ('parallel', 'ackermann'):
-        if 'fidelity_' + mode in errors:
-            add('fidelity, %s steering' % mode, 'ERROR', '-', '-', 'NO')
+def _hz(sensor_path, topic):
+    return sensor_path['topics'].get(topic, {}).get('wall_hz') if sensor_path else None
 
-    ip = r.get('inprocess')
-    if ip:
-        h = ip['hinge']
-        add('hinge step 0 -> 0.3 rad (p 10, d 0.5): rise 10-90 %', _fmt(h['rise_time_s'], '%.3f s'), '-', '-', '-')
-        add('hinge step: overshoot / final value', '%.1f %% / %.4f rad' % (h['overshoot_pct'], h['final_rad']),
-            '-', '-', '-')
-        add('hinge step: settling into 2 %', _fmt(h['settling_time_s'], '%.3f s', 'not within 2 %% in %.0f s'
-                                                  % h['duration_s']), '-', '-', '-')
-        add('simulator in-process, no ROS (real-time factor; min-max)', stats.with_spread(
-            stats.spread(ip.get('sim_rtf_runs') or [ip['sim_rtf']]), '%.1f'), '-', '-', '-')
-    elif 'inprocess' in errors:
-        add('hinge step', 'ERROR', '-', '-', 'NO')
 
-    de = r.get('determinism')
-    if de:
-        add('determinism: two runs, %.0f s scripted, max difference' % de['sim_s'], '%.1e m' % de['max_diff_m'],
-            'Gazebo: not deterministic', '<= 1e-9 m', _met(de['max_diff_m'] <= 1e-9))
-    elif 'determinism' in errors:
-        add('determinism', 'ERROR', '-', '-', 'NO')
+def _circles(fidelity, mode):
+    """A steering mode's turning circles; [None] (one 'skipped' row) for a mode a quick run skipped."""
+    if fidelity.get(mode):
+        return fidelity[mode]['circles']
+    return [None] if mode in fidelity.get('skipped', []) else []
+
+
+def _spread_pair(a, b, spec='%.2f', unit=' s'):
+    return '%s / %s' % (stats.with_spread(a, spec, unit), stats.with_spread(b, spec, unit))
+
+
+# The table, section by section: (section's data from the results, the error that stands in for a missing section
+# (key in results['errors'], figure) or None, its rows). A row: (each, figure, ours, reference, target, met), each
+# None (one row of the section's data) or a function of the data giving the items of one row each; the other
+# fields are text, or functions of the data (or item) giving text.
+SECTIONS = (
+    (lambda r: r.get('speed'), ('speed', 'speed (ceiling, bridge)'), (
+        (None, 'ceiling: bare PyBullet, our URDF, 1 ms step (real-time factor)', _speed_ceiling, CEILING_REFERENCE,
+         '-', '-'),
+        (None, 'bridge as fast as possible: real-time factor',
+         lambda sp: stats.with_spread(_spreads(sp['plain'])['bridge_rtf']), 'Gazebo: 0.5-0.9', '-', '-'),
+        (None, lambda sp: 'bridge / ceiling: median of %d side-by-side pairs (min-max)' % len(sp['plain']['rounds']),
+         lambda sp: stats.with_spread(_spreads(sp['plain'])['ratio']), '-', '>= %.2f' % RATIO_TARGET,
+         lambda sp: _met(sp['plain']['ratio'] >= RATIO_TARGET)),
+        (lambda sp: [sp['sensors']] if sp.get('sensors', {}).get('available') else [],
+         'bridge / ceiling, all sensors subscribed (min-max)', lambda sens: '%s, RTF %s' % (
+             stats.with_spread(_spreads(sens)['ratio']), stats.with_spread(_spreads(sens)['bridge_rtf'])),
+         '-', 'reported', '-'),
+        (_one(lambda sp: not sp.get('sensors', {}).get('available')), 'bridge / ceiling, all sensors subscribed',
+         'not available', '-', 'reported', '-'),
+        (None, lambda sp: 'simulator RSS after start / after the sensor rounds / at %.0f s of sim time'
+         % sp['memory_sim_s'], lambda sp: '%.0f / %.0f / %.0f MB' % (
+             sp['rss_start_bytes'] / MB, sp['rss_after_sensors_bytes'] / MB, sp['rss_end_bytes'] / MB),
+         '-', 'reported', '-'))),
+    (lambda r: r.get('fleet'), ('fleet', 'fleet (1 to 8 robots)'), (
+        (lambda fleet: sorted(fleet.values(), key=lambda f: f['robots']),
+         lambda f: 'fleet: %d diff-drive robot%s with laser and IMU, as fast as possible: RTF racebot / bare '
+         'PyBullet (ratio)' % (f['robots'], '' if f['robots'] == 1 else 's'),
+         lambda f: '%s / %s (%s)' % (stats.with_spread(f['spread']['rtf']), stats.with_spread(
+             f['spread']['ceiling_rtf']), stats.with_spread(f['spread']['ratio'])), '-', 'reported', '-'),)),
+    (lambda r: r.get('realtime'), ('realtime', 'real time, command path'), (
+        (None, lambda rt: 'real time (world settings): real-time factor over %.0f s wall' % rt['window']['wall_s'],
+         lambda rt: '%.3f' % rt['window']['rtf'], 'Gazebo: 1.00', '1.00 +- 0.02',
+         lambda rt: _met(abs(rt['window']['rtf'] - 1.0) <= 0.02)),
+        (None, 'real time: simulator CPU (one core = 100 %), sensors off', lambda rt: _realtime_cpu(rt['window']), '-',
+         '<= %.0f %%' % (100 * REALTIME_CPU_TARGET), lambda rt: _met(rt['window']['cpu'] <= REALTIME_CPU_TARGET)),
+        (None, 'command path: publish -> wheel commands applied, p50 / p99', lambda rt: '%s / %s ms' % (
+            _fmt(rt['latency']['applied_ms']['p50']), _fmt(rt['latency']['applied_ms']['p99'])), '-', 'p99 <= 5 ms',
+         lambda rt: _met(rt['latency']['applied_ms']['p99'] is not None and rt['latency']['applied_ms']['p99'] <= 5.0)),
+        (None, 'command path: publish -> controller callback, p50 / p99', lambda rt: '%s / %s ms' % (
+            _fmt(rt['latency']['callback_ms']['p50']), _fmt(rt['latency']['callback_ms']['p99'])), '-', '-', '-'),
+        (lambda rt: [rt['latency']], lambda lat: 'delivery: %d distinct commands at 100 Hz' % lat['sent'],
+         lambda lat: '%d arrived, %d applied' % (lat['delivered'], lat['applied']), '-',
+         lambda lat: 'all %d' % lat['sent'], lambda lat: _met(lat['delivered'] == lat['sent'])))),
+    (lambda r: r.get('sensors') if r.get('sensors') and r['sensors'].get('new') else None,
+     ('sensors', 'sensors in real time'), (
+        (None, 'sensors in real time, all subscribed, render worker: real-time factor',
+         lambda sens: '%.3f' % sens['new']['rtf'],
+         lambda sens: 'old path: %s' % (_fmt(sens['old']['rtf'], '%.3f') if sens.get('old') else '-'),
+         '>= %.2f' % SENSOR_RTF_TARGET, lambda sens: _met(sens['new']['rtf'] >= SENSOR_RTF_TARGET)),
+        (lambda sens: [(sens, row) for row in SENSOR_ROWS],
+         lambda x: 'sensors in real time: %s, messages per wall second (declared %g Hz)' % (x[1][0], x[1][2]),
+         lambda x: _fmt(_hz(x[0]['new'], x[1][1]), '%.1f Hz'),
+         lambda x: 'old path: %s' % _fmt(_hz(x[0].get('old'), x[1][1]), '%.1f Hz'), lambda x: '>= %g Hz' % x[1][3],
+         lambda x: _met(_hz(x[0]['new'], x[1][1]) is not None and _hz(x[0]['new'], x[1][1]) >= x[1][3])))),
+    (lambda r: r, None, (
+        (_one(_cold_startup), lambda r: 'start-up: racebot.launch to 7 controllers running (median of %d, cold; '
+         'min-max)' % len(r['startup']['cold_runs']),
+         lambda r: stats.with_spread(stats.spread(r['startup']['cold_runs']), unit=' s'), '-', '<= 5 s',
+         lambda r: _met(r['startup']['cold_s'] <= 5.0)),
+        (_one(lambda r: r.get('realtime')), 'start-up with the master already running',
+         lambda r: '%.2f s' % r['realtime']['startup_warm_s'], '-',
+         lambda r: '<= 5 s' if not _cold_startup(r) else '-',
+         lambda r: _met(r['realtime']['startup_warm_s'] <= 5.0) if not _cold_startup(r) else '-'))),
+    (lambda r: r.get('big_world'), ('big_world', 'big world (roslaunch -> all models)'), (
+        (None, lambda bw: 'big world, %s, %d models: roslaunch -> all models listed, warm mesh cache' % (
+            bw['world_kind'], bw['models']), lambda bw: stats.with_spread(bw['warm']['models_s'], unit=' s'),
+         'Gazebo: minutes (gazebo_ros_pkgs#680)', '<= %g s' % BIG_WORLD_TARGET_S,
+         lambda bw: _met(bw['warm']['models_s']['median'] <= BIG_WORLD_TARGET_S)),
+        (None, 'big world: roslaunch -> first /clock, warm', lambda bw: stats.with_spread(bw['warm']['clock_s'],
+                                                                                          unit=' s'),
+         '-', '<= %g s' % BIG_WORLD_TARGET_S, lambda bw: _met(bw['warm']['clock_s']['median'] <= BIG_WORLD_TARGET_S)),
+        (None, 'big world, empty mesh cache: roslaunch -> all models / first /clock',
+         lambda bw: _spread_pair(bw['cold']['models_s'], bw['cold']['clock_s']), '-', 'reported', '-'),
+        (None, 'big world, warm: of it, roslaunch -> master up / world server CPU time to all models in',
+         lambda bw: _spread_pair(bw['warm']['master_s'], bw['warm']['cpu_s']), '-', 'reported', '-'),
+        (None, lambda bw: 'big world: mesh conversion in a cold start, world server CPU cold - warm; %d meshes alone'
+         % bw['conversion']['files'], lambda bw: '%.2f of %.2f s; alone %.2f s CPU (%.2f s wall)' % (
+             bw['cold_minus_warm_cpu_s'], bw['cold']['cpu_s']['median'], bw['conversion']['cpu_s'],
+             bw['conversion']['wall_s']), '-', 'reported', '-'),
+        (None, 'big world: world server RSS, all models in, warm / cold',
+         lambda bw: _spread_pair(bw['warm']['rss_mb'], bw['cold']['rss_mb'], '%.0f', ' MB'), '-', 'reported', '-'))),
+    (lambda r: r.get('fidelity', {}).get('parallel'), None, (
+        (lambda par: par['speeds'], lambda s: 'steady speed at %.1f m/s (model_states)' % s['commanded'],
+         lambda s: '%.3f m/s (%.1f %%)' % (s['measured'], s['error_pct']), lambda s: '%.1f' % s['commanded'],
+         '<= 5 %', lambda s: _met(s['error_pct'] <= 5.0)),)),
+    (lambda r: r.get('fidelity', {}), None, (
+        (lambda fi: [(mode, c) for mode in ('parallel', 'ackermann') for c in _circles(fi, mode)],
+         lambda x: 'turning circles, %s steering' % x[0] if x[1] is None else
+         'turning radius, %s, steering %.1f rad, 0.5 m/s' % (x[0], x[1]['steering_rad']),
+         lambda x: 'skipped (quick)' if x[1] is None else '%.3f m (%.1f %%)' % (x[1]['measured_m'], x[1]['error_pct']),
+         lambda x: '-' if x[1] is None else '%.3f (L/tan d)' % x[1]['reference_m'],
+         lambda x: '-' if x[1] is None else '<= 10 %',
+         lambda x: '-' if x[1] is None else _met(x[1]['error_pct'] <= 10.0)),)),
+    (lambda r: r.get('fidelity', {}).get('parallel'), None, (
+        (lambda par: par['full_lock'], lambda lock: 'full lock %+.1f rad at %.0f m/s for %.0f s' % (
+            lock['steering_rad'], lock['speed'], lock['sim_s']), lambda lock: 'max tilt %s deg, %s' % (
+            _fmt(lock['max_tilt_deg'], '%.1f'), 'finite' if lock['finite'] else 'NOT finite'),
+         '-', 'no flip, finite', lambda lock: _met(lock['ok'])),)),
+    (lambda r: r.get('errors'), None, (
+        (lambda errors: [mode for mode in ('parallel', 'ackermann') if 'fidelity_' + mode in errors],
+         lambda mode: 'fidelity, %s steering' % mode, 'ERROR', '-', '-', 'NO'),)),
+    (lambda r: r.get('inprocess'), ('inprocess', 'hinge step'), (
+        (None, 'hinge step 0 -> 0.3 rad (p 10, d 0.5): rise 10-90 %',
+         lambda ip: _fmt(ip['hinge']['rise_time_s'], '%.3f s'), '-', '-', '-'),
+        (None, 'hinge step: overshoot / final value',
+         lambda ip: '%.1f %% / %.4f rad' % (ip['hinge']['overshoot_pct'], ip['hinge']['final_rad']), '-', '-', '-'),
+        (None, 'hinge step: settling into 2 %', lambda ip: _fmt(ip['hinge']['settling_time_s'], '%.3f s',
+                                                               'not within 2 %% in %.0f s' % ip['hinge']['duration_s']),
+         '-', '-', '-'),
+        (None, 'simulator in-process, no ROS (real-time factor; min-max)', lambda ip: stats.with_spread(
+            stats.spread(ip.get('sim_rtf_runs') or [ip['sim_rtf']]), '%.1f'), '-', '-', '-'))),
+    (lambda r: r.get('determinism'), ('determinism', 'determinism'), (
+        (None, lambda de: 'determinism: two runs, %.0f s scripted, max difference' % de['sim_s'],
+         lambda de: '%.1e m' % de['max_diff_m'], 'Gazebo: not deterministic', '<= 1e-9 m',
+         lambda de: _met(de['max_diff_m'] <= 1e-9)),)),
+)
+
+
+def rows(r):
+    """[(figure, ours, reference, target, met)] from the results dictionary of tools/run_bench.py (SECTIONS)."""
+    out = []
+    for section, error, specs in SECTIONS:
+        data = section(r)
+        if data:
+            for each, *fields in specs:
+                for x in (each(data) if each else (data,)):
+                    out.append(tuple(str(f(x) if callable(f) else f) for f in fields))
+        elif error and error[0] in r.get('errors', {}):
+            out.append((error[1], 'ERROR', '-', '-', 'NO'))
     return out
 
 

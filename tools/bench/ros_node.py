@@ -46,8 +46,8 @@ def node_pid(name, port):
     return int(pid)
 
 
-class World:
-    """The /gazebo services the bench uses."""
+class GazeboClient:
+    """The /gazebo services the bench uses (a client of the world server's)."""
 
     def __init__(self):
         import rospy

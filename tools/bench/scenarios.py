@@ -1,4 +1,4 @@
-"""The measurements that need ROS. Each runs in its own child process (`tools/bench.py --scenario
+"""The measurements that need ROS. Each runs in its own child process (`tools/run_bench.py --scenario
 NAME`) with its own master on a free port: rospy binds a process to one master, and other work on
 the machine (tests on 11311) stays out of the way.
 
@@ -7,6 +7,7 @@ not subscribe to /clock: with /use_sim_time set, rospy would subscribe it, and a
 costs the simulator what we are measuring. So the bench node starts before the launch sets
 /use_sim_time (init_node), and sim time comes from /gazebo/get_world_properties.
 """
+import contextlib
 import json
 import math
 import os
@@ -17,7 +18,7 @@ import time
 
 from . import common, profiling, stats
 from .common import BenchError
-from .ros_node import WORLD_SERVER, World, init_node, measure_window, node_pid, wait_controllers
+from .ros_node import WORLD_SERVER, GazeboClient, init_node, measure_window, node_pid, wait_controllers
 
 SENSOR_TYPES = ('sensor_msgs/LaserScan', 'sensor_msgs/Image', 'sensor_msgs/CameraInfo',
                 'sensor_msgs/PointCloud2', 'sensor_msgs/Imu')
@@ -29,17 +30,18 @@ def speed(p, out):
     from .ceiling import Ceiling
     port = p['port']
     world_file = common.fast_world(common.ROOM_WORLD, os.path.join(out, 'room_fast.world'))
-    core = common.roscore(port, os.path.join(out, 'logs', 'speed_roscore.log'))
-    launch = None
     result = {'world': 'room_mini (real_time_update_rate 0)'}
-    try:
+    with contextlib.ExitStack() as stack:  # stops the launch, then the master, whatever happens
+        core = common.roscore(port, os.path.join(out, 'logs', 'speed_roscore.log'))
+        stack.callback(core.stop)
         init_node('racebot_bench_speed')  # before the launch sets /use_sim_time
         launch = common.roslaunch([common.write_bridge_launch(out), 'world_name:=' + world_file], port,
                                   os.path.join(out, 'logs', 'speed_roslaunch.log'))
+        stack.callback(launch.stop)
         wait_controllers(launch)
         pid = node_pid(WORLD_SERVER, port)
         result['rss_start_bytes'] = common.rss_bytes(pid)
-        world = World()
+        world = GazeboClient()
         with common.quiet_stdout():
             ceiling = Ceiling(world_file)
         step = ceiling.step_size
@@ -58,10 +60,6 @@ def speed(p, out):
                         'sim time %g s for the memory figure' % target, launch, period=0.5)
         result['memory_sim_s'] = world.time()
         result['rss_end_bytes'] = common.rss_bytes(pid)
-    finally:
-        if launch is not None:
-            launch.stop()
-        core.stop()
     return result
 
 
@@ -142,24 +140,25 @@ def _with_sensors(world, ceiling, pid, p, step):
 def realtime(p, out):
     import rosgraph
     port = p['port']
-    core = common.roscore(port, os.path.join(out, 'logs', 'realtime_roscore.log'))
     trace_path = os.path.join(out, 'command_trace.log')
     if os.path.exists(trace_path):
         os.remove(trace_path)
-    launch = None
     result = {}
-    try:
+    with contextlib.ExitStack() as stack:  # stops the launch, then the master, whatever happens
+        core = common.roscore(port, os.path.join(out, 'logs', 'realtime_roscore.log'))
+        stack.callback(core.stop)
         rosgraph.Master('/racebot_bench', master_uri='http://localhost:%d' % port).setParam(
             WORLD_SERVER + '/command_trace', trace_path)
         init_node('racebot_bench_realtime')  # before the launch sets /use_sim_time
         started = time.monotonic()
         launch = common.roslaunch(['racebot_gazebo', 'racebot.launch', 'gui:=false', 'teleop:=false'], port,
                                   os.path.join(out, 'logs', 'realtime_roslaunch.log'))
+        stack.callback(launch.stop)
         wait_controllers(launch)
         result['startup_warm_s'] = time.monotonic() - started
         pid = node_pid(WORLD_SERVER, port)
         result['rss_start_bytes'] = common.rss_bytes(pid)
-        world = World()
+        world = GazeboClient()
         time.sleep(p['settle_s'])
         parts = [measure_window(world, pid, p['part_s']) for _ in range(p['parts'])]
         wall = sum(x['wall_s'] for x in parts)
@@ -169,10 +168,6 @@ def realtime(p, out):
                             'parts_cpu': [round(x['cpu'], 4) for x in parts]}
         result['latency'] = command_path(p['commands'], p['command_rate_hz'], trace_path)
         result['rss_end_bytes'] = common.rss_bytes(pid)
-    finally:
-        if launch is not None:
-            launch.stop()
-        core.stop()
     return result
 
 
@@ -191,10 +186,10 @@ def sensors_realtime(p, out):
     of its render worker, and the load average."""
     import rosgraph
     port, path = p['port'], p['path']
-    core = common.roscore(port, os.path.join(out, 'logs', 'sensors_%s_roscore.log' % path))
-    launch = None
     result = {'path': path}
-    try:
+    with contextlib.ExitStack() as stack:  # stops the launch, then the master, whatever happens
+        core = common.roscore(port, os.path.join(out, 'logs', 'sensors_%s_roscore.log' % path))
+        stack.callback(core.stop)
         master = rosgraph.Master('/racebot_bench', master_uri='http://localhost:%d' % port)
         for key, value in SENSOR_PATHS[path].items():
             master.setParam(WORLD_SERVER + '/sensors/' + key, value)
@@ -202,9 +197,10 @@ def sensors_realtime(p, out):
         init_node('racebot_bench_sensors_' + path)  # before the launch sets /use_sim_time
         launch = common.roslaunch(['racebot_gazebo', 'racebot.launch', 'gui:=false', 'teleop:=false'], port,
                                   os.path.join(out, 'logs', 'sensors_%s_roslaunch.log' % path))
+        stack.callback(launch.stop)
         wait_controllers(launch)
         pid = node_pid(WORLD_SERVER, port)
-        world = World()
+        world = GazeboClient()
         topics = sensor_topics()
         counts, subs = subscribe_counting(topics)
         time.sleep(p['settle_s'])  # the worker starts with the first frame wanted
@@ -229,10 +225,6 @@ def sensors_realtime(p, out):
         result['cpu_subscriber'] = (time.process_time() - p0) / (time.perf_counter() - pw0)
         for s in subs:
             s.unregister()
-    finally:
-        if launch is not None:
-            launch.stop()
-        core.stop()
     return result
 
 
@@ -370,7 +362,7 @@ def fidelity(p, out):
     try:
         wait_controllers(launch)  # first: /use_sim_time is set by then
         init_node('racebot_bench_fidelity', sim_time=True)
-        world = World()
+        world = GazeboClient()
         rec = Recorder()
         pub = rospy.Publisher(COMMAND_TOPIC, AckermannDriveStamped, queue_size=10, tcp_nodelay=True)
         common.wait_for(lambda: pub.get_num_connections() > 0 and rec.sub.get_num_connections() > 0, 30,

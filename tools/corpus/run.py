@@ -203,13 +203,8 @@ def stop(procs):
             time.sleep(0.5)
 
 
-def run_row(row, out, env_base):
-    """One row: sources, build, commands, checks, stop. Returns its result for the table."""
-    start = time.time()
-    logs = os.path.join(out, 'logs', row['name'])
-    os.makedirs(logs, exist_ok=True)
-    result = {'name': row['name'], 'covers': row['covers'], 'commands': row['commands'], 'env': row.get('env') or {},
-              'blacklist': row.get('blacklist') or {}, 'repos': [], 'checks': [], 'notes': [], 'build': 'not run'}
+def checkout_row(row, logs, env_base, result):
+    """Every repository of the row at its commit: {repo: tree}, or None (the result says why) when one fails."""
     trees = {}
     for repo in row['repos']:
         git_log = []
@@ -217,17 +212,19 @@ def run_row(row, out, env_base):
             tree, note = sources.checkout(repo['repo'], repo['commit'], env_base, git_log)
         except sources.SourceError as err:
             result.update(status='not run', reason='source: %s' % err)
-            return result
+            return None
         finally:
             with open(os.path.join(logs, 'git.log'), 'a') as f:
                 f.write('\n'.join(git_log))
         trees[repo['repo']] = tree
         result['repos'].append({'repo': repo['repo'], 'commit': repo['commit'], 'branch': repo['branch'],
                                 'packages': repo['packages'], 'note': note})
-    ws = os.path.join(sources.cache_dir(env_base), 'ws', row['name'])
-    make_workspace(row, trees, ws)
-    print('  building %s' % ws, flush=True)
-    result['build'] = build(row, ws, env_base, os.path.join(logs, 'build.log'))
+    return trees
+
+
+def row_env(row, ws, env_base, logs, result):
+    """(environment, master port) the row's commands run in: its devel space's, or its sources' after a failed
+    build, with the row's own variables, a private master and no display."""
     if result['build'] == 'ok':
         env = shell_env(os.path.join(ws, 'devel', 'setup.bash'), env_base)
     else:  # run from the sources anyway: the worklist wants what fails after the build too
@@ -240,45 +237,54 @@ def run_row(row, out, env_base):
                ROS_LOG_DIR=os.path.join(logs, 'ros'), ROS_HOME=os.path.join(logs, 'ros_home'))
     for name in ('DISPLAY', 'ROS_IP', 'ROS_IPV6', 'WAYLAND_DISPLAY'):
         env.pop(name, None)
-    procs, launch_logs = [], []
+    return env, port
+
+
+def start_commands(row, env, logs, procs, result):
+    """The row's commands, each once the world server offers its services; their log paths."""
+    launch_logs = []
+    for i, command in enumerate(row['commands']):
+        if i and not wait_for_service(env, '/gazebo/get_world_properties', float(row.get('ready_timeout', 120))):
+            result['notes'].append('the world server never offered /gazebo/get_world_properties; '
+                                   'started `%s` anyway' % command)
+        path = os.path.join(logs, 'command-%d.log' % (i + 1))
+        launch_logs.append(path)
+        with open(path, 'w') as log:
+            log.write('$ %s\n' % command)
+            log.flush()
+            procs.append(subprocess.Popen(['bash', '-c', command], env=env, stdout=log, stderr=subprocess.STDOUT,
+                                          stdin=subprocess.DEVNULL, cwd=logs, start_new_session=True))
+        time.sleep(float(row.get('command_gap', 3.0)))
+    return launch_logs
+
+
+def run_checks(row, env, port, master_up, logs, result):
+    """The row's checks in a child process (CHECKS) against the running commands, into result['checks']."""
+    row_file = os.path.join(logs, 'row.json')
+    with open(row_file, 'w') as f:
+        json.dump(row, f, indent=2)
+    result_file = os.path.join(logs, 'checks.json')
+    if os.path.exists(result_file):
+        os.unlink(result_file)
+    with open(os.path.join(logs, 'checks.log'), 'w') as log:
+        if not master_up:
+            log.write('no ROS master came up on port %d: checks not run\n' % port)
+        else:
+            try:
+                subprocess.call([python(), CHECKS, row_file, result_file], env=env, stdout=log,
+                                stderr=subprocess.STDOUT, timeout=CHECKS_TIMEOUT_S)
+            except subprocess.TimeoutExpired:
+                result['notes'].append('the checks took over %d s and were stopped' % CHECKS_TIMEOUT_S)
     try:
-        for i, command in enumerate(row['commands']):
-            if i and not wait_for_service(env, '/gazebo/get_world_properties', float(row.get('ready_timeout', 120))):
-                result['notes'].append('the world server never offered /gazebo/get_world_properties; '
-                                       'started `%s` anyway' % command)
-            path = os.path.join(logs, 'command-%d.log' % (i + 1))
-            launch_logs.append(path)
-            with open(path, 'w') as log:
-                log.write('$ %s\n' % command)
-                log.flush()
-                procs.append(subprocess.Popen(['bash', '-c', command], env=env, stdout=log, stderr=subprocess.STDOUT,
-                                              stdin=subprocess.DEVNULL, cwd=logs, start_new_session=True))
-            time.sleep(float(row.get('command_gap', 3.0)))
-        master_up = wait_for_master(port, procs[0], float(row.get('ready_timeout', 120)))
-        row_file = os.path.join(logs, 'row.json')
-        with open(row_file, 'w') as f:
-            json.dump(row, f, indent=2)
-        result_file = os.path.join(logs, 'checks.json')
-        if os.path.exists(result_file):
-            os.unlink(result_file)
-        with open(os.path.join(logs, 'checks.log'), 'w') as log:
-            if not master_up:
-                log.write('no ROS master came up on port %d: checks not run\n' % port)
-            else:
-                try:
-                    subprocess.call([python(), CHECKS, row_file, result_file], env=env, stdout=log,
-                                    stderr=subprocess.STDOUT, timeout=CHECKS_TIMEOUT_S)
-                except subprocess.TimeoutExpired:
-                    result['notes'].append('the checks took over %d s and were stopped' % CHECKS_TIMEOUT_S)
-        try:
-            with open(result_file) as f:
-                result['checks'] = json.load(f)
-        except (OSError, ValueError):
-            why = 'no ROS master came up' if not master_up else 'the checker wrote no result (see checks.log)'
-            result['checks'] = [{'kind': c['kind'], 'ok': False, 'numbers': '', 'reason': why} for c in row['checks']]
-        exited = [(row['commands'][i], p.returncode) for i, p in enumerate(procs) if p.poll() is not None]
-    finally:
-        stop(procs)
+        with open(result_file) as f:
+            result['checks'] = json.load(f)
+    except (OSError, ValueError):
+        why = 'no ROS master came up' if not master_up else 'the checker wrote no result (see checks.log)'
+        result['checks'] = [{'kind': c['kind'], 'ok': False, 'numbers': '', 'reason': why} for c in row['checks']]
+
+
+def conclude_row(row, result, launch_logs, exited):
+    """The launch logs' notes, the row's status and, when it did not pass, the reason that explains it best."""
     notes = {'died': [], 'missing': [], 'errors': [], 'fatal': []}
     for path in launch_logs:
         with open(path, errors='replace') as f:
@@ -302,6 +308,32 @@ def run_row(row, out, env_base):
             reason = 'not ready: FATAL %s' % notes['fatal'][0]
         hints = ['died: ' + ', '.join(notes['died'])] if notes['died'] else []
         result['reason'] = reason + (' [%s]' % '; '.join(hints) if hints else '')
+
+
+def run_row(row, out, env_base):
+    """One row: sources, build, commands, checks, stop. Returns its result for the table."""
+    start = time.time()
+    logs = os.path.join(out, 'logs', row['name'])
+    os.makedirs(logs, exist_ok=True)
+    result = {'name': row['name'], 'covers': row['covers'], 'commands': row['commands'], 'env': row.get('env') or {},
+              'blacklist': row.get('blacklist') or {}, 'repos': [], 'checks': [], 'notes': [], 'build': 'not run'}
+    trees = checkout_row(row, logs, env_base, result)
+    if trees is None:
+        return result
+    ws = os.path.join(sources.cache_dir(env_base), 'ws', row['name'])
+    make_workspace(row, trees, ws)
+    print('  building %s' % ws, flush=True)
+    result['build'] = build(row, ws, env_base, os.path.join(logs, 'build.log'))
+    env, port = row_env(row, ws, env_base, logs, result)
+    procs, launch_logs = [], []
+    try:
+        launch_logs = start_commands(row, env, logs, procs, result)
+        master_up = wait_for_master(port, procs[0], float(row.get('ready_timeout', 120)))
+        run_checks(row, env, port, master_up, logs, result)
+        exited = [(row['commands'][i], p.returncode) for i, p in enumerate(procs) if p.poll() is not None]
+    finally:
+        stop(procs)
+    conclude_row(row, result, launch_logs, exited)
     result['seconds'] = round(time.time() - start)
     return result
 

@@ -79,24 +79,29 @@ def _image_fields(sensor):
     return width, height, ENCODINGS.get(_text(image, 'format', 'R8G8B8'), 'rgb8')
 
 
-def _camera(sensor, plugin, ns):
+def _camera_image(sensor, plugin, ns, image_default):
+    """What every camera plugin shares: (its base, cameraName under the namespace; the image size fields; the
+    Expect of its imageTopicName)."""
     width, height, encoding = _image_fields(sensor)
     base = join(ns, _text(plugin, 'cameraName', ''))
-    return [Expect(topic=join(base, _text(plugin, 'imageTopicName', 'image_raw')), type='sensor_msgs/Image',
-                   fields={'width': width, 'height': height, 'encoding': encoding}),
-            Expect(topic=join(base, _text(plugin, 'cameraInfoTopicName', 'camera_info')),
-                   type='sensor_msgs/CameraInfo', fields={'width': width, 'height': height})]
+    size = {'width': width, 'height': height}
+    return base, size, Expect(topic=join(base, _text(plugin, 'imageTopicName', image_default)),
+                              type='sensor_msgs/Image', fields=dict(size, encoding=encoding))
+
+
+def _camera(sensor, plugin, ns):
+    base, size, image = _camera_image(sensor, plugin, ns, 'image_raw')
+    return [image, Expect(topic=join(base, _text(plugin, 'cameraInfoTopicName', 'camera_info')),
+                          type='sensor_msgs/CameraInfo', fields=dict(size))]
 
 
 def _depth(sensor, plugin, ns):
-    width, height, encoding = _image_fields(sensor)
-    base = join(ns, _text(plugin, 'cameraName', ''))
-    return [Expect(topic=join(base, _text(plugin, 'imageTopicName', 'ir/image_raw')), type='sensor_msgs/Image',
-                   fields={'width': width, 'height': height, 'encoding': encoding}),
+    base, size, image = _camera_image(sensor, plugin, ns, 'ir/image_raw')
+    return [image,
             Expect(topic=join(base, _text(plugin, 'depthImageTopicName', 'depth/image_raw')),
-                   type='sensor_msgs/Image', fields={'width': width, 'height': height, 'encoding': '32FC1'}),
+                   type='sensor_msgs/Image', fields=dict(size, encoding='32FC1')),
             Expect(topic=join(base, _text(plugin, 'pointCloudTopicName', 'points')), type='sensor_msgs/PointCloud2',
-                   fields={'width': width, 'height': height})]
+                   fields=dict(size))]
 
 
 def _velodyne(sensor, plugin, ns):

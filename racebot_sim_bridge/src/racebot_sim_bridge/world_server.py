@@ -31,7 +31,7 @@ gzserver options, ignored with a log line] WORLD_FILE`. `-u` starts paused; `-e`
                                  (Gazebo: every update; 0 here means that too)
   ~command_trace (path, '')      measurements only (make bench): append to this file when each
                                  controller command arrives and when an update first applies it
-                                 (controllers.CommandTrace, the controllers' observer); '' = off:
+                                 (ros_control/command_trace.py, the controllers' observer); '' = off:
                                  one attribute test per update
   ~load_check_timeout (s, 60)    each URDF is loaded in a helper process first (engine/load_trial.py);
                                  one that crashes it or loads longer than this is refused, the world
@@ -50,9 +50,10 @@ import time
 import rospy
 from rosgraph_msgs.msg import Clock
 
-from racebot_sim_bridge import queued_publishing
+from racebot_sim_bridge.transport import queued_publishing
 from racebot_sim_bridge.description import model_path, sdf_reader
-from racebot_sim_bridge.ros_control.controller_io import CommandTrace, RosIO
+from racebot_sim_bridge.ros_control.controller_io import RosIO
+from racebot_sim_bridge.ros_control.command_trace import CommandTrace
 from racebot_sim_bridge.gazebo_ros_api.services import GazeboServices
 from racebot_sim_bridge.gazebo_ros_api.performance_metrics import PerformanceMetricsPublisher
 from racebot_sim_bridge.engine.load_trial import DEFAULT_TIMEOUT, LoadTrial
@@ -61,6 +62,7 @@ from racebot_sim_bridge.gazebo_plugins.plugin_manager import PluginManager
 from racebot_sim_bridge.gazebo_ros_control.gazebo_ros_control_plugin import GazeboRosControlPlugin
 from racebot_sim_bridge.gazebo_plugins.sensor_manager import SensorManager
 from racebot_sim_bridge.engine.sim_time import ros_time
+from racebot_sim_bridge.engine.rospy_log import RospyLog
 from racebot_sim_bridge.engine.simulator import Simulator
 from racebot_sim_bridge.window.viewer import SYNC_PERIOD as VIEWER_SYNC_PERIOD, AttachedWindows
 
@@ -84,10 +86,7 @@ def clock_publisher():
     return rospy.Publisher('/clock', Clock, queue_size=1)
 
 
-class RospyLog:
-    error = staticmethod(rospy.logerr)
-    warn = staticmethod(rospy.logwarn)
-    info = staticmethod(rospy.loginfo)
+LOG = RospyLog(rospy)  # what the simulator, its plugins and the windows log through
 
 
 # gzserver options that take a value: their value must not be mistaken for the world file.
@@ -149,7 +148,7 @@ def resolve_world(name):
 EMPTY_WORLD = 'worlds/empty.world'
 
 
-def load_world_spec(path, fallback_to_empty=False, log=RospyLog):
+def load_world_spec(path, fallback_to_empty=False, log=LOG):
     """(path, World) of the world to run. A file that cannot be loaded (not found, unreadable, not an SDF
     world) raises WorldError, unless `fallback_to_empty`: then, as gzserver's Server::ParseArgs does, the
     failure is an error ("Could not open file[...]"), a warning says "Falling back on worlds/empty.world" and
@@ -182,12 +181,12 @@ class WorldServer:
             io.command_trace = CommandTrace(trace_path)
             rospy.logwarn('command trace on (~command_trace): every controller command is logged to %s; '
                           'for measurements only' % trace_path)
-        self.sim = Simulator(spec, io, RospyLog, self._get_param)
+        self.sim = Simulator(spec, io, LOG, self._get_param)
         # every URDF is loaded in a helper first: its PyBullet, not this one, meets what crashes or spins
         load_check = self._seconds_param('~load_check_timeout', DEFAULT_TIMEOUT)
         self.sim.world.load_trial = LoadTrial(load_check) if load_check > 0 else None
         self.sim.node_namespace = rospy.get_namespace()  # plugins' relative robotNamespaces resolve here
-        self.windows = AttachedWindows(self.sim.world, RospyLog)  # gzclient attaches here
+        self.windows = AttachedWindows(self.sim.world, LOG)  # gzclient attaches here
         rospy.set_param('~gzclient_address', self.windows.address)
         self.sim.rendering = False
         self.sim.set_paused(paused)

@@ -1,4 +1,4 @@
-"""joint_trajectory_controller's trajectory maths (kinematics/joint_trajectory.py) against what
+"""joint_trajectory_controller's trajectory maths (kinematics/trajectory.py) against what
 ros_controllers noetic-devel computes: spline orders, sampling bounds, dropping past points, replacement
 with a bridge segment, tolerances and their parameter/goal layout. No ROS master."""
 import math

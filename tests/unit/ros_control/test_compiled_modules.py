@@ -1,7 +1,7 @@
-"""hardware.py, pid.py, kinematics/differential.py and kinematics/angles.py run compiled (Cython, typed by the
-.pxd beside each; see racebot_sim_bridge/CMakeLists.txt): the build must have compiled them, and the compiled code
-must give what the same .py gives as plain Python, bit for bit, on any input (NaN, infinities, -0.0, ints, huge
-values). The plain modules are loaded from the .py files themselves."""
+"""ros_control/hardware_interface.py, pid.py, kinematics/differential.py and kinematics/angles.py run compiled (Cython,
+typed by the .pxd beside each; see racebot_sim_bridge/CMakeLists.txt): the build must have compiled them, and the
+compiled code must give what the same .py gives as plain Python, bit for bit, on any input (NaN, infinities, -0.0,
+ints, huge values). The plain modules are loaded from the .py files themselves."""
 import importlib.util
 import math
 import struct

@@ -1,4 +1,4 @@
-"""The command-path observer of the command controllers (controllers.CommandObserver) and make bench's
+"""The command-path observer of the command controllers (ros_control/command_trace.py: CommandObserver) and make bench's
 CommandTrace on it: a line when a command is taken, a line after the first update that applies it,
 the controllers' own methods left in place (no method of a live controller replaced). No master."""
 import math
@@ -10,7 +10,7 @@ from std_msgs.msg import Float64
 from racebot_sim_bridge.gazebo_ros_control.robot_hw_sim import hardware_joints
 from racebot_sim_bridge.description import urdf_reader
 from racebot_sim_bridge.ros_control.controller_interface import CommandController
-from racebot_sim_bridge.ros_control.controller_io import CommandObserver, CommandTrace
+from racebot_sim_bridge.ros_control.command_trace import CommandObserver, CommandTrace
 from racebot_sim_bridge.ros_controllers.effort_controllers import (EffortForwardController, JointPositionController,
                                                                    JointVelocityController)
 from racebot_sim_bridge.ros_controllers.position_controllers import PositionForwardController

@@ -15,8 +15,8 @@ from bench import kept_figures, report, stats  # noqa: E402
 
 
 def bench_script():
-    """tools/bench.py as a module (`import bench` is the tools/bench/ package)."""
-    spec = importlib.util.spec_from_file_location('bench_script', str(REPO / 'tools' / 'bench.py'))
+    """tools/run_bench.py as a module (`import bench` is the tools/bench/ package)."""
+    spec = importlib.util.spec_from_file_location('bench_script', str(REPO / 'tools' / 'run_bench.py'))
     module = importlib.util.module_from_spec(spec)
     spec.loader.exec_module(module)
     return module
@@ -55,7 +55,7 @@ def test_the_table_shows_the_ratio_as_a_median_with_its_spread():
     assert startup[0][1] == '3.10 s (2.90-3.60 over 3)'
 
 
-# -- results of a run, as tools/bench.py gathers them (trimmed to what the pure parts read) ----------
+# -- results of a run, as tools/run_bench.py gathers them (trimmed to what the pure parts read) ----------
 def rounds(ratios, rtfs, ceilings):
     out = [{'ratio': r, 'rtf': b, 'ceiling_rtf': c, 'ceiling_steps_per_s': c * 1000, 'cpu': 1.0}
            for r, b, c in zip(ratios, rtfs, ceilings)]

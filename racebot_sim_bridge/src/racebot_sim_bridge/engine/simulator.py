@@ -25,7 +25,7 @@ if TYPE_CHECKING:
     from racebot_sim_bridge.description.sdf_model import Model, World
 
     class Log(Protocol):
-        """What the simulator and its plugins log through (world_server.RospyLog: rospy's logerr & co);
+        """What the simulator and its plugins log through (rospy_log.RospyLog: rospy's logerr & co);
         for annotations only, nothing checks it at run time."""
         def error(self, message: str) -> None: ...
         def warn(self, message: str) -> None: ...
@@ -54,7 +54,7 @@ class Robot:
 
 class Simulator:
     def __init__(self, world_spec: World, io: Any, log: Log, get_params: Callable[[str], Any]) -> None:
-        """world_spec: sdf_model.World; io: controllers.RosIO-like; get_params(path) -> value or None."""
+        """world_spec: sdf_model.World; io: controller_io.RosIO-like; get_params(path) -> value or None."""
         self.spec = world_spec  # what the world file says: read, never written (live state is below)
         self.io = io
         self.log = log

@@ -43,6 +43,7 @@ from racebot_sim_bridge.sensors.render_worker import RenderWorker
 from racebot_sim_bridge.sensors.scene import SceneColours
 from racebot_sim_bridge.sensors.schedule import TIME_EPS, RenderBudget
 from racebot_sim_bridge.engine.world_copy import snapshot
+from racebot_sim_bridge.engine.rospy_log import RospyLog
 
 DEFAULT_RENDER_BUDGET = 0.5
 DEFAULT_REPORT_PERIOD = 10.0
@@ -59,11 +60,6 @@ def sensor_config(spec, spawn_namespace='', model_name='', node_namespace='/'):
         if cls is not None:
             return cls.configure(spec, plugin, spawn_namespace, model_name, node_namespace)
     return None
-
-
-class RospyLog:
-    def __init__(self, rospy):
-        self.info, self.warn, self.error = rospy.loginfo, rospy.logwarn, rospy.logerr
 
 
 class SensorManager:

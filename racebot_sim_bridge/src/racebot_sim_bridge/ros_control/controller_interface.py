@@ -209,7 +209,7 @@ class CommandController(Controller):
         """(command to keep, None, value) for a command within the joint's URDF limit for what it
         sets; else (command to keep, the limit as text, what reaches the joint). A velocity or a
         position is clamped here, as ros_control's joint_limits_interface clamps what reaches the
-        joint; an effort is kept and saturated by the hardware (hardware.JointHandle.limited_command)."""
+        joint; an effort is kept and saturated by the hardware (hardware_interface.JointHandle.limited_command)."""
         j = self.joint
         if self.setpoint is Setpoint.VELOCITY and j.max_velocity is not None:
             lo, hi, text = -j.max_velocity, j.max_velocity, '+-%g' % j.max_velocity

@@ -1,6 +1,7 @@
 """A PID controller with control_toolbox's (ROS 1, Noetic) semantics.
 
-Pure Python: no rospy. The PID controllers of ``../ros_controllers/`` own one ``Pid`` each.
+Pure Python: no rospy. Each PID command controller (``controller_interface.PidCommandController``, behind
+ros_controllers' effort and velocity controllers) owns one ``Pid``.
 
 Semantics (read from control_toolbox ``src/pid.cpp``, noetic-devel):
 
@@ -12,8 +13,8 @@ Semantics (read from control_toolbox ``src/pid.cpp``, noetic-devel):
   ``[i_clamp_min / i, i_clamp_max / i]`` (bounds sorted), and the term is not clamped again.
 - ``error_dot`` is ``(error - previous error) / dt``.
 
-Where this class differs from control_toolbox, on purpose (the project's contract, see
-``reference/INTERFACES.md``):
+Where this class differs from control_toolbox, on purpose (the project's contract; tests/unit/ros_control/test_pid.py
+holds it):
 
 - No derivative on the first update after construction or ``reset()``: control_toolbox
   starts with a previous error of 0 and so kicks ``d * error / dt`` on that update.

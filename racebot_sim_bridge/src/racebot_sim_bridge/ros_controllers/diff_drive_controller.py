@@ -1,7 +1,7 @@
 """diff_drive_controller/DiffDriveController (ros_controllers noetic-devel) on VelocityJointInterface
 wheels: `cmd_vel` (geometry_msgs/Twist) in, wheel velocities out, `odom` (nav_msgs/Odometry) and the
 odom -> base TF at publish_rate. Parameters, defaults and errors as upstream's init(); the kinematics
-are kinematics/diff_drive_controller.py. Upstream's dynamic_reconfigure server and
+are kinematics/controller_odometry.py. Upstream's dynamic_reconfigure server and
 publish_wheel_joint_controller_state are not here (docs/SUPPORTED.md)."""
 import math
 

@@ -111,11 +111,11 @@ def start_writer(log=None):
     """Starts the compiled writer thread for this process's connections when it is built and the process may use
     two cores or more (on one it would take turns with the update loop); returns it, or None (the Python path)."""
     try:
-        from racebot_sim_bridge.socket_writer import SocketWriter
+        from racebot_sim_bridge.transport.socket_writer import SocketWriter
     except ImportError:
         if log is not None:
-            log('racebot_sim_bridge.socket_writer is not built: messages are sent from the update loop (slower); '
-                "'make build' compiles it (Cython)")
+            log('racebot_sim_bridge.transport.socket_writer is not built: messages are sent from the update loop '
+                "(slower); 'make build' compiles it (Cython)")
         return None
     if len(os.sched_getaffinity(0)) < 2:
         return None
@@ -132,7 +132,7 @@ def writer_pace(bursts):
     messages keep coming."""
     writer = _writer[0]
     if writer is not None:
-        from racebot_sim_bridge.socket_writer import IDLE_PASSES
+        from racebot_sim_bridge.transport.socket_writer import IDLE_PASSES
         writer.set_idle_passes(1 if bursts else IDLE_PASSES)
 
 

@@ -1,9 +1,9 @@
 """Odometry maths: the Ackermann car's wheel odometry.
 
 Pure Python: no rospy, no pybullet (odometry_nodes.py wraps it in a ROS node; the ground truth's
-body-frame twist there is rotations.rotate_back).
+body-frame twist there is rotate_back, below).
 
-AckermannOdometry integrates the kinematic bicycle model of a car with rear-wheel speed and
+WheelSpeedOdometry integrates the kinematic bicycle model of a car with rear-wheel speed and
 front steering: the rear axle centre moves at v = wheel radius x mean rear wheel speed, along the
 heading; the heading turns at v x kappa with curvature kappa = mean(tan(steering angle)) /
 wheelbase (exact for parallel steering, as the tutorial's servo_commands steers, and for ideal
@@ -23,7 +23,10 @@ REAR_WHEEL_JOINTS = ('left_rear_wheel_joint', 'right_rear_wheel_joint')
 STEERING_JOINTS = ('left_steering_hinge_joint', 'right_steering_hinge_joint')
 
 
-class AckermannOdometry:
+class WheelSpeedOdometry:
+    """The racebot's odometry from sampled rear wheel speeds and steering angles (joint_states), not to be
+    mistaken for ackermann_steering_controller's, which integrates the rear wheel's position."""
+
     def __init__(self, wheel_radius=WHEEL_RADIUS, wheelbase=WHEELBASE, rear_axle_x=REAR_AXLE_X):
         if not wheel_radius > 0 or not wheelbase > 0:
             raise ValueError('wheel radius and wheelbase must be > 0, got %r and %r' % (wheel_radius, wheelbase))
@@ -79,3 +82,20 @@ class AckermannOdometry:
         """(vx, vy, yaw rate) of the child frame, in the child frame."""
         yaw_rate = self.speed * self.curvature
         return self.speed, yaw_rate * -self.rear_axle_x, yaw_rate
+
+
+def yaw_quaternion(yaw):
+    """Quaternion (x, y, z, w) of a turn by `yaw` about z."""
+    return (0.0, 0.0, math.sin(yaw / 2.0), math.cos(yaw / 2.0))
+
+
+def rotate_back(q, v):
+    """Vector v (parent axes) in the axes of a frame turned by the unit quaternion q (x, y, z, w)."""
+    x, y, z, w = -q[0], -q[1], -q[2], q[3]  # the inverse turn
+    # v' = v + w t + q_vec x t, with t = 2 (q_vec x v)
+    tx = 2.0 * (y * v[2] - z * v[1])
+    ty = 2.0 * (z * v[0] - x * v[2])
+    tz = 2.0 * (x * v[1] - y * v[0])
+    return (v[0] + w * tx + (y * tz - z * ty),
+            v[1] + w * ty + (z * tx - x * tz),
+            v[2] + w * tz + (x * ty - y * tx))

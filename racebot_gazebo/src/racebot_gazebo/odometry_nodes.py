@@ -15,7 +15,7 @@ gazebo_odometry (GroundTruthOdometry), as the racecar project's gazebo_odometry.
   ~publish_tf     (bool, true)
 
 wheel_odometry (WheelOdometry): integrates the rear wheel speeds and steering hinge angles
-(odometry.AckermannOdometry) from every joint_states message.
+(odometry.WheelSpeedOdometry) from every joint_states message.
   subscribes joint_states (sensor_msgs/JointState; remap to /racebot/joint_states)
   publishes  wheel_odom (nav_msgs/Odometry), tf frame_id -> child_frame_id only if ~publish_tf
   ~wheel_radius (m, 0.032), ~wheelbase (m, 0.26), ~rear_axle_x (m, -0.13: the rear axle's x in
@@ -32,9 +32,8 @@ from geometry_msgs.msg import TransformStamped
 from nav_msgs.msg import Odometry
 from sensor_msgs.msg import JointState
 
-from racebot_sim_bridge import odometry
-from racebot_sim_bridge.kinematics.rotations import rotate_back, rpy_to_quaternion
-from racebot_sim_bridge.engine.sim_time import ros_time
+from racebot_gazebo import odometry
+from racebot_gazebo.odometry import rotate_back, yaw_quaternion
 
 # Diagonal covariances (x, y, z, roll, pitch, yaw): ground truth is exact; the wheel estimate
 # drifts with slip (a few percent of the distance driven).
@@ -115,9 +114,9 @@ class GroundTruthOdometry:
 
 class WheelOdometry:
     def __init__(self):
-        self.model = odometry.AckermannOdometry(float(rospy.get_param('~wheel_radius', odometry.WHEEL_RADIUS)),
-                                                float(rospy.get_param('~wheelbase', odometry.WHEELBASE)),
-                                                float(rospy.get_param('~rear_axle_x', odometry.REAR_AXLE_X)))
+        self.model = odometry.WheelSpeedOdometry(float(rospy.get_param('~wheel_radius', odometry.WHEEL_RADIUS)),
+                                                 float(rospy.get_param('~wheelbase', odometry.WHEELBASE)),
+                                                 float(rospy.get_param('~rear_axle_x', odometry.REAR_AXLE_X)))
         self.rear = list(rospy.get_param('~rear_wheel_joints', list(odometry.REAR_WHEEL_JOINTS)))
         self.steering = list(rospy.get_param('~steering_joints', list(odometry.STEERING_JOINTS)))
         if not self.rear or not self.steering:
@@ -132,14 +131,15 @@ class WheelOdometry:
         self.sub = rospy.Subscriber('joint_states', JointState, self.on_joint_states, queue_size=50)
 
     def _read(self, msg):
-        """(time, rear wheel speeds, steering angles) of a JointState, or None if joints are missing."""
+        """(stamp, rear wheel speeds, steering angles) of a JointState, or None if joints are missing."""
         index = {n: i for i, n in enumerate(msg.name)}
         if any(j not in index for j in self.rear + self.steering):
             if not self.missing_warned:
                 rospy.logwarn('wheel_odometry: joint_states lacks some of %s' % (self.rear + self.steering))
                 self.missing_warned = True
             return None
-        t = (msg.header.stamp if not msg.header.stamp.is_zero() else rospy.Time.now()).to_sec()
+        stamp = msg.header.stamp if not msg.header.stamp.is_zero() else rospy.Time.now()
+        t = stamp.to_sec()
         positions = [msg.position[index[j]] for j in self.rear]
         if len(msg.velocity) == len(msg.name):
             speeds = [msg.velocity[index[j]] for j in self.rear]
@@ -149,25 +149,26 @@ class WheelOdometry:
         else:
             speeds = [0.0] * len(self.rear)
         self.previous_positions = (t, positions)
-        return t, speeds, [msg.position[index[j]] for j in self.steering]
+        return stamp, speeds, [msg.position[index[j]] for j in self.steering]
 
     def on_joint_states(self, msg):
         with self.lock:
             sample = self._read(msg)
             if sample is None:
                 return
-            t, speeds, angles = sample
+            stamp, speeds, angles = sample
+            t = stamp.to_sec()
             if self.model.last is not None and t < self.model.last[0]:
                 self.model.reset()  # simulation reset: start over where the car starts over
             self.model.update(t, speeds, angles)
             x, y, yaw = self.model.pose
             vx, vy, wz = self.model.twist
         odom = Odometry()
-        odom.header.stamp = ros_time(rospy.Time, t)
+        odom.header.stamp = stamp
         odom.header.frame_id = self.frame_id
         odom.child_frame_id = self.child_frame_id
         odom.pose.pose.position.x, odom.pose.pose.position.y = x, y
-        q = rpy_to_quaternion(0.0, 0.0, yaw)
+        q = yaw_quaternion(yaw)
         o = odom.pose.pose.orientation
         o.x, o.y, o.z, o.w = q
         odom.pose.covariance = diagonal(WHEEL_POSE_VARIANCE)

@@ -7,7 +7,7 @@ import time
 
 import pytest
 
-from racebot_sim_bridge import queued_publishing
+from racebot_sim_bridge.transport import queued_publishing
 
 
 class RecordingTransport:

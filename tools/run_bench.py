@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """make bench: racebot_sim_bridge against the physics ceiling (speed) and the kinematic model (fidelity).
 
-    tools/bench.py [--quick] [--save] [--only PARTS] [--out DIR]   (devel/setup.bash sourced)
+    tools/run_bench.py [--quick] [--save] [--only PARTS] [--out DIR]   (devel/setup.bash sourced)
 
 Prints the table (figure, ours, reference, target, met?), then each key figure beside the one kept
 in the repository (tools/bench/last_figures.json) with the change and a verdict (REGRESSION when
@@ -231,28 +231,23 @@ def machine():
     return info
 
 
+def profile_lines(prof, title, self_n, inclusive_n, unavailable):
+    """A py-spy profile of the world server's main thread (its self and inclusive time), or why there is none."""
+    if prof.get('available'):
+        return (['%s (py-spy, %d samples), self time:' % (title, prof['samples'])]
+                + ['  %5.1f %%  %s' % (pct, name) for name, pct in prof['self_pct'][:self_n]] + ['  inclusive:']
+                + ['  %5.1f %%  %s' % (pct, name) for name, pct in prof['inclusive_pct'][:inclusive_n]])
+    return ['%s: %s' % (unavailable, prof.get('why'))] if prof else []
+
+
 def print_profiles(results):
     """Where the time goes, for the speed targets that were missed."""
     sp = results.get('speed') or {}
-    lines = []
-    prof = sp.get('profile') or {}
-    if prof.get('available'):
-        lines.append('world server main thread, as fast as possible (py-spy, %d samples), self time:' % prof['samples'])
-        lines += ['  %5.1f %%  %s' % (pct, name) for name, pct in prof['self_pct'][:8]]
-        lines.append('  inclusive:')
-        lines += ['  %5.1f %%  %s' % (pct, name) for name, pct in prof['inclusive_pct'][:10]]
-    elif prof:
-        lines.append('world server profile: %s' % prof.get('why'))
+    lines = profile_lines(sp.get('profile') or {}, 'world server main thread, as fast as possible', 8, 10,
+                          'world server profile')
     for n, entry in sorted((results.get('fleet') or {}).items()):
-        prof = entry.get('profile') or {}
-        if prof.get('available'):
-            lines.append('world server main thread with %s robots (py-spy, %d samples), self time:'
-                         % (n, prof['samples']))
-            lines += ['  %5.1f %%  %s' % (pct, name) for name, pct in prof['self_pct'][:10]]
-            lines.append('  inclusive:')
-            lines += ['  %5.1f %%  %s' % (pct, name) for name, pct in prof['inclusive_pct'][:15]]
-        elif prof:
-            lines.append('fleet world server profile: %s' % prof.get('why'))
+        lines += profile_lines(entry.get('profile') or {}, 'world server main thread with %s robots' % n, 10, 15,
+                               'fleet world server profile')
     ip = results.get('inprocess') or {}
     if ip.get('profile_self_pct'):
         lines.append('Simulator.step in-process, no ROS (cProfile), self time:')
@@ -281,7 +276,7 @@ def save_figures(kept, figures, results, loads):
         len(figures), os.path.relpath(kept_figures.KEPT_FILE)))
 
 
-def main():
+def parse_args():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument('--quick', action='store_true', help='every part, briefly (under a minute)')
     parser.add_argument('--out', default=os.path.join(common.REPO, 'out', 'bench'), help='output folder')
@@ -294,21 +289,19 @@ def main():
     parser.add_argument('--result', help=argparse.SUPPRESS)
     args = parser.parse_args()
     if args.scenario:
-        return child(args)
+        return args
     if args.save and args.quick:
         parser.error('--save keeps a full run\'s figures as the reference; a --quick run\'s figures mean little. '
                      'Run without --quick to save.')
     if args.only and set(args.only.split(',')) - {n for n, _ in PARTS}:
         parser.error('--only: unknown part(s) %s; the parts are %s' % (
             ', '.join(sorted(set(args.only.split(',')) - {n for n, _ in PARTS})), ', '.join(n for n, _ in PARTS)))
-    if 'ROS_PACKAGE_PATH' not in os.environ:
-        sys.exit('racebot bench: source devel/setup.bash first (or use `make bench`)')
+    return args
+
+
+def run_parts(args, out):
+    """Every part asked for, one after the other; the results dictionary (a failed part's error in 'errors')."""
     cfg = QUICK if args.quick else FULL
-    out = os.path.abspath(args.out)
-    common.clean_dir(out)
-    common.ensure_dir(os.path.join(out, 'logs'))
-    common.ensure_dir(os.path.join(out, 'tmp'))
-    os.environ.setdefault('ROS_LOG_DIR', os.path.join(common.REPO, 'out', 'ros_log'))
     only = set(args.only.split(',')) if args.only else None
     results = {'quick': args.quick, 'machine': machine(), 'started': time.strftime('%Y-%m-%d %H:%M:%S'),
                'load': [], 'errors': {}, 'durations_s': {}}
@@ -330,17 +323,12 @@ def main():
         results['load'].append({'after': name, 'loadavg': common.loadavg()})
         print(' %s (%.0f s, load %s)' % (status, time.monotonic() - t0, common.loadavg()[0]), flush=True)
     results['total_s'] = round(time.monotonic() - t_all, 1)
+    return results
+
+
+def print_results(results, rows, loads, quick):
+    """The table, the sensors, the machine, the notes and, where a speed target was missed, the profiles."""
     from bench import report
-    rows = report.rows(results)
-    results['table'] = rows
-    kept, kept_problem = kept_figures.load()
-    figures = kept_figures.key_figures(results)
-    compared = kept_figures.compare(figures, kept, quick=args.quick)
-    results['compared'] = {'kept_file': kept_figures.KEPT_FILE, 'kept_problem': kept_problem, 'rows': compared,
-                           'regressions': kept_figures.regressions(compared)}
-    with open(os.path.join(out, 'bench.json'), 'w') as f:
-        json.dump(results, f, indent=1)
-    loads = [x['loadavg'][0] for x in results['load']]
     print()
     print(report.table(rows))
     print()
@@ -355,18 +343,50 @@ def main():
     missed = [r for r in rows if r[4] == 'NO']
     for line in report.notes(results):
         print('- ' + line)
-    if any('ceiling' in r[0] or 'CPU' in r[0] or 'real-time factor' in r[0] for r in missed) or args.quick or \
+    if any('ceiling' in r[0] or 'CPU' in r[0] or 'real-time factor' in r[0] for r in missed) or quick or \
             any((e or {}).get('profile') for e in (results.get('fleet') or {}).values()):
         lines = print_profiles(results)
         if lines:
             print('\n'.join(lines))
+
+
+def print_comparison(results, kept, kept_problem):
+    """Each key figure beside the kept one, what the kept ones are, and the regressions."""
+    from bench import report
     print()
-    print(report.table(compared, header=kept_figures.HEADER))
+    print(report.table(results['compared']['rows'], header=kept_figures.HEADER))
     for line in kept_figures.describe(kept, results['machine']) + ([kept_problem] if kept_problem else []):
         print('- ' + line)
     regressed = results['compared']['regressions']
     if regressed:
         print('- REGRESSION against the kept figures: %s' % '; '.join(regressed))
+
+
+def main():
+    args = parse_args()
+    if args.scenario:
+        return child(args)
+    if 'ROS_PACKAGE_PATH' not in os.environ:
+        sys.exit('racebot bench: source devel/setup.bash first (or use `make bench`)')
+    out = os.path.abspath(args.out)
+    common.clean_dir(out)
+    common.ensure_dir(os.path.join(out, 'logs'))
+    common.ensure_dir(os.path.join(out, 'tmp'))
+    os.environ.setdefault('ROS_LOG_DIR', os.path.join(common.REPO, 'out', 'ros_log'))
+    results = run_parts(args, out)
+    from bench import report
+    rows = report.rows(results)
+    results['table'] = rows
+    kept, kept_problem = kept_figures.load()
+    figures = kept_figures.key_figures(results)
+    compared = kept_figures.compare(figures, kept, quick=args.quick)
+    results['compared'] = {'kept_file': kept_figures.KEPT_FILE, 'kept_problem': kept_problem, 'rows': compared,
+                           'regressions': kept_figures.regressions(compared)}
+    with open(os.path.join(out, 'bench.json'), 'w') as f:
+        json.dump(results, f, indent=1)
+    loads = [x['loadavg'][0] for x in results['load']]
+    print_results(results, rows, loads, args.quick)
+    print_comparison(results, kept, kept_problem)
     if args.save:
         save_figures(kept, figures, results, loads)
     for name, err in results['errors'].items():

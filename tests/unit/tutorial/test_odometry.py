@@ -4,8 +4,10 @@ import math
 
 import pytest
 
-from racebot_sim_bridge.odometry import REAR_AXLE_X, WHEEL_RADIUS, WHEELBASE, AckermannOdometry
-from racebot_sim_bridge.kinematics.rotations import rotate_back, rpy_to_quaternion, yaw_of
+from racebot_gazebo.odometry import (REAR_AXLE_X, WHEEL_RADIUS, WHEELBASE, WheelSpeedOdometry, rotate_back,
+                                     yaw_quaternion)
+from racebot_sim_bridge.kinematics import rotations
+from racebot_sim_bridge.kinematics.rotations import rpy_to_quaternion
 
 
 def drive(odo, seconds, wheel_speed, steering, dt=0.02, start=0.0):
@@ -21,7 +23,7 @@ def test_model_defaults_are_the_racebots():
 
 
 def test_straight_drive():
-    odo = AckermannOdometry()
+    odo = WheelSpeedOdometry()
     drive(odo, 5.0, 10.0, 0.0)  # 10 rad/s x 0.032 m = 0.32 m/s for 5 s
     x, y, yaw = odo.pose
     assert x == pytest.approx(1.6, rel=1e-9) and y == pytest.approx(0.0) and yaw == pytest.approx(0.0)
@@ -30,7 +32,7 @@ def test_straight_drive():
 
 
 def test_full_circle_closes_with_the_bicycle_radius():
-    odo = AckermannOdometry()
+    odo = WheelSpeedOdometry()
     delta = 0.3
     radius = WHEELBASE / math.tan(delta)  # of the rear axle centre
     v = 10.0 * WHEEL_RADIUS
@@ -46,7 +48,7 @@ def test_full_circle_closes_with_the_bicycle_radius():
 
 
 def test_time_going_back_does_not_move_and_reset_starts_over():
-    odo = AckermannOdometry()
+    odo = WheelSpeedOdometry()
     drive(odo, 1.0, 10.0, 0.0)
     x = odo.pose[0]
     odo.update(0.5, [10.0, 10.0], [0.0, 0.0])
@@ -54,12 +56,15 @@ def test_time_going_back_does_not_move_and_reset_starts_over():
     odo.reset(1.0, 2.0, math.pi / 2)
     assert odo.pose == pytest.approx((1.0, 2.0, math.pi / 2))
     with pytest.raises(ValueError):
-        AckermannOdometry(wheel_radius=0)
+        WheelSpeedOdometry(wheel_radius=0)
 
 
 def test_quaternion_helpers_the_nodes_use():
-    q = rpy_to_quaternion(0.0, 0.0, 1.2)  # wheel odometry's orientation
+    q = yaw_quaternion(1.2)  # wheel odometry's orientation
     assert q == pytest.approx((0.0, 0.0, math.sin(0.6), math.cos(0.6)))
-    assert yaw_of(q) == pytest.approx(1.2)
+    assert q == pytest.approx(rpy_to_quaternion(0.0, 0.0, 1.2))
     # ground truth's twist: a world velocity along +y seen from a body facing +y is straight ahead
-    assert rotate_back(rpy_to_quaternion(0.0, 0.0, math.pi / 2), (0.0, 2.0, 0.0)) == pytest.approx((2.0, 0.0, 0.0))
+    assert rotate_back(yaw_quaternion(math.pi / 2), (0.0, 2.0, 0.0)) == pytest.approx((2.0, 0.0, 0.0))
+    # the inverse of an arbitrary turn, as the simulator's own maths has it
+    q = rpy_to_quaternion(0.3, -0.7, 2.1)
+    assert rotate_back(q, (0.4, -1.5, 2.2)) == pytest.approx(rotations.rotate_back(q, (0.4, -1.5, 2.2)), abs=1e-12)

@@ -16,8 +16,8 @@ import time
 import pytest
 from hypothesis import given, settings, strategies as st
 
-from racebot_sim_bridge import queued_publishing
-from racebot_sim_bridge.socket_writer import SocketWriter
+from racebot_sim_bridge.transport import queued_publishing
+from racebot_sim_bridge.transport.socket_writer import SocketWriter
 
 from test_queued_publishing import close, socket_connection
 
@@ -125,7 +125,7 @@ def _link(path):
 
 def test_the_build_compiled_the_socket_writer():
     # without it the world server sends from its update loop (start_writer returns None): slower, not wrong
-    import racebot_sim_bridge.socket_writer as module
+    import racebot_sim_bridge.transport.socket_writer as module
     assert module.__file__.endswith(sysconfig.get_config_var('EXT_SUFFIX')), module.__file__
 
 
@@ -434,7 +434,7 @@ CHILD = """
 import os
 cores = sorted(os.sched_getaffinity(0))
 os.sched_setaffinity(0, cores[:{cores}])
-from racebot_sim_bridge import queued_publishing
+from racebot_sim_bridge.transport import queued_publishing
 writer = queued_publishing.start_writer()
 print(type(writer).__name__)
 queued_publishing.stop_writer()
