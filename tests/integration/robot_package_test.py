@@ -1,8 +1,8 @@
 #!/usr/bin/env python3
 """A robot package written the way ROS 1 packages are runs unchanged on racebot (issue 16, point 5).
 
-tests/fixtures/robot_package/demo_diffbot is such a package: its world launch includes
-`$(find gazebo_ros)/launch/empty_world.launch` with a world that includes `model://marker_post` from the
+examples/demo_diffbot (racebot's worked example, examples/README.md) is such a package: its world launch
+includes `$(find gazebo_ros)/launch/empty_world.launch` with a world that includes `model://marker_post` from the
 package's own `gazebo_model_path` export, spawns its xacro description with `spawn_model -urdf -param
 robot_description -model demo_diffbot`, loads a ros_control YAML (joint_state_controller and two
 velocity_controllers/JointVelocityController) started by controller_manager's spawner, and drives with
@@ -33,7 +33,7 @@ from catkin_overlay import BUILD_TIMEOUT, LaunchWatch, ShellCommand, Workspace
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 REPO = os.path.dirname(os.path.dirname(HERE))
-PACKAGE = os.path.join(REPO, 'tests', 'fixtures', 'robot_package', 'demo_diffbot')
+PACKAGE = os.path.join(REPO, 'examples', 'demo_diffbot')
 RACEBOT_SETUP = os.path.join(REPO, 'devel', 'setup.bash')
 MODEL = 'demo_diffbot'
 CONTROLLERS = {'joint_state_controller': 'joint_state_controller/JointStateController',

@@ -4,9 +4,10 @@ from pathlib import Path
 
 from racebot_sim_bridge.description import sdf_reader
 from racebot_sim_bridge.gazebo_plugins.plugin_manager import PluginManager
+from racebot_sim_bridge.gazebo_plugins.registry import REGISTRY
 from racebot_sim_bridge.engine.simulator import Simulator
 
-from test_sensors_sim import FakeRospy, Log, NullIO
+from fakes import FakeLog, FakeRospy, NullIO
 
 ROBOTS = Path(__file__).resolve().parents[1] / 'fixtures' / 'robots'
 GROUND = """<sdf version="1.6"><world name="default">
@@ -55,13 +56,14 @@ class Reconfigure:
 
 
 class PluginWorld:
-    def __init__(self, tmp_path, params=None):
+    def __init__(self, tmp_path, params=None, registry=REGISTRY):
+        """`registry`: the plugin classes by library (a test's own plugin class: a Registry of it)."""
         path = tmp_path / 'ground.world'
         path.write_text(GROUND)
-        self.sim = Simulator(sdf_reader.load_world(str(path)), NullIO(), Log(), lambda path: None)
+        self.sim = Simulator(sdf_reader.load_world(str(path)), NullIO(), FakeLog(), lambda path: None)
         self.fake = PluginRospy(params)
         self.servers = {}  # namespace -> Reconfigure
-        self.manager = PluginManager(self.fake, self.sim, reconfigure=self._reconfigure)
+        self.manager = PluginManager(self.fake, self.sim, registry=registry, reconfigure=self._reconfigure)
 
     def _reconfigure(self, namespace, config_type, callback):
         server = self.servers[namespace] = Reconfigure(config_type, callback)

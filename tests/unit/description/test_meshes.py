@@ -15,8 +15,7 @@ from racebot_sim_bridge.description import geometry, meshes, model_path, sdf_mod
 from racebot_sim_bridge.description.materials import GAZEBO_MATERIALS, gazebo_material_rgba
 from racebot_sim_bridge.engine.physics import PhysicsWorld
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[2] / 'integration'))
-import mesh_fixtures  # noqa: E402  (tests/integration, shared with the rostest node)
+import mesh_fixtures  # tests/integration, shared with the rostest node
 
 
 @pytest.fixture(autouse=True)

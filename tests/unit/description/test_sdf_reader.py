@@ -1,8 +1,6 @@
 """Unit tests of racebot_sim_bridge.description.sdf_reader (SDF 1.6 worlds) and its sdf_elements."""
 
 import math
-import sys
-from pathlib import Path
 
 import pytest
 from hypothesis import given, settings, strategies as st
@@ -356,7 +354,6 @@ def test_shape_gives_the_geometry_or_none_with_one_warning(tmp_path, monkeypatch
 
 
 def test_a_mesh_is_read_once_and_a_bad_one_warned_about_once(tmp_path, monkeypatch):
-    sys.path.insert(0, str(Path(__file__).resolve().parents[2] / 'integration'))
     import mesh_fixtures  # tests/integration, shared with the rostest node
     mesh_fixtures.write_mesh(mesh_fixtures.box((1.0, 1.0, 1.0)), str(tmp_path / 'red.dae'), rgba=(1, 0, 0, 1))
     r = reader(tmp_path, monkeypatch)

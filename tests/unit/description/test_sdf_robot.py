@@ -16,7 +16,7 @@ from racebot_sim_bridge.gazebo_plugins.plugin_manager import PluginManager
 from racebot_sim_bridge.engine.simulator import Simulator
 
 from model_plugin_sim import GROUND, ROBOTS, PluginRospy, PluginWorld
-from test_sensors_sim import NullIO
+from fakes import NullIO
 
 MODEL_SDF = ROBOTS / 'sdf_diffbot' / 'models' / 'sdf_diffbot' / 'model.sdf'
 

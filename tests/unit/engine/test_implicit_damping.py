@@ -9,6 +9,8 @@ from racebot_sim_bridge.description import sdf_reader
 from racebot_sim_bridge.engine.simulator import Simulator
 from racebot_sim_bridge.gazebo_ros_control.gazebo_ros_control_plugin import GazeboRosControlPlugin
 
+from fakes import FakeLog
+
 SPINNER = """<robot name="spinner">
   %(world)s
   <link name="base"><inertial><mass value="50"/><inertia ixx="1" iyy="1" izz="1" ixy="0" ixz="0" iyz="0"/></inertial>
@@ -28,13 +30,8 @@ IMPLICIT = '<gazebo reference="spin"><implicitSpringDamper>1</implicitSpringDamp
 DT = 0.001
 
 
-class Log:
-    def __getattr__(self, _name):
-        return lambda *a: None
-
-
 def spinner(damping, implicit, fixed=True, joint_type='continuous'):
-    sim = Simulator(sdf_reader.parse_world(sdf_reader.EMPTY_WORLD_SDF), io=None, log=Log(), get_params={}.get)
+    sim = Simulator(sdf_reader.parse_world(sdf_reader.EMPTY_WORLD_SDF), io=None, log=FakeLog(), get_params={}.get)
     GazeboRosControlPlugin.attach(sim)
     urdf = SPINNER % dict(world=FIXED if fixed else '', type=joint_type, damping=damping,
                           gazebo=IMPLICIT if implicit else '')

@@ -7,6 +7,8 @@ from racebot_sim_bridge.description import sdf_reader
 from racebot_sim_bridge.engine.simulator import Simulator
 from racebot_sim_bridge.gazebo_ros_control.gazebo_ros_control_plugin import GazeboRosControlPlugin
 
+from fakes import FakeLog
+
 SPINNER = """<robot name="spinner">
   <link name="world"/>
   <link name="base"><inertial><mass value="50"/><inertia ixx="1" iyy="1" izz="1" ixy="0" ixz="0" iyz="0"/></inertial>
@@ -22,13 +24,8 @@ SPINNER = """<robot name="spinner">
 </robot>"""
 
 
-class Log:
-    def __getattr__(self, _name):
-        return lambda *a: None
-
-
 def spin(dynamics, effort, seconds):
-    sim = Simulator(sdf_reader.parse_world(sdf_reader.EMPTY_WORLD_SDF), io=None, log=Log(), get_params={}.get)
+    sim = Simulator(sdf_reader.parse_world(sdf_reader.EMPTY_WORLD_SDF), io=None, log=FakeLog(), get_params={}.get)
     GazeboRosControlPlugin.attach(sim)
     robot = sim.spawn_urdf('spinner', SPINNER % dynamics)
     handle = robot.control.hw.handles['spin']

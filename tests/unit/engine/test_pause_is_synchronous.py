@@ -14,18 +14,14 @@ import time
 from racebot_sim_bridge.description import sdf_reader
 from racebot_sim_bridge.engine.simulator import Simulator
 
+from fakes import FakeLog
+
 CYCLES = 3000
 BOUND = 10.0  # s: only how long a failing wait lasts before it is reported
 
 
-class Log:
-    def warn(self, message):
-        pass
-    info = error = warn
-
-
 def test_no_update_starts_once_a_pause_has_returned():
-    sim = Simulator(sdf_reader.parse_world(sdf_reader.EMPTY_WORLD_SDF), io=None, log=Log(), get_params={}.get)
+    sim = Simulator(sdf_reader.parse_world(sdf_reader.EMPTY_WORLD_SDF), io=None, log=FakeLog(), get_params={}.get)
     stop = threading.Event()
 
     def world_loop():  # the world server's loop, without ROS
@@ -60,7 +56,7 @@ def test_no_update_starts_once_a_pause_has_returned():
 
 
 def test_a_paused_world_does_not_step():
-    sim = Simulator(sdf_reader.parse_world(sdf_reader.EMPTY_WORLD_SDF), io=None, log=Log(), get_params={}.get)
+    sim = Simulator(sdf_reader.parse_world(sdf_reader.EMPTY_WORLD_SDF), io=None, log=FakeLog(), get_params={}.get)
     try:
         sim.set_paused(True)
         assert (sim.step_unless_paused(), sim.steps, sim.time) == (False, 0, 0.0)

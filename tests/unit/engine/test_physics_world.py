@@ -13,7 +13,8 @@ import pybullet as pb
 import pytest
 
 from racebot_sim_bridge.description import sdf_reader, urdf_reader
-from conftest import render_racebot
+
+from racebot_model import render_racebot
 from racebot_sim_bridge.engine.physics import NEGLIGIBLE_MASS, PhysicsError, PhysicsWorld
 
 REPO = Path(__file__).resolve().parents[3]

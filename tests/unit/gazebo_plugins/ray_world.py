@@ -1,5 +1,5 @@
 """A world for the ray-sensor plugins' tests: a real Simulator (PyBullet DIRECT) with the rospy stand-in of
-test_sensors_sim (no master), a ground plane and a static wall whose near face is the plane x = WALL_X, from
+fakes.py (no master), a ground plane and a static wall whose near face is the plane x = WALL_X, from
 y = WALL_Y_MIN to 10 and z = 0 to 2, laser_retro WALL_RETRO. A box robot rests at the origin with a sensor link
 SENSOR_Z above the ground; the sensor block under test goes on that link. From the sensor, a ray at yaw a and
 pitch b that hits the wall's face does so at x = WALL_X, y = WALL_X tan a, z = WALL_X tan b / cos a, range
@@ -9,7 +9,9 @@ import math
 from racebot_sim_bridge.description import sdf_reader
 from racebot_sim_bridge.engine.simulator import Simulator
 from racebot_sim_bridge.gazebo_plugins.sensor_manager import SensorManager
-from test_sensors_sim import FakeRospy, Log, NullIO, listen, run  # noqa: F401 (run, listen: for the tests)
+
+from fakes import FakeLog, FakeRospy, NullIO
+from sensors_sim import listen, run  # noqa: F401 (run, listen: for the tests)
 
 WALL_X = 2.0
 WALL_Y_MIN = -0.05
@@ -56,7 +58,7 @@ def make_world(tmp_path, sensor, params=None, namespace='/', reconfigure=None):
     """(sim, fake rospy, SensorManager, robot) with the robot carrying `sensor` (a <sensor> block's text)."""
     path = tmp_path / 'wall.world'
     path.write_text(WORLD)
-    sim = Simulator(sdf_reader.load_world(str(path)), NullIO(), Log(), lambda path: None)
+    sim = Simulator(sdf_reader.load_world(str(path)), NullIO(), FakeLog(), lambda path: None)
     fake = FakeRospy(dict({'~sensors/report_period': 0, '~sensors/noise': False, '~sensors/render_worker': False},
                           **(params or {})))
     kwargs = {} if reconfigure is None else {'reconfigure': reconfigure}

@@ -10,19 +10,7 @@ from racebot_sim_bridge.engine.sim_time import NS, to_ns
 from racebot_sim_bridge.engine.simulator import Simulator
 from racebot_sim_bridge.description.urdf_model import GazeboPlugin, RobotModel
 
-
-class Log:
-    def __init__(self):
-        self.lines = []
-
-    def logwarn(self, m):
-        self.lines.append(('warn', m))
-
-    def logerr(self, m):
-        self.lines.append(('error', m))
-
-    def loginfo(self, m):
-        self.lines.append(('info', m))
+from fakes import FakeLog
 
 
 class Sim:
@@ -102,7 +90,7 @@ class Recorder(ModelPlugin):
 
 
 def manager(*plugins):
-    log, sim = Log(), Sim()
+    log, sim = FakeLog(), Sim()
     # the Recorder for the model plugins (so hector_gazebo_ros_gps is not simulated here), the rest as registered
     others = {c for c in REGISTRY.classes.values() if c.plugin_kind is not PluginKind.MODEL}
     m = PluginManager(log, sim, registry=Registry([Recorder, *others]))
@@ -158,7 +146,7 @@ class BeforeOnly(Recorder):
 
 
 def test_only_the_hooks_a_plugin_has_are_called_at_each_update():
-    log, sim = Log(), Sim()
+    log, sim = FakeLog(), Sim()
     m = PluginManager(log, sim, registry=Registry([BeforeOnly]))
     m.made = []
     for hook in sim.on_spawn:
@@ -202,7 +190,7 @@ class Clocked(ModelPlugin):
 
 def clocked(*plugins):
     """A PluginManager with Clocked plugins named by their params; the events of all of them, in order."""
-    log, sim = Log(), Sim()
+    log, sim = FakeLog(), Sim()
     m = PluginManager(log, sim, registry=Registry([Clocked]))
     m.events = []
     robot = Robot([GazeboPlugin(name, 'libgazebo_ros_clocked.so', params) for name, params in plugins])
@@ -273,7 +261,7 @@ def test_encoder_odometry_integrates_every_updates_wheel_speeds_whatever_the_plu
     from racebot_sim_bridge.kinematics import differential as kin
 
     from model_plugin_sim import fixture_urdf
-    from test_plugins_diff_drive import command, spawn
+    from diff_drive_world import command, spawn
 
     w, robot = spawn(tmp_path, fixture_urdf('diffbot_plugins'))
     try:

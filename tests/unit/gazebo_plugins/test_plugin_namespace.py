@@ -11,8 +11,8 @@ from racebot_sim_bridge.gazebo_plugins.sensor_manager import sensor_config
 from racebot_sim_bridge.engine.simulator import Simulator, SpawnError
 from racebot_sim_bridge.gazebo_ros_control.gazebo_ros_control_plugin import GazeboRosControlPlugin
 
-EMPTY_WORLD = '<sdf version="1.6"><world name="w"><physics type="ode"><max_step_size>0.001</max_step_size>' \
-              '</physics></world></sdf>'
+from wheel_robot import EMPTY_WORLD, _robot
+from fakes import FakeLog
 
 
 def test_the_plugins_own_element_wins_even_empty():
@@ -95,34 +95,13 @@ def test_laser_topic_defaults_as_gazebo_ros_laser():
     assert sensor_config(_laser('<topicName></topicName>'), '/fleet', 'r') is None  # advertises nothing
 
 
-def _robot(control_ns_element):
-    return ('<robot name="bot"><link name="base"><inertial><mass value="1"/><inertia ixx="0.01" ixy="0" ixz="0" '
-            'iyy="0.01" iyz="0" izz="0.01"/></inertial></link><link name="wheel"><inertial><mass value="0.1"/>'
-            '<inertia ixx="0.001" ixy="0" ixz="0" iyy="0.001" iyz="0" izz="0.001"/></inertial></link>'
-            '<joint name="wheel_joint" type="continuous"><parent link="base"/><child link="wheel"/>'
-            '<axis xyz="0 1 0"/></joint><transmission name="t"><type>transmission_interface/SimpleTransmission'
-            '</type><joint name="wheel_joint"><hardwareInterface>hardware_interface/EffortJointInterface'
-            '</hardwareInterface></joint><actuator name="m"><mechanicalReduction>1</mechanicalReduction></actuator>'
-            '</transmission><gazebo><plugin name="gazebo_ros_control" filename="libgazebo_ros_control.so">%s'
-            '</plugin></gazebo></robot>' % control_ns_element)
-
-
-class _Log:
-    def __init__(self):
-        self.lines = []
-
-    def error(self, m):
-        self.lines.append(m)
-    warn = info = error
-
-
 @pytest.mark.parametrize('element, requested, expected_ns', [
     ('', '', '/bot'), ('', '/', ''), ('', '/fleet', '/fleet'),
     ('<robotNamespace>/mine</robotNamespace>', '/fleet', '/mine'),  # the request no longer overrides it
     ('<robotNamespace>/mine</robotNamespace>', '', '/mine'),
 ])
 def test_spawned_robot_controller_manager_namespace(element, requested, expected_ns):
-    sim = Simulator(sdf_reader.parse_world(EMPTY_WORLD), None, _Log(), lambda path: None)
+    sim = Simulator(sdf_reader.parse_world(EMPTY_WORLD), None, FakeLog(), lambda path: None)
     GazeboRosControlPlugin.attach(sim)
     try:
         robot = sim.spawn_urdf('bot', _robot(element), requested)
@@ -133,7 +112,7 @@ def test_spawned_robot_controller_manager_namespace(element, requested, expected
 
 
 def test_two_robots_cannot_share_a_controller_manager_namespace():
-    sim = Simulator(sdf_reader.parse_world(EMPTY_WORLD), None, _Log(), lambda path: None)
+    sim = Simulator(sdf_reader.parse_world(EMPTY_WORLD), None, FakeLog(), lambda path: None)
     GazeboRosControlPlugin.attach(sim)
     try:
         sim.spawn_urdf('one', _robot(''), '/')

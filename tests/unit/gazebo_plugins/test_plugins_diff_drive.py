@@ -5,32 +5,17 @@ warnings for bad parameters."""
 import math
 
 import pytest
-from geometry_msgs.msg import Twist
 
 from racebot_sim_bridge.kinematics import differential as kin
 from racebot_sim_bridge.gazebo_ros_api.plugin_namespace import model_plugin_namespace
 from racebot_sim_bridge.gazebo_plugins import gazebo_ros_imu as imu_plugin
 from racebot_sim_bridge.kinematics.rotations import rpy_to_quaternion, yaw_of
 
-from model_plugin_sim import ROBOTS, PluginRospy, PluginWorld
+from model_plugin_sim import ROBOTS
+from diff_drive_world import command, spawn
 
 DRIVE = 'differential_drive_controller'
 RADIUS, SEPARATION = 0.075, 0.34
-
-
-class ServiceRospy(PluginRospy):
-    """PluginRospy that also records services by name."""
-
-    def __init__(self, params=None):
-        super().__init__(params)
-        self.services = {}
-
-    def Service(self, name, cls, handler):
-        self.services[name] = (cls, handler)
-        return self
-
-    def shutdown(self):
-        pass
 
 
 @pytest.fixture(scope='module')
@@ -38,20 +23,6 @@ def urdf():
     import xacro
     path = ROBOTS / 'diffbot_plugins' / 'urdf' / 'diffbot_plugins.urdf.xacro'
     return xacro.process_file(str(path), mappings={}).toxml()  # its xacro:arg needs an argument context
-
-
-def spawn(tmp_path, urdf, params=None, namespace='/', listen=True):
-    """The diffbot; with `listen`, the drive's topics (odometry, tf, joint states) have a subscriber: the drive
-    works out only what somebody subscribes to."""
-    w = PluginWorld(tmp_path, params)
-    w.fake = ServiceRospy(params)
-    w.manager.rospy = w.fake
-    robot = w.spawn('diffbot', urdf, namespace, (0.0, 0.0, 0.0))
-    if listen:
-        for topic, pub in w.fake.publishers.items():
-            if not topic.endswith('imu'):
-                pub.connections = 1
-    return w, robot
 
 
 def replace(urdf, old, new):
@@ -63,12 +34,6 @@ def with_param(urdf, tag, text):
     """The drive plugin with <tag>text</tag> first (the first element of a tag is the one read)."""
     first = '<commandTopic>cmd_vel</commandTopic>'
     return replace(urdf, first, '<%s>%s</%s>' % (tag, text, tag) + first)
-
-
-def command(w, vx, wz, topic='/cmd_vel'):
-    msg = Twist()
-    msg.linear.x, msg.angular.z = vx, wz
-    w.fake.subscribers[topic](msg)
 
 
 def wheel_velocities(w, robot):

@@ -5,7 +5,7 @@ racebot's URDF <mimic> gear; a missing joint refuses it."""
 import pytest
 
 from model_plugin_sim import PluginWorld
-from test_mimic_joints import drive, gripper, positions  # the gripper of the URDF <mimic> tests
+from mimic_gripper import drive, gripper, positions  # the gripper of the URDF <mimic> tests
 
 PLUGIN = ('<gazebo><plugin name="mimic" filename="%s"><joint>leader</joint><mimicJoint>twin</mimicJoint>%s'
           '</plugin></gazebo></robot>')

@@ -7,7 +7,7 @@ from racebot_sim_bridge.gazebo_plugins.link_motion import link_motion
 from racebot_sim_bridge.kinematics.rotations import quaternion_multiply, rpy_to_quaternion, yaw_of
 
 from model_plugin_sim import PluginWorld
-from test_plugins_diff_drive import ServiceRospy
+from diff_drive_world import ServiceRospy
 
 # A robot as community packages write one: base_link with mass and a box, an imu_link without <inertial> on a
 # fixed joint 0.1 forward, 0.2 up, turned 0.5 rad about z (J); gazebo_ros_imu naming imu_link as body and

@@ -13,8 +13,9 @@ from racebot_sim_bridge.gazebo_plugins.polled_camera_types import get_polled_ima
 from racebot_sim_bridge.gazebo_plugins.sensor_manager import SensorManager
 
 from model_plugin_sim import PluginRospy
-from test_plugins_triggered_cameras import CAMERA, WORLD
-from test_sensors_sim import FakePublisher, Log, NullIO, listen, run
+from camera_worlds import CAMERA, WORLD
+from fakes import FakeLog, FakePublisher, NullIO
+from sensors_sim import listen, run
 
 ROBOT = """<robot name="cam_bot">
  <link name="base_link"><inertial><mass value="1.0"/><inertia ixx="0.01" ixy="0" ixz="0" iyy="0.01" iyz="0" izz="0.01"/>
@@ -47,7 +48,7 @@ class PollRospy(PluginRospy):
 def make(tmp_path, params):
     path = tmp_path / 'box.world'
     path.write_text(WORLD)
-    sim = Simulator(sdf_reader.load_world(str(path)), NullIO(), Log(), lambda path: None)
+    sim = Simulator(sdf_reader.load_world(str(path)), NullIO(), FakeLog(), lambda path: None)
     fake = PollRospy(dict({'~sensors/report_period': 0, '~sensors/render_budget': 1.0, '~sensors/noise': False,
                            '~sensors/render_worker': False}, **params))
     SensorManager(fake, sim)

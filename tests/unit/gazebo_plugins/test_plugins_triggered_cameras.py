@@ -13,20 +13,10 @@ from racebot_sim_bridge.engine.simulator import Simulator
 from racebot_sim_bridge.gazebo_plugins.sensor_manager import SensorManager
 
 from model_plugin_sim import PluginRospy
-from test_sensors_sim import Log, NullIO, listen, run
+from fakes import FakeLog, NullIO
+from sensors_sim import listen, run
+from camera_worlds import CAMERA, WORLD
 
-WORLD = """<sdf version="1.6"><world name="default">
-<model name="ground_plane"><static>true</static><link name="link"><collision name="collision"><geometry>
-<plane><normal>0 0 1</normal><size>100 100</size></plane></geometry></collision>
-<visual name="visual"><geometry><plane><normal>0 0 1</normal><size>100 100</size></plane></geometry></visual></link>
-</model>
-<model name="obstacle"><static>true</static><pose>1.2 0 0.3 0 0 0</pose><link name="link">
-<collision name="collision"><geometry><box><size>0.6 0.6 0.6</size></box></geometry></collision>
-<visual name="visual"><geometry><box><size>0.6 0.6 0.6</size></box></geometry></visual></link></model>
-</world></sdf>"""
-CAMERA = """<camera name="%s"><pose>0 %s 0 0 0 0</pose><horizontal_fov>1.0</horizontal_fov>
- <image><width>64</width><height>48</height><format>R8G8B8</format></image><clip><near>0.05</near><far>20</far></clip>
-</camera>"""
 ROBOT = """<robot name="cam_bot">
  <link name="base_link"><inertial><mass value="1.0"/><inertia ixx="0.01" ixy="0" ixz="0" iyy="0.01" iyz="0" izz="0.01"/>
   </inertial><collision><origin xyz="0 0 0.05"/><geometry><box size="0.3 0.3 0.1"/></geometry></collision></link>
@@ -55,7 +45,7 @@ SIDES = ('/pair/left/image_raw', '/pair/right/image_raw')
 def make(tmp_path, worker=False):
     path = tmp_path / 'box.world'
     path.write_text(WORLD)
-    sim = Simulator(sdf_reader.load_world(str(path)), NullIO(), Log(), lambda path: None)
+    sim = Simulator(sdf_reader.load_world(str(path)), NullIO(), FakeLog(), lambda path: None)
     fake = PluginRospy({'~sensors/report_period': 0, '~sensors/render_budget': 1.0, '~sensors/noise': False,
                         '~sensors/render_worker': worker, '~sensors/renderer': 'tiny'})
     manager = SensorManager(fake, sim)

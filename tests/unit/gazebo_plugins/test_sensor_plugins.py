@@ -20,6 +20,8 @@ from racebot_sim_bridge.sensors.contact import (CollisionKind, ContactPoint, Nam
 from racebot_sim_bridge.sensors.range_reading import INFRARED, ULTRASOUND, radiation_type, range_reading, ray_lengths
 from racebot_sim_bridge.sensors.schedule import FrameThrottle
 
+from fakes import FakeNames
+
 ROBOT = Path(__file__).resolve().parents[2] / 'fixtures' / 'sensor_plugins' / 'robot.urdf'
 
 
@@ -220,11 +222,6 @@ class FakeClient:
 
     def getLinkState(self, body, link, computeForwardKinematics=0):
         return ((0.0, 0.0, 0.0), (0, 0, 0, 1), None, None, (0.0, 0.0, 0.0), (0.0, 0.0, 0.0, 1.0))
-
-
-class FakeNames:
-    def name(self, body, link, point):
-        return 'other%d::link%d::collision' % (body, link)
 
 
 def _bullet_point(on_a, distance, normal_force, friction1=0.0, friction2=0.0, body_b=7):

@@ -1,5 +1,5 @@
 """The range, bumper, multicamera and openni_kinect plugins on a real Simulator (PyBullet DIRECT) with
-the rospy stand-in of test_sensors_sim: no master. The test robot (tests/fixtures/sensor_plugins)
+the rospy stand-in of fakes.py: no master. The test robot (tests/fixtures/sensor_plugins)
 stands on a ground plane, its front 1 m from a static box."""
 import math
 from pathlib import Path
@@ -16,8 +16,9 @@ from racebot_sim_bridge.gazebo_ros_api.performance_metrics import PerformanceMet
 from racebot_sim_bridge.engine.pybullet_client import PybulletClient
 from racebot_sim_bridge.sensors.contact import NamedShape
 from racebot_sim_bridge.sensors.contact_points import read_contacts
-from test_sensor_plugins import FakeNames
-from test_sensors_sim import FakeRospy, Log, NullIO, listen, run
+
+from fakes import FakeLog, FakeNames, FakeRospy, NullIO
+from sensors_sim import listen, run
 
 ROBOT = Path(__file__).resolve().parents[2] / 'fixtures' / 'sensor_plugins' / 'robot.urdf'
 SONAR_X = 0.22      # the sonar's x in the robot (sonar_joint)
@@ -36,7 +37,7 @@ BUMPER = 'sensor_robot::base_link::base_link_fixed_joint_lump__bumper_link_colli
 def make_world(tmp_path, urdf):
     path = tmp_path / 'box.world'
     path.write_text(WORLD)
-    sim = Simulator(sdf_reader.load_world(str(path)), NullIO(), Log(), lambda path: None)
+    sim = Simulator(sdf_reader.load_world(str(path)), NullIO(), FakeLog(), lambda path: None)
     fake = FakeRospy({'~sensors/report_period': 0, '~sensors/render_budget': 1.0, '~sensors/noise': False,
                       '~sensors/render_worker': False})
     manager = SensorManager(fake, sim)
@@ -102,7 +103,7 @@ def test_sonar_reads_the_distance_to_the_box(world):
 def test_range_and_bumper_frames_take_the_tf_prefix_of_their_namespace(tmp_path):
     path = tmp_path / 'box.world'
     path.write_text(WORLD)
-    sim = Simulator(sdf_reader.load_world(str(path)), NullIO(), Log(), lambda path: None)
+    sim = Simulator(sdf_reader.load_world(str(path)), NullIO(), FakeLog(), lambda path: None)
     try:
         fake = FakeRospy({'~sensors/report_period': 0, '~sensors/render_worker': False, '/fleet/tf_prefix': 'bot1'})
         SensorManager(fake, sim)

@@ -11,7 +11,8 @@ from racebot_sim_bridge.description import sdf_reader
 from racebot_sim_bridge.engine.simulator import Simulator
 from racebot_sim_bridge.gazebo_ros_api.services import ADVERTISED, GazeboServices
 
-from test_plugin_namespace import EMPTY_WORLD, _Log
+from fakes import FakeLog
+from wheel_robot import EMPTY_WORLD
 
 
 class _RecordingRospy(SimpleNamespace):
@@ -29,7 +30,7 @@ class _RecordingRospy(SimpleNamespace):
 
 
 def test_the_services_are_advertised_in_gazebo_ros_order_under_the_namespace():
-    sim = Simulator(sdf_reader.parse_world(EMPTY_WORLD), None, _Log(), lambda path: None)
+    sim = Simulator(sdf_reader.parse_world(EMPTY_WORLD), None, FakeLog(), lambda path: None)
     fake = _RecordingRospy()
     services = GazeboServices(fake, sim, '/sim/gazebo')
     try:

@@ -11,6 +11,8 @@ from racebot_sim_bridge.kinematics.rotations import rpy_to_quaternion
 from racebot_sim_bridge.engine.sim_time import NS as NSEC_PER_SEC
 from racebot_sim_bridge.engine.simulator import Simulator
 
+from fakes import FakeLog
+
 MS = 10 ** 6  # ns
 IDENTITY = ((0.0, 0.0, 0.0), (0.0, 0.0, 0.0, 1.0))
 
@@ -131,14 +133,9 @@ BOX_WORLD = """<sdf version="1.6"><world name="w">
 </world></sdf>"""
 
 
-class _Log:
-    def __getattr__(self, _name):
-        return lambda *a: None
-
-
 @pytest.fixture
 def box_sim():
-    sim = Simulator(sdf_reader.parse_world(BOX_WORLD), io=None, log=_Log(), get_params=lambda p: None)
+    sim = Simulator(sdf_reader.parse_world(BOX_WORLD), io=None, log=FakeLog(), get_params=lambda p: None)
     yield sim
     sim.close()
 
@@ -189,7 +186,7 @@ def test_the_force_jobs_hook_is_called_only_while_there_are_jobs_and_before_the_
     before the model plugins'), pushes the box while the job lasts, and leaves once none is left."""
     from gazebo_msgs.srv import ApplyBodyWrenchRequest
     from racebot_sim_bridge.gazebo_ros_api.forces import GazeboForces
-    forces = GazeboForces(_Log(), box_sim)
+    forces = GazeboForces(FakeLog(), box_sim)
     seen = []
 
     def plugins(t):
@@ -211,7 +208,7 @@ def test_the_force_jobs_hook_is_called_only_while_there_are_jobs_and_before_the_
 def test_gravity_mode_off_hooks_its_weight_back_only_while_some_link_has_it(box_sim):
     from gazebo_msgs.srv import GetLinkPropertiesRequest, SetLinkPropertiesRequest
     from racebot_sim_bridge.gazebo_ros_api.properties import GazeboProperties
-    properties = GazeboProperties(_Log(), box_sim)
+    properties = GazeboProperties(FakeLog(), box_sim)
     assert box_sim.before_physics == []
     now = properties.get_link_properties(GetLinkPropertiesRequest(link_name='box::body'))
     req = SetLinkPropertiesRequest(link_name='box::body', com=now.com, gravity_mode=False, mass=now.mass, ixx=now.ixx,

@@ -15,12 +15,12 @@ from racebot_sim_bridge.description import sdf_reader
 from racebot_sim_bridge.engine.simulator import Simulator
 from racebot_sim_bridge.gazebo_ros_api.properties import GazeboProperties
 
-from test_plugin_namespace import _Log
+from fakes import FakeLog
 
 
 @pytest.fixture
 def world():
-    sim = Simulator(sdf_reader.parse_world(sdf_reader.EMPTY_WORLD_SDF), None, _Log(), lambda path: None)
+    sim = Simulator(sdf_reader.parse_world(sdf_reader.EMPTY_WORLD_SDF), None, FakeLog(), lambda path: None)
     properties = GazeboProperties(rospy, sim)
     yield sim, properties, copy.deepcopy(sim.spec)
     sim.close()

@@ -14,8 +14,8 @@ from racebot_sim_bridge.engine.simulator import Simulator
 from racebot_sim_bridge.gazebo_ros_api.services import GazeboServices
 from racebot_sim_bridge.kinematics.rotations import quaternion_to_rpy
 
-from test_plugin_namespace import _Log
-from test_sdf_worlds import ROOM, TABLE, WHEEL, write_model
+from fakes import FakeLog
+from sdf_models import ROOM, TABLE, WHEEL, write_model
 
 CART = """
   <model name="cart">
@@ -47,7 +47,7 @@ def services(tmp_path, monkeypatch):
     monkeypatch.setenv('HOME', str(tmp_path / 'home'))
     spec = sdf_reader.parse_world(ROOM.replace('</world>', CART + '</world>'))
     assert spec.warnings == []
-    sim = Simulator(spec, None, _Log(), lambda path: None)
+    sim = Simulator(spec, None, FakeLog(), lambda path: None)
     sim.spawn_world_robots()  # the cart: joints, so the URDF path
     api = GazeboServices(rospy, sim, '/gazebo')
     yield api

@@ -15,7 +15,8 @@ from racebot_sim_bridge.gazebo_plugins.plugin_manager import PluginManager
 from racebot_sim_bridge.gazebo_ros_api.services import GazeboServices
 from racebot_sim_bridge.gazebo_ros_control.gazebo_ros_control_plugin import GazeboRosControlPlugin
 
-from test_plugin_namespace import EMPTY_WORLD, _Log, _robot
+from fakes import FakeLog
+from wheel_robot import EMPTY_WORLD, _robot
 
 # An SDF robot: links and a joint (the URDF path simulates it), no plugin or sensor blocks (sdf_model keeps
 # those as text, which the conversion to URDF reads again).
@@ -43,7 +44,7 @@ def parses(monkeypatch):
 
 @pytest.fixture
 def world():
-    sim = Simulator(sdf_reader.parse_world(EMPTY_WORLD), None, _Log(), lambda path: None)
+    sim = Simulator(sdf_reader.parse_world(EMPTY_WORLD), None, FakeLog(), lambda path: None)
     plugins = PluginManager(rospy, sim)
     GazeboRosControlPlugin.attach(sim, rospy)
     services = GazeboServices(rospy, sim, '/gazebo')

@@ -24,7 +24,7 @@ from racebot_sim_bridge.gazebo_ros_api.services import GazeboServices
 from racebot_sim_bridge.gazebo_ros_api.spawn_services import SPAWN_NOT_LOADED
 from racebot_sim_bridge.gazebo_ros_control.gazebo_ros_control_plugin import GazeboRosControlPlugin
 
-from test_plugin_namespace import _Log
+from fakes import FakeLog
 
 WORLD = ('<sdf version="1.6"><world name="w"><physics type="ode"><max_step_size>0.001</max_step_size></physics>'
          '<model name="ground_plane"><static>true</static><link name="link"><collision name="c"><geometry><plane>'
@@ -92,7 +92,7 @@ SDF = ('<sdf version="1.6"><model name="thing"><pose>0 0 0.5 0 0 0</pose>'
 
 @pytest.fixture(scope='module')
 def world():
-    sim = Simulator(sdf_reader.parse_world(WORLD), None, _Log(), lambda path: None)
+    sim = Simulator(sdf_reader.parse_world(WORLD), None, FakeLog(), lambda path: None)
     plugins = PluginManager(rospy, sim)
     GazeboRosControlPlugin.attach(sim, rospy)
     services = GazeboServices(rospy, sim, '/gazebo')

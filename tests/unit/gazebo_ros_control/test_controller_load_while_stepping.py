@@ -15,7 +15,8 @@ from racebot_sim_bridge.description import sdf_reader
 from racebot_sim_bridge.engine.simulator import Simulator
 from racebot_sim_bridge.gazebo_ros_control.gazebo_ros_control_plugin import GazeboRosControlPlugin
 
-from test_plugin_namespace import EMPTY_WORLD, _robot
+from wheel_robot import EMPTY_WORLD, _robot
+from fakes import FakeLog
 
 BOUND = 10.0  # s: only how long a failing run waits before it is reported
 GATE_LIMIT = 3 * BOUND  # s: a blocked call gives up after the test has (a test never hangs)
@@ -24,18 +25,6 @@ PARAMS = {
     '/wheel': {'type': 'effort_controllers/JointVelocityController', 'joint': 'wheel_joint', 'pid': {'p': 0.05}},
     '/joints': {'type': 'joint_state_controller/JointStateController', 'publish_rate': 50},
 }
-
-
-class Log:
-    def __init__(self):
-        self.errors = []
-
-    def error(self, message):
-        self.errors.append(message)
-
-    def warn(self, message):
-        pass
-    info = warn
 
 
 class Gate:
@@ -87,7 +76,7 @@ class GatedIO:
 class Rig:
     def __init__(self):
         self.gate = Gate()
-        self.log = Log()
+        self.log = FakeLog()
 
         def get_params(path):
             self.gate.passing()

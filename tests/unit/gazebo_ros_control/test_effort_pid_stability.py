@@ -13,6 +13,8 @@ from racebot_sim_bridge.engine.simulator import Simulator
 from racebot_sim_bridge.gazebo_ros_control.gazebo_ros_control_plugin import GazeboRosControlPlugin
 from racebot_sim_bridge.ros_control.pid import Pid
 
+from fakes import FakeLog
+
 WRIST = """<robot name="wrist">
   <link name="world"/>
   <link name="base"><inertial><mass value="50"/><inertia ixx="1" iyy="1" izz="1" ixy="0" ixz="0" iyz="0"/></inertial>
@@ -29,16 +31,11 @@ WRIST = """<robot name="wrist">
 STOPPED_VELOCITY_TOLERANCE = 0.05  # ur5_controllers.yaml
 
 
-class Log:
-    def __getattr__(self, _name):
-        return lambda *a: None
-
-
 def hold(inertia, target=0.01, seconds=1.0):
     """The joint under the PID holding `target` from 0: (final position, velocities and efforts of the last 0.1 s).
     The PID runs in each world update between the joint's reading and the physics step, as the controller manager
     runs between readSim and writeSim; its effort is applied with the hardware's apply_efforts."""
-    sim = Simulator(sdf_reader.parse_world(sdf_reader.EMPTY_WORLD_SDF), io=None, log=Log(), get_params={}.get)
+    sim = Simulator(sdf_reader.parse_world(sdf_reader.EMPTY_WORLD_SDF), io=None, log=FakeLog(), get_params={}.get)
     GazeboRosControlPlugin.attach(sim)
     robot = sim.spawn_urdf('wrist', WRIST % dict(i=inertia))
     index = robot.body.joints['wrist_2_joint'].index

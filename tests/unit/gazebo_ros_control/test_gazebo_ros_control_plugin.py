@@ -12,7 +12,8 @@ from racebot_sim_bridge.description import sdf_reader
 from racebot_sim_bridge.engine.simulator import Simulator
 from racebot_sim_bridge.gazebo_ros_control.gazebo_ros_control_plugin import GazeboRosControlPlugin
 
-from test_plugin_namespace import EMPTY_WORLD, _Log, _robot
+from fakes import FakeLog
+from wheel_robot import EMPTY_WORLD, _robot
 
 SERVICES = ('load_controller', 'unload_controller', 'switch_controller', 'list_controllers', 'list_controller_types',
             'reload_controller_libraries')
@@ -37,7 +38,7 @@ def _offered(ns):
 
 
 def test_a_world_file_robot_gets_its_controller_manager_services_without_gazebo_services():
-    sim = Simulator(sdf_reader.parse_world(WORLD_ROBOT), None, _Log(), lambda path: None)
+    sim = Simulator(sdf_reader.parse_world(WORLD_ROBOT), None, FakeLog(), lambda path: None)
     GazeboRosControlPlugin.attach(sim, rospy)
     try:
         (robot,) = sim.spawn_world_robots()
@@ -52,7 +53,7 @@ def test_a_world_file_robot_gets_its_controller_manager_services_without_gazebo_
 
 
 def test_a_spawned_robots_services_go_with_it_and_its_namespace_is_free_again():
-    sim = Simulator(sdf_reader.parse_world(EMPTY_WORLD), None, _Log(), lambda path: None)
+    sim = Simulator(sdf_reader.parse_world(EMPTY_WORLD), None, FakeLog(), lambda path: None)
     GazeboRosControlPlugin.attach(sim, rospy)
     try:
         robot = sim.spawn_urdf('bot', _robot(''), '/fleet')
@@ -66,7 +67,7 @@ def test_a_spawned_robots_services_go_with_it_and_its_namespace_is_free_again():
 
 
 def test_without_the_plugin_attached_a_robot_has_no_control():
-    sim = Simulator(sdf_reader.parse_world(EMPTY_WORLD), None, _Log(), lambda path: None)
+    sim = Simulator(sdf_reader.parse_world(EMPTY_WORLD), None, FakeLog(), lambda path: None)
     try:
         robot = sim.spawn_urdf('bot', _robot(''), '/alone')
         sim.step()
@@ -76,12 +77,12 @@ def test_without_the_plugin_attached_a_robot_has_no_control():
 
 
 def test_a_robot_without_the_plugin_is_told_why_it_has_no_controller_manager():
-    log = _Log()
+    log = FakeLog()
     sim = Simulator(sdf_reader.parse_world(EMPTY_WORLD), None, log, lambda path: None)
     GazeboRosControlPlugin.attach(sim, rospy)
     try:
         robot = sim.spawn_urdf('bot', _robot('').replace('libgazebo_ros_control.so', 'libsomething_else.so'), '/x')
         assert robot.control is None and _offered('/x') == []
-        assert any('has <transmission>s but declares no libgazebo_ros_control.so plugin' in m for m in log.lines)
+        assert log.said('has <transmission>s but declares no libgazebo_ros_control.so plugin')
     finally:
         sim.close()

@@ -8,6 +8,8 @@ from racebot_sim_bridge.description import sdf_reader
 from racebot_sim_bridge.engine.simulator import Simulator
 from racebot_sim_bridge.gazebo_ros_control.gazebo_ros_control_plugin import GazeboRosControlPlugin
 
+from fakes import FakeLog
+
 ARM = """<robot name="turret">
   <link name="base"><inertial><mass value="50"/><inertia ixx="1" iyy="1" izz="1" ixy="0" ixz="0" iyz="0"/></inertial>
     <collision><geometry><box size="0.5 0.5 0.2"/></geometry></collision></link>
@@ -27,19 +29,8 @@ ARM = """<robot name="turret">
 </robot>"""
 
 
-class Log:
-    def __init__(self):
-        self.warnings = []
-
-    def warn(self, message):
-        self.warnings.append(message)
-
-    def __getattr__(self, _name):
-        return lambda *a: None
-
-
 def turret(params, effort=10):
-    log = Log()
+    log = FakeLog()
     sim = Simulator(sdf_reader.parse_world(sdf_reader.EMPTY_WORLD_SDF), io=None, log=log, get_params=params.get)
     GazeboRosControlPlugin.attach(sim)
     robot = sim.spawn_urdf('turret', ARM % {'effort': effort}, position=(0, 0, 0.1))

@@ -7,7 +7,7 @@ from racebot_sim_bridge.description.urdf_reader import parse_urdf
 from racebot_sim_bridge.gazebo_ros_control.gazebo_ros_control_plugin import GazeboRosControlPlugin, control_plugin
 from racebot_sim_bridge.gazebo_ros_control.robot_hw_sim import DEFAULT_ROBOT_SIM_TYPE, hardware_joints
 
-from test_urdf_reader import EFFORT, FIXTURE, with_body
+from urdf_fixture import EFFORT, FIXTURE, with_body
 
 
 @pytest.fixture(scope='module')

@@ -12,7 +12,8 @@ from racebot_sim_bridge.ros_control.controller_switch import STRICT
 from racebot_sim_bridge.engine.simulator import Simulator
 from racebot_sim_bridge.gazebo_ros_control.gazebo_ros_control_plugin import GazeboRosControlPlugin
 
-from test_plugin_namespace import EMPTY_WORLD, _Log, _robot
+from fakes import FakeLog
+from wheel_robot import EMPTY_WORLD, _robot
 
 PARAMS = {
     '/wheel': {'type': 'effort_controllers/JointVelocityController', 'joint': 'wheel_joint',
@@ -57,7 +58,7 @@ def driving():
     """A robot at the root namespace, its wheel controller started and commanded to 3 rad/s for 0.3 s."""
     io = _IO()
     world = sdf_reader.parse_world(EMPTY_WORLD.replace('<physics', '<gravity>0 0 0</gravity><physics'))
-    sim = Simulator(world, io, _Log(), lambda path: PARAMS.get(path))
+    sim = Simulator(world, io, FakeLog(), lambda path: PARAMS.get(path))
     GazeboRosControlPlugin.attach(sim)
     robot = sim.spawn_urdf('bot', _robot(''), '/')
     cm = robot.control.cm

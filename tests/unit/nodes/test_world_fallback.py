@@ -8,24 +8,13 @@ import pytest
 from racebot_sim_bridge.description.sdf_reader import WorldError
 from racebot_sim_bridge.world_server import load_world_spec
 
-
-class Log:
-    """Collects what the world server would log."""
-
-    def __init__(self):
-        self.lines = []
-
-    def error(self, text):
-        self.lines.append(('error', text))
-
-    def warn(self, text):
-        self.lines.append(('warn', text))
+from fakes import FakeLog
 
 
 def test_missing_world_falls_back_on_the_empty_world(tmp_path):
     # jackal_gazebo's default: $(find gazebo_ros)/worlds/empty_world.world, which gazebo_ros never shipped
     missing = str(tmp_path / 'gazebo_ros' / 'worlds' / 'empty_world.world')
-    log = Log()
+    log = FakeLog()
     path, world = load_world_spec(missing, fallback_to_empty=True, log=log)
     assert path.endswith(os.path.join('worlds', 'empty.world'))
     assert [m.name for m in world.models] == ['ground_plane']
@@ -36,7 +25,7 @@ def test_missing_world_falls_back_on_the_empty_world(tmp_path):
 def test_world_that_is_not_sdf_falls_back_too(tmp_path):
     broken = tmp_path / 'broken.world'
     broken.write_text('<sdf version="1.6"><world name="x"><model name="m"></world>')
-    path, world = load_world_spec(str(broken), fallback_to_empty=True, log=Log())
+    path, world = load_world_spec(str(broken), fallback_to_empty=True, log=FakeLog())
     assert path.endswith(os.path.join('worlds', 'empty.world'))
     assert [m.name for m in world.models] == ['ground_plane']
 
@@ -44,7 +33,7 @@ def test_world_that_is_not_sdf_falls_back_too(tmp_path):
 def test_without_fallback_a_missing_world_is_an_error(tmp_path):
     missing = str(tmp_path / 'missing.world')
     with pytest.raises(WorldError, match='not found'):
-        load_world_spec(missing, log=Log())
+        load_world_spec(missing, log=FakeLog())
 
 
 def test_a_world_that_loads_is_used(tmp_path):
@@ -52,6 +41,6 @@ def test_a_world_that_loads_is_used(tmp_path):
     good.write_text('<sdf version="1.6"><world name="x"><model name="box"><static>true</static><link name="l">'
                     '<collision name="c"><geometry><box><size>1 1 1</size></box></geometry></collision>'
                     '</link></model></world></sdf>')
-    log = Log()
+    log = FakeLog()
     path, world = load_world_spec(str(good), fallback_to_empty=True, log=log)
     assert path == str(good) and [m.name for m in world.models] == ['box'] and log.lines == []

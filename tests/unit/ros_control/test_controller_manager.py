@@ -10,7 +10,6 @@ import threading
 import time
 
 import pytest
-import rospy
 
 from racebot_sim_bridge.gazebo_ros_control.robot_hw_sim import hardware_joints
 from racebot_sim_bridge.description import urdf_reader
@@ -19,6 +18,8 @@ from racebot_sim_bridge.ros_control.controller_manager import ControllerManager
 from racebot_sim_bridge.ros_control.controller_switch import BEST_EFFORT, STRICT
 from racebot_sim_bridge.ros_controllers import CONTROLLER_TYPES
 from racebot_sim_bridge.ros_control.hardware_interface import EFFORT, STATE, VELOCITY, RobotHW
+
+from fakes import FakeIO, FakeLog
 
 NS = 'racebot'
 DT = 0.001
@@ -43,56 +44,6 @@ def racebot_like_urdf():
                      '</hardwareInterface></joint></transmission>' % (j, j))
     parts.append('</robot>')
     return ''.join(parts)
-
-
-class FakeTopic:
-    def __init__(self, cls, callback=None):
-        self.cls, self.callback = cls, callback
-        self.messages = []
-        self.unregistered = False
-
-    def publish(self, msg):
-        self.messages.append(copy.deepcopy(msg))
-
-    def unregister(self):
-        self.unregistered = True
-
-
-class FakeIO:
-    def __init__(self):
-        self.topics = {}
-
-    def publisher(self, topic, cls, queue_size):
-        self.topics[topic] = FakeTopic(cls)
-        return self.topics[topic]
-
-    def subscriber(self, topic, cls, callback):
-        self.topics[topic] = FakeTopic(cls, callback)
-        return self.topics[topic]
-
-    def stamp(self, t):
-        return rospy.Time.from_sec(t)
-
-    def warn_throttle(self, key, period, message):
-        pass
-
-    def send(self, topic, value):
-        from std_msgs.msg import Float64
-        self.topics[topic].callback(Float64(value))
-
-
-class Log:
-    def __init__(self):
-        self.errors, self.warnings, self.infos = [], [], []
-
-    def error(self, msg):
-        self.errors.append(msg)
-
-    def warn(self, msg):
-        self.warnings.append(msg)
-
-    def info(self, msg):
-        self.infos.append(msg)
 
 
 class Recorder(Controller):
@@ -151,8 +102,8 @@ class Rig:
         for h in self.hw.handles.values():
             h.read(0.0, 0.0)
         self.params = dict(PARAMS if params is None else params)
-        self.io = FakeIO()
-        self.log = Log()
+        self.io = FakeIO(one_publisher_per_topic=False)  # controllers of the manager's tests share topics
+        self.log = FakeLog()
         self.journal = []
         recorder = type('JournalRecorder', (Recorder,), {'journal': self.journal})
         types = dict(CONTROLLER_TYPES)
@@ -610,7 +561,7 @@ def test_shutdown_unloads_everything(rig):
 
 
 def test_namespace_normalised():
-    log = Log()
+    log = FakeLog()
     model = urdf_reader.parse_urdf(racebot_like_urdf())
     hw = RobotHW(model, hardware_joints(model))
     for ns, expected in (('racebot', '/racebot'), ('/racebot/', '/racebot'), ('/', ''), ('', '')):
@@ -619,7 +570,7 @@ def test_namespace_normalised():
 
 def test_a_controller_raising_in_update_is_stopped_and_the_others_keep_running():
     """One broken controller must not stop the simulation loop (nor the other controllers)."""
-    log = Log()
+    log = FakeLog()
     model = urdf_reader.parse_urdf(racebot_like_urdf())
     hw = RobotHW(model, hardware_joints(model))
     params = {'broken': {'type': 'test/Broken'}, 'fine': {'type': 'test/Counting'}}

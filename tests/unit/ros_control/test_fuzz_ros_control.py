@@ -16,6 +16,8 @@ from racebot_sim_bridge.ros_control.hardware_interface import EFFORT, JointHandl
 from racebot_sim_bridge.ros_control.pid import Pid
 from racebot_sim_bridge.ros_controllers import CONTROLLER_TYPES
 
+from fakes import FakeLog
+
 SETTINGS = settings(max_examples=150, deadline=None, suppress_health_check=[HealthCheck.too_slow])
 
 gain = st.floats(min_value=-1e3, max_value=1e3, allow_nan=False)
@@ -143,22 +145,12 @@ class _IO:
         pass
 
 
-class _Log:
-    def __init__(self):
-        self.lines = []
-
-    def error(self, m):
-        self.lines.append(m)
-
-    warn = info = error
-
-
 def _manager(configs):
     model = urdf_reader.parse_urdf(_urdf())
     hw = RobotHW(model, hardware_joints(model))
     for h in hw.handles.values():
         h.read(0.0, 0.0)
-    return ControllerManager('/racebot', hw, lambda n: copy.deepcopy(configs.get(n)), _IO(), _Log(),
+    return ControllerManager('/racebot', hw, lambda n: copy.deepcopy(configs.get(n)), _IO(), FakeLog(),
                              CONTROLLER_TYPES), hw
 
 

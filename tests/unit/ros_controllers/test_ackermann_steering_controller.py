@@ -10,7 +10,8 @@ from racebot_sim_bridge.ros_control.controller_interface import ControllerInitEr
 from racebot_sim_bridge.ros_controllers import CONTROLLER_TYPES
 from racebot_sim_bridge.kinematics.controller_odometry import AckermannOdometry, ackermann_params_from_urdf
 
-from test_controllers import FakeIO, make_hw
+from controller_hw import make_hw
+from fakes import FakeIO
 
 TYPE = 'ackermann_steering_controller/AckermannSteeringController'
 CAR = """<robot name="car">

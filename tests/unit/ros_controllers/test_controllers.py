@@ -4,23 +4,22 @@ The controllers get the racebot's RobotHW (racecar.xacro rendered with the xacro
 URDF for joint kinds the racebot lacks, and an in-memory I/O object that records publications and
 lets a test deliver command messages. No ROS master.
 """
-import copy
 import math
 
 import pytest
-import rospy
 from control_msgs.msg import JointControllerState
 from sensor_msgs.msg import JointState
-from std_msgs.msg import Float64
 
-from racebot_sim_bridge.gazebo_ros_control.robot_hw_sim import hardware_joints
-from racebot_sim_bridge.description import urdf_reader
+from racebot_sim_bridge.kinematics.angles import shortest_angular_distance_with_limits
 from racebot_sim_bridge.ros_control.controller_interface import STATE_PUBLISH_EVERY, ControllerInitError
 from racebot_sim_bridge.ros_controllers import CONTROLLER_TYPES
 from racebot_sim_bridge.ros_controllers.effort_controllers import (EffortForwardController, JointPositionController,
                                                                    JointVelocityController)
 from racebot_sim_bridge.ros_controllers.joint_state_controller import JointStateController
-from racebot_sim_bridge.ros_control.hardware_interface import EFFORT, STATE, RobotHW
+from racebot_sim_bridge.ros_control.hardware_interface import EFFORT, STATE
+
+from controller_hw import make_hw
+from fakes import FakeIO
 
 NS = '/racebot'
 DT = 0.001
@@ -29,60 +28,6 @@ RACEBOT_JOINTS = sorted(['left_steering_hinge_joint', 'right_steering_hinge_join
 
 
 # -- fakes and fixtures ---------------------------------------------------------------------------
-
-class FakeTopic:
-    def __init__(self, io, topic, cls, queue_size=None, callback=None):
-        self.io, self.topic, self.cls, self.queue_size, self.callback = io, topic, cls, queue_size, callback
-        self.messages = []
-        self.unregistered = False
-
-    def publish(self, msg):
-        assert isinstance(msg, self.cls)
-        self.messages.append(copy.deepcopy(msg))  # controllers reuse their message objects
-
-    def unregister(self):
-        self.unregistered = True
-
-
-class FakeIO:
-    """The I/O object controllers take: publisher/subscriber/stamp, recorded in memory."""
-
-    def __init__(self):
-        self.publishers = {}
-        self.subscribers = {}
-        self.warnings = []
-
-    def publisher(self, topic, cls, queue_size):
-        assert topic not in self.publishers, 'two publishers on %s' % topic
-        self.publishers[topic] = FakeTopic(self, topic, cls, queue_size)
-        return self.publishers[topic]
-
-    def subscriber(self, topic, cls, callback):
-        self.subscribers[topic] = FakeTopic(self, topic, cls, callback=callback)
-        return self.subscribers[topic]
-
-    def stamp(self, t):
-        return rospy.Time.from_sec(t)
-
-    def warn_throttle(self, key, period, message):
-        self.warnings.append(message)
-
-    def send(self, topic, value):
-        sub = self.subscribers[topic]
-        assert sub.cls is Float64
-        sub.callback(Float64(value))
-
-    def published(self, topic):
-        return self.publishers[topic].messages
-
-
-def make_hw(xml):
-    model = urdf_reader.parse_urdf(xml)
-    hw = RobotHW(model, hardware_joints(model))
-    for h in hw.handles.values():
-        h.read(0.0, 0.0)
-    return hw
-
 
 @pytest.fixture
 def hw(racebot_xml):

@@ -8,7 +8,8 @@ from racebot_sim_bridge.ros_control.controller_interface import ControllerInitEr
 from racebot_sim_bridge.ros_controllers import CONTROLLER_TYPES
 from racebot_sim_bridge.ros_control.hardware_interface import EFFORT, POSITION, VELOCITY
 
-from test_controllers import FakeIO, make_hw
+from controller_hw import make_hw
+from fakes import FakeIO
 
 ARM = """<robot name="arm">
   <link name="base"/><link name="l1"/><link name="l2"/>

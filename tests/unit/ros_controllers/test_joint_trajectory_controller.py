@@ -6,7 +6,6 @@ import pytest
 import rospy
 from control_msgs.msg import FollowJointTrajectoryGoal, FollowJointTrajectoryResult, JointTolerance
 from control_msgs.srv import QueryTrajectoryStateRequest
-from trajectory_msgs.msg import JointTrajectory, JointTrajectoryPoint
 
 from racebot_sim_bridge.description import sdf_reader
 from racebot_sim_bridge.ros_controllers.joint_trajectory_controller import (EffortJointTrajectoryController,
@@ -14,6 +13,9 @@ from racebot_sim_bridge.ros_controllers.joint_trajectory_controller import (Effo
                                                                             VelocityJointTrajectoryController)
 from racebot_sim_bridge.engine.simulator import Simulator
 from racebot_sim_bridge.gazebo_ros_control.gazebo_ros_control_plugin import GazeboRosControlPlugin
+
+from trajectory_io import IO, GoalHandle, trajectory
+from fakes import FakeLog
 
 TURRET = """<robot name="turret">
   <link name="world"/>
@@ -43,77 +45,8 @@ VARIANTS = [(PositionJointTrajectoryController, 'PositionJointInterface', {}),
             (EffortJointTrajectoryController, 'EffortJointInterface', {'gains': GAINS})]
 
 
-class Topic:
-    def __init__(self, callback=None):
-        self.callback, self.messages = callback, []
-
-    def publish(self, msg):
-        self.messages.append(msg)
-
-    def unregister(self):
-        pass
-
-
-class IO:
-    def __init__(self):
-        self.topics, self.warnings, self.services, self.actions = {}, [], {}, {}
-
-    def publisher(self, topic, cls, queue_size):
-        return self.topics.setdefault(topic, Topic())
-
-    def subscriber(self, topic, cls, callback):
-        return self.topics.setdefault(topic, Topic(callback))
-
-    def service(self, name, cls, handler):
-        self.services[name] = handler
-        return Topic()
-
-    def action_server(self, ns, cls, goal_cb, cancel_cb):
-        self.actions[ns] = (goal_cb, cancel_cb)
-        return Topic()
-
-    def stamp(self, t):
-        return rospy.Time.from_sec(t)
-
-    def warn_throttle(self, key, period, message):
-        self.warnings.append(message)
-
-
-class GoalHandle:
-    """actionlib's ServerGoalHandle as the controller uses it, recording what it was told."""
-
-    def __init__(self, goal):
-        self.goal, self.status, self.result, self.feedback = goal, 'pending', None, []
-
-    def get_goal(self):
-        return self.goal
-
-    def set_accepted(self, text=''):
-        self.status = 'active'
-
-    def set_rejected(self, result=None, text=''):
-        self.status, self.result = 'rejected', result
-
-    def set_canceled(self, result=None, text=''):
-        self.status = 'canceled'
-
-    def set_aborted(self, result=None, text=''):
-        self.status, self.result = 'aborted', result
-
-    def set_succeeded(self, result=None, text=''):
-        self.status, self.result = 'succeeded', result
-
-    def publish_feedback(self, feedback):
-        self.feedback.append(feedback)
-
-
-class Log:
-    def __getattr__(self, _name):
-        return lambda *a: None
-
-
 def arm(cls, iface, params):
-    sim = Simulator(sdf_reader.parse_world(sdf_reader.EMPTY_WORLD_SDF), io=None, log=Log(), get_params={}.get)
+    sim = Simulator(sdf_reader.parse_world(sdf_reader.EMPTY_WORLD_SDF), io=None, log=FakeLog(), get_params={}.get)
     GazeboRosControlPlugin.attach(sim)
     robot = sim.spawn_urdf('turret', TURRET % {'iface': iface})
     io = IO()
@@ -132,13 +65,6 @@ def run(sim, controller, seconds):
         sim.steps += 1
         sim.time += sim.step_size
         sim.robots['turret'].control.read(sim.world)
-
-
-def trajectory(points, joints=('j1', 'j2')):
-    t = JointTrajectory(joint_names=list(joints))
-    for positions, seconds in points:
-        t.points.append(JointTrajectoryPoint(positions=list(positions), time_from_start=rospy.Duration(seconds)))
-    return t
 
 
 @pytest.mark.parametrize('cls, iface, params', VARIANTS)

@@ -10,7 +10,8 @@ from racebot_sim_bridge.ros_control.controller_interface import ControllerInitEr
 from racebot_sim_bridge.ros_controllers import CONTROLLER_TYPES
 from racebot_sim_bridge.ros_controllers.mecanum_drive_controller import body_twist, k_from_origins, wheel_velocities
 
-from test_controllers import FakeIO, make_hw
+from controller_hw import make_hw
+from fakes import FakeIO
 
 TYPE = 'mecanum_drive_controller/MecanumDriveController'
 WHEEL = """<link name="%(n)s_link"><collision><geometry><cylinder radius="0.0759" length="0.08"/></geometry>

@@ -1,7 +1,7 @@
 """sensors.schedule.RateMeter from several threads at once, as the bridge uses it: ticks from the
 physics thread and the render worker's reader thread, skips from the physics thread, snapshots
 from the diagnostics timer. The threads are forced to switch before any bytecode of schedule.py
-(test_render_races.interleaved); without that, CPython 3.11's GIL never switched inside `+=`
+(interleaving.interleaved); without that, CPython 3.11's GIL never switched inside `+=`
 (8 threads x 200,000 unlocked ticks lost none), so the race would go unseen."""
 import threading
 
@@ -9,7 +9,8 @@ import pytest
 
 from racebot_sim_bridge.sensors import schedule
 from racebot_sim_bridge.sensors.schedule import RateMeter
-from test_render_races import interleaved
+
+from interleaving import interleaved
 
 THREADS = 4
 EVENTS = 2000  # per thread

@@ -6,7 +6,6 @@ Python call, so with a 1 us switch interval the GIL can change hands before ever
 No master, no worker process: the worker's side is a thread behind a real socket pair."""
 import contextlib
 import queue
-import sys
 import threading
 import time
 import types
@@ -20,34 +19,10 @@ from racebot_sim_bridge.sensors import render_worker
 from racebot_sim_bridge.sensors.frame_publisher import FramePublisher
 from racebot_sim_bridge.sensors.schedule import RateMeter
 
+from interleaving import interleaved
+
 WAIT = 120.0  # wall seconds before a test gives up waiting (the machine is shared)
 pytestmark = pytest.mark.filterwarnings("error::pytest.PytestUnhandledThreadExceptionWarning")  # a crashed reader fails
-
-
-@contextlib.contextmanager
-def interleaved(*modules):
-    """Threads may switch before every bytecode of `modules` (this thread and threads started
-    inside the block)."""
-    files = {m.__file__ for m in modules}
-
-    def each_opcode(frame, event, arg):
-        return each_opcode
-
-    def on_call(frame, event, arg):
-        if frame.f_code.co_filename in files:
-            frame.f_trace_opcodes = True
-            return each_opcode
-        return None
-    interval = sys.getswitchinterval()
-    sys.setswitchinterval(1e-6)
-    threading.settrace(on_call)
-    sys.settrace(on_call)
-    try:
-        yield
-    finally:
-        sys.settrace(None)
-        threading.settrace(None)
-        sys.setswitchinterval(interval)
 
 
 # -- render_worker.RenderWorker: submit on the physics thread, replies and restarts on the reader --

@@ -17,7 +17,8 @@ from racebot_sim_bridge.sensors import render as render_module
 from racebot_sim_bridge.sensors import render_worker
 from racebot_sim_bridge.sensors.camera import OPTICAL_FROM_SENSOR
 from racebot_sim_bridge.sensors.imu_reading import quaternion_to_matrix
-from test_sensors_sim import add_red_box, listen, make_world, run, sensor_of
+
+from sensors_sim import add_red_box, listen, make_world, run, sensor_of
 
 WAIT = 90.0  # wall seconds a test waits for frames before it fails (the machine is shared)
 CAMERA = '/rrbot/camera1/image_raw'
@@ -229,7 +230,7 @@ def test_the_copy_follows_a_respawn_under_the_same_name():
     must be rebuilt from the new model, and posed by the snapshot."""
     from racebot_sim_bridge.description import sdf_reader
     from racebot_sim_bridge.engine.world_copy import WorldCopy, snapshot, sources
-    from test_sensors_sim import RED_BOX
+    from sensors_sim import RED_BOX
     world, other = PhysicsWorld(), PhysicsWorld()
     try:
         copy = WorldCopy(other)

@@ -2,12 +2,9 @@
 with a stand-in for rospy: no master. Checks what the sensors publish against the world's
 geometry, the pinhole model and physics, and that sensors nobody listens to cost nothing."""
 import math
-import sys
-from pathlib import Path
 
 import numpy as np
 import pytest
-import rospy
 
 from racebot_sim_bridge.kinematics import rotations
 from racebot_sim_bridge.description import sdf_reader, urdf_reader
@@ -17,103 +14,9 @@ from racebot_sim_bridge.sensors import render
 from racebot_sim_bridge.gazebo_plugins.sensor_manager import SensorManager
 from racebot_sim_bridge.engine.simulator import Simulator
 
-REPO = Path(__file__).resolve().parents[3]
-ROOM = REPO / 'racebot_gazebo' / 'worlds' / 'room_mini.world'
-sys.path.insert(0, str(REPO / 'tests' / 'integration'))
-import sensors_geometry  # noqa: E402  (the rostest's own geometry, shared)
-
-
-class FakePublisher:
-    def __init__(self, topic):
-        self.topic = topic
-        self.connections = 0
-        self.messages = []
-
-    def get_num_connections(self):
-        return self.connections
-
-    def publish(self, msg):
-        self.messages.append(msg)
-
-    def unregister(self):
-        pass
-
-
-class FakeService:
-    def shutdown(self):
-        pass
-
-
-class FakeRospy:
-    """The part of rospy SensorManager uses; publishers are recorded by topic."""
-    Time = rospy.Time
-
-    def __init__(self, params=None):
-        self.params = dict(params or {})
-        self.publishers = {}
-        self.services = {}
-        self.logs = []
-
-    def get_param(self, name, default=None):
-        return self.params.get(name, default)
-
-    def set_param(self, name, value):
-        self.params[name] = value
-
-    def Publisher(self, topic, msg_class, queue_size=None):
-        assert queue_size, 'every publisher needs a queue_size'
-        self.publishers[topic] = FakePublisher(topic)
-        return self.publishers[topic]
-
-    def Service(self, name, service_class, handler):
-        self.services[name] = handler
-        return FakeService()
-
-    def loginfo(self, msg):
-        self.logs.append(('info', msg))
-
-    def logwarn(self, msg):
-        self.logs.append(('warn', msg))
-
-    def logerr(self, msg):
-        self.logs.append(('error', msg))
-
-    def is_shutdown(self):
-        return True
-
-
-class NullIO:
-    def __getattr__(self, name):
-        return lambda *args, **kwargs: None
-
-
-class Log:
-    def info(self, msg):
-        pass
-    warn = error = info
-
-
-def make_world(racebot_xml, params=None, pose=(0.0, 0.0, 0.0)):
-    spec = sdf_reader.load_world(str(ROOM))
-    sim = Simulator(spec, NullIO(), Log(), lambda path: None)
-    # Rendering in the physics thread (the old path), synchronous; test_render_worker.py covers the worker.
-    fake = FakeRospy(dict({'~sensors/report_period': 0, '~sensors/render_budget': 1.0,
-                           '~sensors/noise': False, '~sensors/render_worker': False}, **(params or {})))
-    manager = SensorManager(fake, sim)
-    robot = sim.spawn_urdf('racebot', racebot_xml, '/', pose)  # '/': spawn_model at the root
-    frame = robot.body.com_pose_for_frame(pose, (0, 0, 0, 1))  # as spawn_urdf_model places it
-    robot.body.set_pose(frame.position, frame.orientation)
-    return sim, fake, manager, robot
-
-
-def listen(fake, *topics):
-    for t in topics:
-        fake.publishers[t].connections = 1
-
-
-def run(sim, seconds):
-    for _ in range(int(round(seconds / sim.step_size))):
-        sim.step()
+from sensors_sim import ROOM, add_red_box, listen, make_world, run, sensor_of
+from fakes import FakeLog, FakeRospy, NullIO
+import sensors_geometry  # tests/integration: the rostest's own geometry, shared
 
 
 @pytest.fixture
@@ -121,10 +24,6 @@ def world(racebot_xml):
     sim, fake, manager, robot = make_world(racebot_xml)
     yield sim, fake, manager, robot
     sim.close()
-
-
-def sensor_of(manager, kind):
-    return next(s for s in manager._active if s.config.kind == kind)
 
 
 def test_every_sensor_block_becomes_its_topics(world):
@@ -274,20 +173,6 @@ def test_imu_acceleration_is_over_the_last_step_before_each_update(world):
     assert m.linear_acceleration.z > 9.8 + 0.5 * 5.0 * 9.8
 
 
-RED_BOX = """<sdf version="1.6"><world name="w"><model name="red_box"><static>true</static>
-<pose>{x} {y} {z} 0 0 0</pose><link name="link">
-<collision name="c"><geometry><box><size>{s} {s} {s}</size></box></geometry></collision>
-<visual name="v"><geometry><box><size>{s} {s} {s}</size></box></geometry>
-<material><ambient>1 0 0 1</ambient><diffuse>1 0 0 1</diffuse></material></visual>
-</link></model></world></sdf>"""
-
-
-def add_red_box(sim, x, y, z, size):
-    model = sdf_reader.parse_world(RED_BOX.format(x=x, y=y, z=z, s=size)).models[0]
-    with sim.lock:
-        sim.world.add_sdf_model(model)
-
-
 def test_camera_shows_a_red_box_where_the_pinhole_says(world):
     sim, fake, manager, robot = world
     add_red_box(sim, 1.2, 0.25, 0.1, 0.1)
@@ -357,7 +242,7 @@ def test_delete_closes_the_sensors(world):
 
 def test_a_sensor_on_a_missing_link_is_refused_with_a_warning(racebot_xml):
     spec = sdf_reader.load_world(str(ROOM))
-    sim = Simulator(spec, NullIO(), Log(), lambda path: None)
+    sim = Simulator(spec, NullIO(), FakeLog(), lambda path: None)
     try:
         fake = FakeRospy({'~sensors/report_period': 0})
         manager = SensorManager(fake, sim)

@@ -4,16 +4,13 @@ read by racebot's sdf_reader as the world server reads them), the model count it
 fetched by the bench, and its figures in the table and the kept figures. No master, no ROS node."""
 import os
 import subprocess
-import sys
 from pathlib import Path
 
 import pytest
 
-REPO = Path(__file__).resolve().parents[3]
-sys.path.insert(0, str(REPO / 'tools'))
-from bench import big_world, kept_figures, report  # noqa: E402
+from bench import big_world, kept_figures, report
 
-from racebot_sim_bridge.description import meshes, sdf_reader  # noqa: E402
+from racebot_sim_bridge.description import meshes, sdf_reader
 
 
 @pytest.fixture

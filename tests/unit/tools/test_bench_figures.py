@@ -4,14 +4,13 @@ side-by-side pairs with its spread, the key figures taken from a run's results, 
 flagged. No master, no ROS."""
 import importlib.util
 import json
-import sys
 from pathlib import Path
 
 import pytest
 
+from bench import kept_figures, report, stats
+
 REPO = Path(__file__).resolve().parents[3]
-sys.path.insert(0, str(REPO / 'tools'))
-from bench import kept_figures, report, stats  # noqa: E402
 
 
 def bench_script():

@@ -3,19 +3,15 @@ sensor casts (same origin, same directions) and its wheels turn at the speeds th
 other rays (once 0.6 mm higher: from the base's centre of mass) measures other work, and the ratio means nothing.
 Real PyBullet, no master."""
 import math
-import sys
-from pathlib import Path
 
 import numpy as np
 import pybullet as pb
 
-REPO = Path(__file__).resolve().parents[3]
-sys.path.insert(0, str(REPO / 'tools'))
-from bench import common, fleet  # noqa: E402
+from bench import common, fleet
 
-import model_plugin_sim as mps  # noqa: E402
-from racebot_sim_bridge.sensors.imu_reading import quaternion_to_matrix  # noqa: E402
-from racebot_sim_bridge.gazebo_plugins.sensor_manager import SensorManager  # noqa: E402
+import model_plugin_sim as mps
+from racebot_sim_bridge.sensors.imu_reading import quaternion_to_matrix
+from racebot_sim_bridge.gazebo_plugins.sensor_manager import SensorManager
 
 
 def test_the_ceilings_laser_casts_the_laser_sensors_rays(tmp_path):

@@ -1,13 +1,9 @@
 """The bench's and the demo's figures (tools/bench/plot.py): matplotlib with the Agg backend, no
 display; each figure has the axes labels, units and legend a reader expects, and is written as a
 PNG of the expected size."""
-import sys
-from pathlib import Path
 
 
-REPO = Path(__file__).resolve().parents[3]
-sys.path.insert(0, str(REPO / 'tools'))
-from bench import plot, report  # noqa: E402
+from bench import plot, report
 
 PNG_MAGIC = b'\x89PNG\r\n\x1a\n'
 

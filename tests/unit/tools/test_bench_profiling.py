@@ -1,11 +1,7 @@
 """The bench's py-spy summary (tools/bench/profiling.py): shares of the update loop's samples by frame, from py-spy's
 raw (collapsed) stacks. No py-spy run: stacks written here."""
-import sys
-from pathlib import Path
 
-REPO = Path(__file__).resolve().parents[3]
-sys.path.insert(0, str(REPO / 'tools'))
-from bench import profiling  # noqa: E402
+from bench import profiling
 
 STEP = b'step (racebot_sim_bridge/engine/simulator.py:231)'
 PHYSICS = b'step (racebot_sim_bridge/engine/physics.py:613)'

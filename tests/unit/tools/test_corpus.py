@@ -4,15 +4,14 @@ readers, and the table."""
 import copy
 import os
 import subprocess
-import sys
 from pathlib import Path
 
 import pytest
 
+from corpus import manifest, sensors, sources, table
+from corpus import run as corpus_run
+
 REPO = Path(__file__).resolve().parents[3]
-sys.path.insert(0, str(REPO / 'tools'))
-from corpus import manifest, sensors, sources, table  # noqa: E402
-from corpus import run as corpus_run  # noqa: E402
 
 COMMIT = 'e9d809ca8e3bf889c0275e4103b15a341ffab888'
 

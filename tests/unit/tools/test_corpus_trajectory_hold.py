@@ -5,10 +5,8 @@ pose and is aborted at once (PATH_TOLERANCE_VIOLATED). The check's hold_command,
 `command` topic, makes it hold where the arm rests, and the goal succeeds.
 
 Real PyBullet, the gazebo_ros_control plugin and its controller manager stepped by a Simulator (loaded and
-started as the spawner does), the controller's topics and action in memory (test_joint_trajectory_controller's
+started as the spawner does), the controller's topics and action in memory (tests/unit/trajectory_io.py's
 fakes). No ROS master."""
-import sys
-from pathlib import Path
 
 import pytest
 from control_msgs.msg import FollowJointTrajectoryGoal, FollowJointTrajectoryResult
@@ -18,11 +16,10 @@ from racebot_sim_bridge.engine.simulator import Simulator
 from racebot_sim_bridge.gazebo_ros_control.gazebo_ros_control_plugin import GazeboRosControlPlugin
 from racebot_sim_bridge.ros_control.controller_switch import STRICT
 
-from test_controller_load_while_stepping import Log
-from test_joint_trajectory_controller import IO, GoalHandle, trajectory
+from fakes import FakeLog
+from trajectory_io import IO, GoalHandle, trajectory
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[3] / 'tools'))
-from corpus.checks import HOLD_S, hold_command  # noqa: E402
+from corpus.checks import HOLD_S, hold_command
 
 # Bolted to the world, both joints about y on effort transmissions; at 0 the arm points along x, level, and
 # gravity turns both joints positive (down) until the arm lies on the ground.
@@ -64,7 +61,7 @@ SETTLE_S = 3.0  # as the ur5 row's settle_s
 
 class Rig:
     def __init__(self, start_after_steps):
-        self.log = Log()
+        self.log = FakeLog()
         self.io = IO()
         self.sim = Simulator(sdf_reader.parse_world(sdf_reader.EMPTY_WORLD_SDF), io=self.io, log=self.log,
                              get_params=lambda path: CONTROLLER if path.endswith('/arm_controller') else None)

@@ -1,12 +1,8 @@
 """The soak's memory verdict (tools/soak.py, rss_windows): a point cloud on its way out raises the
 simulator's RSS by ~10 MB in about 40 % of the samples; that must not read as growth, and a leak must."""
 import random
-import sys
-from pathlib import Path
 
-REPO = Path(__file__).resolve().parents[3]
-sys.path.insert(0, str(REPO / 'tools'))
-import soak  # noqa: E402
+import soak
 
 BASE_KB = 188000
 CLOUD_KB = 9800   # one 640x480 PointCloud2 (32-byte points)

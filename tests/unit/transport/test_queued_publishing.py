@@ -9,23 +9,7 @@ import pytest
 
 from racebot_sim_bridge.transport import queued_publishing
 
-
-class RecordingTransport:
-    """What QueuedConnection wraps: its writer thread calls write_data; `done` ends that thread. With `hold`, the
-    first write waits for it: the writer is busy and what the caller writes meanwhile stays queued."""
-
-    def __init__(self, hold=None):
-        self.sent, self.done, self.hold = [], False, hold
-        self.writing = threading.Event()
-
-    def set_cleanup_callback(self, callback):
-        self.cleanup = callback
-
-    def write_data(self, data):
-        self.writing.set()
-        if self.hold is not None:
-            self.hold.wait(10.0)
-        self.sent.append(data)
+from queued_transports import RecordingTransport, close, socket_connection
 
 
 @pytest.fixture
@@ -103,45 +87,6 @@ def test_a_writer_error_reaches_the_next_caller_once(connection):
     with pytest.raises(RuntimeError, match='connection lost'):
         conn.write_data(1)
     assert conn.write_data(2) is True
-
-
-class SocketTransport(RecordingTransport):
-    """A transport over a real socket pair, as rospy's TCPROSTransport: the writer sendall()s on `socket`."""
-
-    def __init__(self, hold=None):
-        super().__init__(hold)
-        import socket
-        self.socket, self.peer = socket.socketpair()
-        self.stat_bytes = self.stat_num_msg = 0
-
-    def write_data(self, data):
-        self.writing.set()
-        if self.hold is not None:
-            self.hold.wait(10.0)
-        self.socket.sendall(data)
-        self.stat_bytes += len(data)
-        self.stat_num_msg += 1
-
-    def received(self, count, timeout=5.0):
-        self.peer.settimeout(timeout)
-        got = b''
-        while len(got) < count:
-            got += self.peer.recv(count - len(got))
-        return got
-
-
-def socket_connection(queue_size, buffer=None):
-    import socket
-    transport = SocketTransport()
-    if buffer:
-        transport.socket.setsockopt(socket.SOL_SOCKET, socket.SO_SNDBUF, buffer)
-    return queued_publishing.install()(transport, queue_size), transport
-
-
-def close(conn, transport):
-    transport.done = True
-    conn._closed_connection_callback(transport)
-    conn._thread.join(5.0)
 
 
 def test_with_nothing_queued_a_message_goes_to_the_socket_from_the_caller(monkeypatch):

@@ -19,7 +19,7 @@ from hypothesis import given, settings, strategies as st
 from racebot_sim_bridge.transport import queued_publishing
 from racebot_sim_bridge.transport.socket_writer import SocketWriter
 
-from test_queued_publishing import close, socket_connection
+from queued_transports import close, socket_connection
 
 SMALL_BUFFER = 4096  # SO_SNDBUF of a sender that takes only part of a big message (the kernel doubles it)
 

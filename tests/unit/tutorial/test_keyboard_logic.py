@@ -1,14 +1,11 @@
 """keyboard_teleop's key logic (racebot_gazebo.teleop_keys), on a fake clock: no Tk, no rospy."""
 import heapq
 import itertools
-import os
-import sys
 
 import pytest
 
-sys.path.insert(0, os.path.join(os.path.dirname(__file__), '..', '..', '..', 'racebot_gazebo', 'src'))
-from racebot_gazebo import teleop_keys  # noqa: E402
-from racebot_gazebo.teleop_keys import STOP, DriveCommand, KeyState, TeleopController  # noqa: E402
+from racebot_gazebo import teleop_keys
+from racebot_gazebo.teleop_keys import STOP, DriveCommand, KeyState, TeleopController
 
 SPEED, STEER = 0.5, 0.34
 

@@ -11,7 +11,7 @@ import pytest
 
 REPO = Path(__file__).resolve().parents[3]
 EXCLUDED = {'build', 'devel', '.venv', 'install', 'out', '.git', 'node_modules'}
-ROBOT_PACKAGE_FIXTURES = REPO / 'tests' / 'fixtures' / 'robot_package'
+EXAMPLE_PACKAGE = REPO / 'examples' / 'demo_diffbot'  # hidden from catkin and rospack by examples/CATKIN_IGNORE
 ROBOT_FIXTURES = REPO / 'tests' / 'fixtures' / 'robots'  # the issue-17 test robots' packages
 STANDIN_FIXTURES = REPO / 'tests' / 'fixtures' / 'standin_workspace'  # a workspace naming the stand-ins
 
@@ -32,8 +32,8 @@ def ros_package_path(monkeypatch):
     paths = [p for p in os.environ.get('ROS_PACKAGE_PATH', '').split(os.pathsep) if p]
     if not any(Path(p).resolve() == REPO for p in paths):
         paths = [str(REPO)] + paths
-    # the robot package fixture's own launch file finds its package (last: it shadows nothing)
-    monkeypatch.setenv('ROS_PACKAGE_PATH', os.pathsep.join(paths + [str(ROBOT_PACKAGE_FIXTURES), str(ROBOT_FIXTURES),
+    # the example robot package's own launch file finds its package (last: it shadows nothing)
+    monkeypatch.setenv('ROS_PACKAGE_PATH', os.pathsep.join(paths + [str(EXAMPLE_PACKAGE), str(ROBOT_FIXTURES),
                                                                     str(STANDIN_FIXTURES)]))
     # roslaunch keeps one RosPack for the process, made from the ROS_PACKAGE_PATH of its first $(find)
     # (an earlier test's, in a whole run): no public call resets it, so start each check with none.

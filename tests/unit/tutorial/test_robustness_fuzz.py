@@ -27,6 +27,8 @@ from racebot_sim_bridge.description import sdf_reader, urdf_model, urdf_reader
 from racebot_sim_bridge.gazebo_ros_control.robot_hw_sim import hardware_joints
 from racebot_sim_bridge.ros_control.pid import Pid
 
+from fakes import FakeLog
+
 SETTINGS = settings(max_examples=200, deadline=None, suppress_health_check=[HealthCheck.too_slow])
 HEAVY = settings(max_examples=40, deadline=None,
                  suppress_health_check=[HealthCheck.too_slow, HealthCheck.function_scoped_fixture])
@@ -217,20 +219,6 @@ def mutated(draw, document, max_mutations=3):
     return text
 
 
-class Log:
-    def __init__(self):
-        self.lines = []
-
-    def error(self, m):
-        self.lines.append(('error', m))
-
-    def warn(self, m):
-        self.lines.append(('warn', m))
-
-    def info(self, m):
-        self.lines.append(('info', m))
-
-
 class NoIO:
     """No topics: controllers are not loaded by these tests."""
 
@@ -242,7 +230,7 @@ class NoIO:
 
 @pytest.fixture(scope='module')
 def racebot_doc():
-    from conftest import render_racebot
+    from racebot_model import render_racebot
     return render_racebot(pretty=False)
 
 
@@ -251,7 +239,7 @@ def simulator():
     from racebot_sim_bridge.engine.simulator import Simulator
     from racebot_sim_bridge.gazebo_ros_control.gazebo_ros_control_plugin import GazeboRosControlPlugin
     spec = sdf_reader.load_world('worlds/empty.world')
-    sim = Simulator(spec, NoIO(), Log(), lambda path: None)
+    sim = Simulator(spec, NoIO(), FakeLog(), lambda path: None)
     GazeboRosControlPlugin.attach(sim)
     yield sim
     sim.close()

@@ -1,12 +1,9 @@
 """Where the keyboard window goes beside the 3D window (racebot_gazebo.window_place.beside): to its right,
 below it on a narrow screen, the screen's corner when neither fits. The X side runs in viewer.test."""
-import os
-import sys
 
 import pytest
 
-sys.path.insert(0, os.path.join(os.path.dirname(__file__), '..', '..', '..', 'racebot_gazebo', 'src'))
-from racebot_gazebo.window_place import GAP, beside, overlap  # noqa: E402
+from racebot_gazebo.window_place import GAP, beside, overlap
 
 THREE_D = (0, 0, 1024, 768)  # PyBullet's window, where it always opens
 KEYBOARD = (274, 174)        # the keyboard window's size (Tk, Xvfb's fonts)

@@ -15,7 +15,7 @@ from pathlib import Path
 
 import pytest
 
-from conftest import REPO, XACRO_FILE, render_racebot
+from racebot_model import REPO, XACRO_FILE, render_racebot
 
 XACRO_NS = 'xmlns:xacro="http://www.ros.org/wiki/xacro"'
 

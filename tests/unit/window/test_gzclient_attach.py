@@ -18,6 +18,8 @@ from racebot_sim_bridge.window import viewer, viewer_process
 from racebot_sim_bridge.window.gzclient import connect, display_problem
 from racebot_sim_bridge.engine.physics import PhysicsWorld
 
+from fakes import FakeLog
+
 WORLD = """<?xml version="1.0"?><sdf version="1.6"><world name="default">
   <model name="wall"><static>true</static><pose>2 0 0.5 0 0 0</pose><link name="link">
     <collision name="c"><geometry><box><size>0.1 2 1</size></box></geometry></collision>
@@ -30,17 +32,6 @@ BOX_URDF = """<?xml version="1.0"?><robot name="box"><link name="base">
 WAIT = 10.0
 
 
-class Log:
-    def __init__(self):
-        self.lines = []
-
-    def info(self, text):
-        self.lines.append(('info', text))
-
-    def warn(self, text):
-        self.lines.append(('warn', text))
-
-
 @pytest.fixture
 def world():
     w = PhysicsWorld()
@@ -51,7 +42,7 @@ def world():
 
 @pytest.fixture
 def windows(world):
-    log = Log()
+    log = FakeLog()
     attached = viewer.AttachedWindows(world, log)
     attached.log_lines = log.lines
     yield attached
@@ -190,7 +181,7 @@ def test_a_connection_that_is_not_a_window_is_dropped(world, windows):
 
 
 def test_close_tells_each_window_why_and_removes_the_socket(world):
-    windows = viewer.AttachedWindows(world, Log())
+    windows = viewer.AttachedWindows(world, FakeLog())
     conn = attach(windows)
     next_update(windows, conn)
     windows.close('the world server shut down')
@@ -199,7 +190,7 @@ def test_close_tells_each_window_why_and_removes_the_socket(world):
 
 
 def test_close_tells_also_a_window_that_connected_since_the_last_sync(world):
-    windows = viewer.AttachedWindows(world, Log())
+    windows = viewer.AttachedWindows(world, FakeLog())
     conn = attach(windows)  # accepted by the accept thread, not yet taken in by a sync
     deadline = time.monotonic() + WAIT
     while not windows._new and time.monotonic() < deadline:
