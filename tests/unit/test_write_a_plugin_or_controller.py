@@ -11,7 +11,7 @@ from racebot_sim_bridge.description import sdf_reader
 from racebot_sim_bridge.engine.simulator import Simulator
 from racebot_sim_bridge.gazebo_plugins.registry import Registry
 from racebot_sim_bridge.gazebo_ros_control.gazebo_ros_control_plugin import GazeboRosControlPlugin
-from racebot_sim_bridge.ros_control.controller_manager import STRICT
+from racebot_sim_bridge.ros_control.controller_switch import STRICT
 from racebot_sim_bridge.ros_controllers import CONTROLLER_TYPES
 
 from fakes import FakeIO, FakeLog

@@ -10,7 +10,6 @@ import pytest
 from racebot_sim_bridge.description import plugin_library, sdf_reader
 from racebot_sim_bridge.description.plugin_library import library_key
 from racebot_sim_bridge.engine.simulator import Simulator
-from racebot_sim_bridge.gazebo_plugins import registry
 from racebot_sim_bridge.gazebo_plugins.gazebo_ros_laser import LaserSensor
 from racebot_sim_bridge.gazebo_plugins.plugin_manager import PluginManager
 from racebot_sim_bridge.gazebo_plugins.registry import REGISTRY, Registry

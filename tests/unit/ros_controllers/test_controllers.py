@@ -10,7 +10,6 @@ import pytest
 from control_msgs.msg import JointControllerState
 from sensor_msgs.msg import JointState
 
-from racebot_sim_bridge.kinematics.angles import shortest_angular_distance_with_limits
 from racebot_sim_bridge.ros_control.controller_interface import STATE_PUBLISH_EVERY, ControllerInitError
 from racebot_sim_bridge.ros_controllers import CONTROLLER_TYPES
 from racebot_sim_bridge.ros_controllers.effort_controllers import (EffortForwardController, JointPositionController,
