@@ -280,6 +280,20 @@ def test_compiled_code_lives_in_its_rooms():
                      + '\n'.join(bad))
 
 
+def test_one_name_per_class():
+    """A reader who meets `Model` must know which one: no two classes of the product share a name."""
+    roots = [PACKAGE_SRC, REPO / 'racebot_control' / 'src', REPO / 'racebot_gazebo' / 'src', REPO / 'tools'] + \
+        sorted(REPO.glob('upstream_compat/*/src'))
+    seen = {}
+    for root in roots:
+        for path in sorted(root.rglob('*.py')):
+            for node in ast.walk(ast.parse(path.read_text(), str(path))):
+                if isinstance(node, ast.ClassDef):
+                    seen.setdefault(node.name, []).append(str(path.relative_to(REPO)))
+    shared = ['%s: %s' % (name, ', '.join(paths)) for name, paths in sorted(seen.items()) if len(paths) > 1]
+    assert not shared, 'classes sharing a name (give each one that says how it differs):\n' + '\n'.join(shared)
+
+
 def test_no_module_over_the_line_limit():
     roots = [PACKAGE_SRC] + sorted(REPO.glob('upstream_compat/*/src')) + [REPO / 'tools']
     long = ['%s: %d lines' % (path.relative_to(REPO), count)

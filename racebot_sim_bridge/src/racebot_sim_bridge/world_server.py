@@ -57,7 +57,7 @@ from racebot_sim_bridge.ros_control.command_trace import CommandTrace
 from racebot_sim_bridge.gazebo_ros_api.services import GazeboServices
 from racebot_sim_bridge.gazebo_ros_api.performance_metrics import PerformanceMetricsPublisher
 from racebot_sim_bridge.engine.load_trial import DEFAULT_TIMEOUT, LoadTrial
-from racebot_sim_bridge.engine.physics import PhysicsError
+from racebot_sim_bridge.engine.physics_types import PhysicsError
 from racebot_sim_bridge.gazebo_plugins.plugin_manager import PluginManager
 from racebot_sim_bridge.gazebo_ros_control.gazebo_ros_control_plugin import GazeboRosControlPlugin
 from racebot_sim_bridge.gazebo_plugins.sensor_manager import SensorManager

@@ -359,7 +359,8 @@ def test_a_static_mesh_collides_with_its_exact_concave_shape(isolated, physics):
     parts.append(mesh_fixtures.box((2.2, 0.2, 1.0)).apply_translation((0, 1.0, 0)))
     import trimesh
     path = mesh_fixtures.write_mesh(trimesh.util.concatenate(parts), str(isolated / 'u.stl'))
-    model = sdf_model.Model('u', pose=(0, 0, 0.5, 0, 0, 0), static=True, links=[sdf_model.Link('link', collisions=[
+    model = sdf_model.SdfModel('u', pose=(0, 0, 0.5, 0, 0, 0), static=True, links=[sdf_model.SdfLink(
+        'link', collisions=[
         sdf_model.Collision('c', sdf_model.ZERO_POSE, geometry.Shape('mesh', filename=path, scale=(1, 1, 1)))])])
     world = physics()
     world.add_sdf_model(model)
@@ -395,7 +396,7 @@ def test_visuals_false_builds_no_visual_shapes(isolated, physics):
     # (PyBullet's renderer draws the collision shapes of a body without visual shapes, in its default colour)
     path = mesh_fixtures.write_mesh(mesh_fixtures.box((1, 1, 1)), str(isolated / 'b.obj'))
     shape = geometry.Shape('mesh', filename=meshes.convert(path).obj_path, scale=(1, 1, 1))
-    model = sdf_model.Model('m', static=True, links=[sdf_model.Link('link', collisions=[
+    model = sdf_model.SdfModel('m', static=True, links=[sdf_model.SdfLink('link', collisions=[
         sdf_model.Collision('c', sdf_model.ZERO_POSE, shape)], visuals=[
         sdf_model.Visual('v', sdf_model.ZERO_POSE, shape, (1, 0, 0, 1))])])
     for visuals, red in ((True, True), (False, False)):
@@ -455,12 +456,12 @@ def test_each_visual_of_a_link_keeps_its_colour_in_a_camera_image(isolated, phys
     from racebot_sim_bridge.sensors.scene import SceneColours
     path = mesh_fixtures.write_mesh(mesh_fixtures.box((0.5, 0.5, 0.5)), str(isolated / 'b.stl'))
     mesh = geometry.Shape('mesh', filename=meshes.convert(path).obj_path, scale=(1, 1, 1))
-    link = sdf_model.Link('link', visuals=[
+    link = sdf_model.SdfLink('link', visuals=[
         sdf_model.Visual('red', (0, 0.4, 0, 0, 0, 0), geometry.Shape('box', size=(0.5, 0.5, 0.5)), (1, 0, 0, 1)),
         sdf_model.Visual('blue', (0, -0.4, 0, 0, 0, 0), mesh, (0, 0, 1, 1))],
         collisions=[sdf_model.Collision('c', sdf_model.ZERO_POSE, geometry.Shape('box', size=(0.5, 1.3, 0.5)))])
     world = physics()
-    world.add_sdf_model(sdf_model.Model('two', pose=(2, 0, 0, 0, 0, 0), static=True, links=[link]))
+    world.add_sdf_model(sdf_model.SdfModel('two', pose=(2, 0, 0, 0, 0, 0), static=True, links=[link]))
     SceneColours(world).refresh()
     view = world.client.computeViewMatrix([0, 0, 0], [1, 0, 0], [0, 0, 1])
     proj = world.client.computeProjectionMatrixFOV(60, 1, 0.05, 10)

@@ -22,7 +22,7 @@ MODEL_SDF = ROBOTS / 'sdf_diffbot' / 'models' / 'sdf_diffbot' / 'model.sdf'
 
 
 def model_of(body):
-    """The one sdf_model.Model of a <model> element's text."""
+    """The one sdf_model.SdfModel of a <model> element's text."""
     world = sdf_reader.parse_world('<sdf version="1.6"><world name="w">%s</world></sdf>' % body)
     assert len(world.models) == 1, world.warnings
     return world.models[0]

@@ -16,7 +16,8 @@ import pytest
 
 from racebot_sim_bridge.description import urdf_reader
 from racebot_sim_bridge.engine.load_trial import LoadTrial
-from racebot_sim_bridge.engine.physics import PhysicsError, PhysicsWorld
+from racebot_sim_bridge.engine.physics import PhysicsWorld
+from racebot_sim_bridge.engine.physics_types import PhysicsError
 
 FLAGS = pb.URDF_USE_INERTIA_FROM_FILE | pb.URDF_MAINTAIN_LINK_ORDER
 INERTIAL = ('<inertial><mass value="1"/><inertia ixx="0.01" iyy="0.01" izz="0.01" ixy="0" ixz="0" iyz="0"/>'

@@ -15,7 +15,9 @@ import pytest
 from racebot_sim_bridge.description import sdf_reader, urdf_reader
 
 from racebot_model import render_racebot
-from racebot_sim_bridge.engine.physics import NEGLIGIBLE_MASS, PhysicsError, PhysicsWorld
+from racebot_sim_bridge.engine.physics import PhysicsWorld
+from racebot_sim_bridge.engine.bullet_urdf import NEGLIGIBLE_MASS
+from racebot_sim_bridge.engine.physics_types import PhysicsError
 
 REPO = Path(__file__).resolve().parents[3]
 EMPTY_WORLD = REPO / 'racebot_sim_bridge' / 'worlds' / 'empty.world'
@@ -297,7 +299,7 @@ TWO_LINKS = """<sdf version="1.6"><world name="w"><model name="pair"><static>tru
 
 def test_a_body_declares_where_it_came_from_and_its_extra_bodies(make_world, car, racebot_model):
     import pickle
-    from racebot_sim_bridge.engine.physics import BodySource
+    from racebot_sim_bridge.engine.physics_types import BodySource
     w = make_world(world_text=TWO_LINKS)
     pair = w.bodies['pair']
     assert pair.source == BodySource('sdf', pair.source.model, None) and pair.source.model.name == 'pair'

@@ -10,7 +10,8 @@ from racebot_sim_bridge.engine.control_hook import ControlHook
 from racebot_sim_bridge.engine.joint import Joint
 from racebot_sim_bridge.engine.link import Link
 from racebot_sim_bridge.engine.model import Model
-from racebot_sim_bridge.engine.physics import PhysicsError, PhysicsWorld
+from racebot_sim_bridge.engine.physics import PhysicsWorld
+from racebot_sim_bridge.engine.physics_types import PhysicsError
 from racebot_sim_bridge.engine.simulator import Simulator, SpawnError
 from racebot_sim_bridge.gazebo_ros_control.gazebo_ros_control_plugin import GazeboRosControlPlugin
 

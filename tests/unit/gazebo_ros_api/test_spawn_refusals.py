@@ -17,7 +17,7 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 from racebot_sim_bridge.description import sdf_reader
-from racebot_sim_bridge.engine.physics import MAX_BULLET_LINKS
+from racebot_sim_bridge.engine.urdf_spawn import MAX_BULLET_LINKS
 from racebot_sim_bridge.engine.simulator import Simulator
 from racebot_sim_bridge.gazebo_plugins.plugin_manager import PluginManager
 from racebot_sim_bridge.gazebo_ros_api.services import GazeboServices

@@ -10,7 +10,7 @@ from __future__ import annotations
 import xml.etree.ElementTree as ET
 
 from racebot_sim_bridge.description.sdf_elements import ElementReader, Unusable, child_bool, child_float, floats, quote
-from racebot_sim_bridge.description.sdf_model import UNLIMITED, Collision, Joint, Link, Visual
+from racebot_sim_bridge.description.sdf_model import UNLIMITED, Collision, SdfJoint, SdfLink, Visual
 
 __all__ = ['LinkReader', 'keep']
 
@@ -81,14 +81,14 @@ class LinkReader(ElementReader):
             return self.skipped(where, err)
         return Visual(name, pose, geometry.shape, rgba)
 
-    def link(self, elem: ET.Element, where: str, static: bool = False) -> Link | None:
+    def link(self, elem: ET.Element, where: str, static: bool = False) -> SdfLink | None:
         name = elem.get('name')
         if not name:
             self.warn(where, 'a <link> without a name; skipped')
             return None
         where = '%s link %s' % (where, quote(name))
         try:
-            link = Link(name, pose=self.pose(elem, where))
+            link = SdfLink(name, pose=self.pose(elem, where))
             inertial = elem.find('inertial')
             if inertial is not None:
                 mass = child_float(inertial, 'mass', 1.0, 'mass')
@@ -117,7 +117,7 @@ class LinkReader(ElementReader):
                 self.unsupported(where, child, _LINK_UNSUPPORTED)
         return link
 
-    def joint(self, elem: ET.Element, where: str) -> Joint | None:
+    def joint(self, elem: ET.Element, where: str) -> SdfJoint | None:
         """A <joint>; None (warned) when unusable.  ball, universal, revolute2, screw and gearbox
         joints are not simulated: made fixed, with a warning, so that the links stay joined."""
         name = elem.get('name')
@@ -135,7 +135,7 @@ class LinkReader(ElementReader):
             self.warn(where, '%s joints are not supported; made fixed' % kind)
             kind = 'fixed'
         try:
-            joint = Joint(name, kind, parent, child, pose=self.pose(elem, where))
+            joint = SdfJoint(name, kind, parent, child, pose=self.pose(elem, where))
             axis = elem.find('axis')
             if axis is not None and kind != 'fixed':
                 xyz = axis.find('xyz')

@@ -15,7 +15,8 @@ from dataclasses import dataclass, field
 from racebot_sim_bridge.description.geometry import Shape
 from racebot_sim_bridge.kinematics.rotations import Transform, compose
 
-__all__ = ['World', 'Physics', 'Light', 'Model', 'Link', 'Joint', 'Collision', 'Visual', 'ZERO_POSE', 'UNLIMITED']
+__all__ = ['World', 'Physics', 'Light', 'SdfModel', 'SdfLink', 'SdfJoint', 'Collision', 'Visual', 'ZERO_POSE',
+           'UNLIMITED']
 
 ZERO_POSE = (0.0, 0.0, 0.0, 0.0, 0.0, 0.0)
 
@@ -57,7 +58,7 @@ class Visual:
 
 
 @dataclass
-class Link:
+class SdfLink:
     """A link.  ``mass`` is SDF's default 1.0 when no <inertial> gives one; ``inertia`` is
     ``(ixx, ixy, ixz, iyy, iyz, izz)`` about ``inertial_pose``, or None when not given. A nested model's link
     is named ``inner::link``, its ``pose`` in the outer model's frame, its ``static`` the nested model's own
@@ -72,7 +73,7 @@ class Link:
     sensors: list = field(default_factory=list)  # each <sensor> element as written (XML text)
     static: bool = None
 
-    def is_static(self, model: Model) -> bool:
+    def is_static(self, model: SdfModel) -> bool:
         """Whether the link holds still: its nested model's <static>, else `model`'s."""
         return model.static if self.static is None else self.static
 
@@ -82,7 +83,7 @@ UNLIMITED = 1e16
 
 
 @dataclass
-class Joint:
+class SdfJoint:
     """A joint.  ``pose`` is the joint frame in the child link's frame (SDF 1.6); ``axis`` is in that
     frame, or in the model's when ``axis_in_model`` (<use_parent_model_frame> or expressed_in
     __model__).  ``type`` is revolute, prismatic or fixed; limits are SDF's (``lower``/``upper`` of
@@ -103,7 +104,7 @@ class Joint:
 
 
 @dataclass
-class Model:
+class SdfModel:
     name: str
     pose: tuple = ZERO_POSE
     static: bool = False
@@ -116,11 +117,11 @@ class Model:
         """Joints, plugins or sensors: what only the URDF path (sdf_urdf.py) simulates."""
         return bool(self.joints or self.plugins or any(link.sensors for link in self.links))
 
-    def link(self, name: str) -> Link:
+    def link(self, name: str) -> SdfLink:
         """The link called ``name``; KeyError naming the model's links otherwise."""
         return _named(self.links, name, 'model %r' % self.name, 'link')
 
-    def world_pose_of(self, link: Link | str, element: Collision | Visual | None = None) -> Transform:
+    def world_pose_of(self, link: SdfLink | str, element: Collision | Visual | None = None) -> Transform:
         """World pose ``(xyz, quaternion xyzw)`` of a link, or of a collision or visual of
         it when ``element`` is given.  ``link`` is a Link or a link name."""
         if isinstance(link, str):
@@ -155,6 +156,6 @@ class World:
     warnings: list = field(default_factory=list)
     source: str = '<string>'
 
-    def model(self, name: str) -> Model:
+    def model(self, name: str) -> SdfModel:
         """The model called ``name``; KeyError naming the world's models otherwise."""
         return _named(self.models, name, 'world %r' % self.name, 'model')

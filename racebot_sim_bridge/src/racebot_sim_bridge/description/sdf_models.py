@@ -17,7 +17,7 @@ from racebot_sim_bridge.description.materials import GAZEBO_MATERIALS
 from racebot_sim_bridge.description.sdf_elements import Unusable, child_bool, quote
 from racebot_sim_bridge.description.sdf_includes import BASE_DIR, IncludeReader
 from racebot_sim_bridge.description.sdf_links import LinkReader
-from racebot_sim_bridge.description.sdf_model import ZERO_POSE, Collision, Joint, Link, Model, Visual
+from racebot_sim_bridge.description.sdf_model import ZERO_POSE, Collision, SdfJoint, SdfLink, SdfModel, Visual
 from racebot_sim_bridge.kinematics.rotations import as_transform, as_xyz_rpy, compose, rotate
 
 __all__ = ['ModelReader']
@@ -44,7 +44,7 @@ class _Scope(NamedTuple):
 class ModelReader(IncludeReader, LinkReader):
     """Reads models (see the module), warning into ``warnings`` as ElementReader does."""
 
-    def model(self, elem: ET.Element) -> Model | None:
+    def model(self, elem: ET.Element) -> SdfModel | None:
         """A <model> of the world (or the model of a world-level <include>), as one Model: the <include>s in it
         flattened into it as sdformat's parser does (expand_includes), its nested <model>s read into it as
         Gazebo loads them (read_level): their links named inner::link, posed in the outer model's frame."""
@@ -57,7 +57,7 @@ class ModelReader(IncludeReader, LinkReader):
         try:
             # the first <static> in the model after the includes are flattened: sdformat keeps every one and
             # Gazebo reads the first (an included model's own comes where its <include> stood)
-            model = Model(name, pose=self.pose(elem, where),
+            model = SdfModel(name, pose=self.pose(elem, where),
                           static=child_bool(elem, 'static', False, 'static'))
         except Unusable as err:
             return self.skipped(where, err)
@@ -79,7 +79,8 @@ class ModelReader(IncludeReader, LinkReader):
             return None
         return model
 
-    def read_level(self, model: Model, elem: ET.Element, scope: _Scope, joints: list[tuple[Joint, _Scope]]) -> None:
+    def read_level(self, model: SdfModel, elem: ET.Element, scope: _Scope,
+                   joints: list[tuple[SdfJoint, _Scope]]) -> None:
         """Reads the links, joints and plugins of `elem` (the outer <model> or a nested one, as `scope` says) into
         `model`, then its nested <model>s, depth first: Gazebo's order (Model::LoadLinks, then LoadModels), so the
         first link of the list is Gazebo's canonical link. Joints go to `joints` with their scope, their links
@@ -135,7 +136,7 @@ class ModelReader(IncludeReader, LinkReader):
                                                  scope.around + (scope.prefix,)), joints)
 
     @staticmethod
-    def scoped_link(model: Model, names: set[str], name: str, scope: _Scope) -> str:
+    def scoped_link(model: SdfModel, names: set[str], name: str, scope: _Scope) -> str:
         """The link of `model` (flattened, names in `names`) a joint of `scope` names, as Gazebo's Joint::Load
         finds it: in the joint's own (nested) model, then in each model around it; `world` is the world. A name
         found nowhere is kept (scoped), for sdf_urdf to say which link is missing."""
@@ -148,7 +149,7 @@ class ModelReader(IncludeReader, LinkReader):
             return name[len(model.name) + 2:]  # the link's scoped name, world-wide
         return scope.prefix + name
 
-    def include(self, elem: ET.Element) -> Model | None:
+    def include(self, elem: ET.Element) -> SdfModel | None:
         """An <include>d model: model://ground_plane and model://sun are built in (as Gazebo ships
         them); any other model is read from its folder on the model path (model.config picks the
         SDF file), with the include's <name>, <pose> and <static> overriding the model's own."""
@@ -185,7 +186,7 @@ class ModelReader(IncludeReader, LinkReader):
             model.static = static
         return model
 
-    def ground_plane(self, elem: ET.Element) -> Model | None:
+    def ground_plane(self, elem: ET.Element) -> SdfModel | None:
         """Gazebo's model://ground_plane, built in, with the include's <name>, <pose> and <static>."""
         name = (elem.findtext('name') or '').strip() or 'ground_plane'
         where = 'include %s' % quote(name)
@@ -197,7 +198,7 @@ class ModelReader(IncludeReader, LinkReader):
         # Gazebo's ground_plane model: a static 100 m x 100 m plane, mu 100, mu2 50.
         def plane():
             return Shape('plane', size=(100.0, 100.0), normal=(0.0, 0.0, 1.0))
-        link = Link('link',
+        link = SdfLink('link',
                     collisions=[Collision('collision', ZERO_POSE, plane(), 100.0, 50.0)],
                     visuals=[Visual('visual', ZERO_POSE, plane(), GAZEBO_MATERIALS['Gazebo/Grey'])])
-        return Model(name, pose=pose, static=static, links=[link])
+        return SdfModel(name, pose=pose, static=static, links=[link])

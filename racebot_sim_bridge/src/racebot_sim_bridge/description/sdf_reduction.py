@@ -37,7 +37,7 @@ from __future__ import annotations
 
 import math
 
-from racebot_sim_bridge.description.urdf_model import GazeboPlugin, Joint, Rewrite, RobotModel, SensorSpec
+from racebot_sim_bridge.description.urdf_model import GazeboPlugin, UrdfJoint, Rewrite, RobotModel, SensorSpec
 from racebot_sim_bridge.kinematics.rotations import Quat, as_transform, compose, rpy_to_quaternion
 
 __all__ = ['reduce_extensions', 'reduction_order', 'urdf_rpy', 'cpp_text']
@@ -66,7 +66,7 @@ def reduce_extensions(model: RobotModel) -> None:
             _frame_replace(item, link, parent, transform, reduction.get(id(item), IDENTITY))
 
 
-def reduction_order(model: RobotModel) -> list[tuple[str, Joint]]:
+def reduction_order(model: RobotModel) -> list[tuple[str, UrdfJoint]]:
     """[(link, its fixed parent joint)] in the order ReduceFixedJoints reduces them (iteratively: a long
     chain does not reach Python's recursion limit)."""
     children = {}

@@ -1,4 +1,4 @@
-"""An SDF robot model (sdf_model.Model with joints, plugins or sensors) as the URDF this simulator spawns.
+"""An SDF robot model (sdf_model.SdfModel with joints, plugins or sensors) as the URDF this simulator spawns.
 
 Pure Python: no rospy, no pybullet.  Gazebo simulates an SDF model's joints and runs its model plugins
 and sensors; here those live on the URDF path (urdf_model, physics.spawn_urdf, the plugin and sensor
@@ -29,7 +29,7 @@ import xml.etree.ElementTree as ET
 from typing import NamedTuple
 
 from racebot_sim_bridge.description.geometry import ShapeKind
-from racebot_sim_bridge.description.sdf_model import Model
+from racebot_sim_bridge.description.sdf_model import SdfModel
 from racebot_sim_bridge.kinematics.rotations import (as_transform, compose, inverse, quaternion_to_rpy, rotate,
                                                      rotate_back)
 
@@ -214,8 +214,8 @@ def _write_joint(robot, joint, frame, pose):
         ET.SubElement(elem, 'dynamics', damping='%.17g' % joint.damping, friction='%.17g' % joint.friction)
 
 
-def model_urdf(model: Model) -> Conversion:
-    """The Conversion of an sdf_model.Model; ConversionError when its links do not form one tree."""
+def model_urdf(model: SdfModel) -> Conversion:
+    """The Conversion of an sdf_model.SdfModel; ConversionError when its links do not form one tree."""
     if not model.links:
         raise ConversionError("model '%s' has no link" % model.name)
     warnings = []

@@ -10,12 +10,12 @@ import xml.etree.ElementTree as ET
 
 from racebot_sim_bridge.description.urdf_elements import attr_number, element_name, origin, vector
 from racebot_sim_bridge.description.urdf_model import (
-    JOINT_TYPES, Dynamics, Joint, Limit, Mimic, RobotModel, UrdfError)
+    JOINT_TYPES, Dynamics, UrdfJoint, Limit, Mimic, RobotModel, UrdfError)
 
 __all__ = ['read_joint', 'check_tree', 'check_mimics']
 
 
-def read_joint(elem: ET.Element) -> Joint:
+def read_joint(elem: ET.Element) -> UrdfJoint:
     """The Joint of a <joint>; UrdfError for what urdfdom refuses."""
     name = element_name(elem)
     what = "joint '%s'" % name
@@ -30,7 +30,7 @@ def read_joint(elem: ET.Element) -> Joint:
             raise UrdfError('%s has no <%s link="..."/>; add it' % (what, tag))
         ends[tag] = end.get('link')
     xyz, rpy = origin(elem, what)
-    joint = Joint(name, kind, ends['parent'], ends['child'], xyz, rpy)
+    joint = UrdfJoint(name, kind, ends['parent'], ends['child'], xyz, rpy)
     axis = elem.find('axis')
     if axis is not None and axis.get('xyz') is not None and kind not in ('fixed', 'floating'):
         joint.axis = vector(axis.get('xyz'), 3, what + ' <axis> xyz')

@@ -10,7 +10,7 @@ import xml.etree.ElementTree as ET
 
 from racebot_sim_bridge.description.geometry import ShapeKind
 from racebot_sim_bridge.description.urdf_elements import attr_number, element_name, origin, vector
-from racebot_sim_bridge.description.urdf_model import Geometry, Inertial, Link, RobotModel, UrdfError
+from racebot_sim_bridge.description.urdf_model import Geometry, Inertial, UrdfLink, RobotModel, UrdfError
 
 __all__ = ['read_link', 'read_material', 'URDF_SHAPES']
 
@@ -86,11 +86,11 @@ def _inertial(inertial, what):
     return Inertial(attr_number(mass, 'value', what + ' <mass>', required=True), xyz, rpy, **values)
 
 
-def read_link(model: RobotModel, elem: ET.Element) -> Link:
+def read_link(model: RobotModel, elem: ET.Element) -> UrdfLink:
     """The Link of a <link>: inertial, collisions, visuals (materials of `model`, warnings into it)."""
     name = element_name(elem)
     what = "link '%s'" % name
-    link = Link(name)
+    link = UrdfLink(name)
     inertial = elem.find('inertial')
     if inertial is not None:
         link.inertial = _inertial(inertial, what)

@@ -23,7 +23,7 @@ from racebot_sim_bridge.description.plugin_library import library_key
 from racebot_sim_bridge.kinematics.rotations import Transform, compose
 
 __all__ = [
-    'UrdfError', 'RobotModel', 'Link', 'Inertial', 'Geometry', 'Joint', 'Limit', 'Dynamics', 'Mimic',
+    'UrdfError', 'RobotModel', 'UrdfLink', 'Inertial', 'Geometry', 'UrdfJoint', 'Limit', 'Dynamics', 'Mimic',
     'Transmission', 'GazeboPlugin', 'GazeboElement', 'Rewrite', 'SensorSpec', 'RaySpec', 'CameraSpec', 'ImuSpec',
     'normalise_interface', 'JOINT_TYPES', 'KEEP_FIXED_JOINT',
 ]
@@ -97,7 +97,7 @@ class Geometry(Shape):
 
 
 @dataclass
-class Link:
+class UrdfLink:
     name: str
     inertial: Inertial = None
     collisions: list = field(default_factory=list)
@@ -127,7 +127,7 @@ class Mimic:
 
 
 @dataclass
-class Joint:
+class UrdfJoint:
     name: str
     type: str
     parent: str
@@ -298,7 +298,7 @@ class RobotModel:
                 if j.mimic is not None and j.type in movable and j.mimic.joint in self.joints
                 and self.joints[j.mimic.joint].type in movable}
 
-    def child_joints(self, link: str) -> list[Joint]:
+    def child_joints(self, link: str) -> list[UrdfJoint]:
         """Joints whose parent is ``link``, in document order."""
         return [j for j in self.joints.values() if j.parent == link]
 
@@ -306,17 +306,17 @@ class RobotModel:
         """Names of the links attached below ``link``, in document order."""
         return [j.child for j in self.child_joints(link)]
 
-    def parent_joint(self, link: str) -> Joint | None:
+    def parent_joint(self, link: str) -> UrdfJoint | None:
         """The joint whose child is ``link``; None for the root link."""
         return next((j for j in self.joints.values() if j.child == link), None)
 
-    def fixed_joint_reduced(self, joint: Joint) -> bool:
+    def fixed_joint_reduced(self, joint: UrdfJoint) -> bool:
         """sdformat's FixedJointShouldBeReduced: a fixed joint whose <gazebo reference> sets neither
         preserveFixedJoint nor disableFixedJointLumping."""
         ref = self.gazebo_refs.get(joint.name, {})
         return joint.type == 'fixed' and not any(ref.get(key) is True for key in KEEP_FIXED_JOINT)
 
-    def fixed_parent_chain(self, link: str) -> list[Joint]:
+    def fixed_parent_chain(self, link: str) -> list[UrdfJoint]:
         """The fixed joints from ``link`` up to the link Gazebo merges it into.
 
         Gazebo lumps a link hanging on fixed joints into the nearest ancestor that is the root

@@ -21,14 +21,10 @@ from typing import TYPE_CHECKING
 import pybullet as pb
 
 from racebot_sim_bridge.engine import sdf_bodies
-from racebot_sim_bridge.engine.bullet_urdf import NEGLIGIBLE_INERTIA, NEGLIGIBLE_MASS  # noqa: F401 (re-exported)
-from racebot_sim_bridge.engine.joint import JOINT_TYPES, Joint  # noqa: F401 (re-exported)
-from racebot_sim_bridge.engine.link import Link  # noqa: F401 (re-exported)
 from racebot_sim_bridge.engine.model import Model
-from racebot_sim_bridge.engine.physics_types import (BodyKind, BodySource, JointState, LinkDynamics,  # noqa: F401
-                                                     PhysicsError, Pose, Twist)
+from racebot_sim_bridge.engine.physics_types import BodyKind, BodySource, PhysicsError
 from racebot_sim_bridge.engine.pybullet_client import PybulletClient
-from racebot_sim_bridge.engine.urdf_spawn import MAX_BULLET_LINKS, UrdfSpawn  # noqa: F401 (re-exported)
+from racebot_sim_bridge.engine.urdf_spawn import UrdfSpawn
 from racebot_sim_bridge.kinematics.rotations import Quat, Vec3
 
 if TYPE_CHECKING:
@@ -93,7 +89,7 @@ class PhysicsWorld:
             created.append(model.name)
         return created
 
-    def add_sdf_model(self, model: sdf_model.Model) -> Model:
+    def add_sdf_model(self, model: sdf_model.SdfModel) -> Model:
         """One PyBullet body per SDF link (sdf_bodies.py); returns the new Model."""
         if model.name in self.bodies:
             raise PhysicsError("a model named '%s' already exists" % model.name)

@@ -31,7 +31,7 @@ class BodyKind(str, Enum):
 @dataclass(frozen=True)
 class BodySource:
     """What a body was built from, all another client needs to build a copy (picklable: the viewer and
-    the render worker get it through a pipe). kind SDF: `model` is the sdf_model.Model; kind URDF:
+    the render worker get it through a pipe). kind SDF: `model` is the sdf_model.SdfModel; kind URDF:
     `model` is the urdf_model.RobotModel and `urdf_xml` its URDF, meshes resolved to files."""
     kind: BodyKind
     model: object

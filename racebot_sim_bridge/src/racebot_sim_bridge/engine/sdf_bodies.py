@@ -24,7 +24,7 @@ if TYPE_CHECKING:
     from racebot_sim_bridge.description import sdf_model
 
 
-def build_model(client: PybulletClient, applied: dict, model: sdf_model.Model, visuals: bool,
+def build_model(client: PybulletClient, applied: dict, model: sdf_model.SdfModel, visuals: bool,
                 laser_retro: dict) -> tuple[Model, float | None]:
     """The Model of an SDF model, one PyBullet body per link (joints between SDF links are not supported), and
     the mu of its ground plane if it has one (else None). `visuals`: build visual shapes; `laser_retro`: the

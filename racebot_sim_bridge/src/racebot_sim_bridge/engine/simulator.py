@@ -16,13 +16,15 @@ from typing import TYPE_CHECKING, Any
 
 from racebot_sim_bridge.engine import physics
 from racebot_sim_bridge.engine.control_hook import ControlHook
+from racebot_sim_bridge.engine.model import Model
+from racebot_sim_bridge.engine.physics_types import PhysicsError
 from racebot_sim_bridge.description import sdf_urdf, urdf_model, urdf_reader
 from racebot_sim_bridge.kinematics.rotations import Quat, Vec3, compose
 
 if TYPE_CHECKING:
     from typing import Protocol
 
-    from racebot_sim_bridge.description.sdf_model import Model, World
+    from racebot_sim_bridge.description.sdf_model import SdfModel, World
 
     class Log(Protocol):
         """What the simulator and its plugins log through (rospy_log.RospyLog: rospy's logerr & co);
@@ -44,7 +46,7 @@ class Robot:
     is the loop that drives its joints (a control_hook.ControlHook), set by the plugin that does
     (gazebo_ros_control's, when the URDF declares it), else None; step() runs it."""
 
-    def __init__(self, name: str, body: physics.Model, model: urdf_model.RobotModel, spawn_namespace: str = '') -> None:
+    def __init__(self, name: str, body: Model, model: urdf_model.RobotModel, spawn_namespace: str = '') -> None:
         self.name = name
         self.body = body
         self.model = model
@@ -130,7 +132,7 @@ class Simulator:
             try:
                 body = self.world.spawn_urdf(name, model, urdf, position, orientation,
                                              warn=lambda m: self.log.warn('%s: %s' % (name, m)))
-            except physics.PhysicsError as err:
+            except PhysicsError as err:
                 raise SpawnError('SpawnModel: Failure - %s' % err)
             except Exception as err:  # what the checks before PyBullet missed; nothing was added to the world
                 raise SpawnError('SpawnModel: Failure - %s could not be built (%s: %s)'
@@ -163,8 +165,8 @@ class Simulator:
                                  'it is removed' % (name, type(err).__name__, err)) from err
             return robot
 
-    def spawn_sdf_robot(self, model: Model, robot_namespace: str = '') -> Robot:
-        """Spawns an SDF model with joints, plugins or sensors (sdf_model.Model.is_robot) through the URDF
+    def spawn_sdf_robot(self, model: SdfModel, robot_namespace: str = '') -> Robot:
+        """Spawns an SDF model with joints, plugins or sensors (sdf_model.SdfModel.is_robot) through the URDF
         path (sdf_urdf.py), at its <pose>; returns the Robot. SpawnError when it cannot be."""
         try:
             conversion = sdf_urdf.model_urdf(model)
@@ -302,7 +304,7 @@ class Simulator:
     def model_names(self) -> list[str]:
         return list(self.world.bodies)
 
-    def body(self, name: str) -> physics.Model | None:
+    def body(self, name: str) -> Model | None:
         return self.world.bodies.get(name)
 
     def close(self) -> None:

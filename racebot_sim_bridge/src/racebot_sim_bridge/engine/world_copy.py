@@ -17,7 +17,9 @@ from typing import TYPE_CHECKING, Dict, List, Tuple
 from racebot_sim_bridge.kinematics.rotations import Transform
 
 if TYPE_CHECKING:
-    from racebot_sim_bridge.engine.physics import BodySource, Model, PhysicsWorld
+    from racebot_sim_bridge.engine.physics import PhysicsWorld
+    from racebot_sim_bridge.engine.model import Model
+    from racebot_sim_bridge.engine.physics_types import BodySource
 
 _SERIALS = itertools.count()
 

@@ -12,7 +12,7 @@ zeroed) so that the link lands on the pose asked. set_model_state zeroes joint v
 Gazebo's Model::SetLinearVel / SetAngularVel give every link the same velocity.
 """
 from racebot_sim_bridge.gazebo_ros_api import frames
-from racebot_sim_bridge.engine.physics import BodyKind, Pose
+from racebot_sim_bridge.engine.physics_types import BodyKind, Pose
 from racebot_sim_bridge.kinematics.rotations import as_transform, inverse
 
 

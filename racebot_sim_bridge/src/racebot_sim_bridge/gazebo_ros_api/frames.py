@@ -19,7 +19,7 @@ import math
 from collections import namedtuple
 
 from racebot_sim_bridge.kinematics import rotations
-from racebot_sim_bridge.kinematics.rotations import IDENTITY  # noqa: F401 (part of this module's API)
+from racebot_sim_bridge.kinematics.rotations import IDENTITY
 
 # The names gazebo_ros takes as the world's inertial frame when no entity has the name.
 WORLD_FRAMES = ('', 'world', 'map', '/map')

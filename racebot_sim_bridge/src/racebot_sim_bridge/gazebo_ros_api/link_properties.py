@@ -6,7 +6,7 @@ inertia in a fixed inertial frame); mass, principal moments and gravity_mode cha
 the link's weight is cancelled by a force at its centre of mass before every step (cancel_gravity). As upstream,
 the inertia is given in the link's axes (com.orientation is the identity).
 """
-from racebot_sim_bridge.engine.physics import BodyKind
+from racebot_sim_bridge.engine.physics_types import BodyKind
 from racebot_sim_bridge.gazebo_ros_api import frames
 from racebot_sim_bridge.gazebo_ros_api.service_group import ServiceGroup, refused
 from racebot_sim_bridge.kinematics.rotations import matrix

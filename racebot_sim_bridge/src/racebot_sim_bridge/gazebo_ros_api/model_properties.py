@@ -4,7 +4,7 @@ A URDF model's links are those Gazebo keeps after fixed-joint lumping, its colli
 parser_urdf names them (urdf_geom_names), its joints those not lumped away; an SDF model's links and collisions
 are its own.
 """
-from racebot_sim_bridge.engine.physics import BodyKind
+from racebot_sim_bridge.engine.physics_types import BodyKind
 from racebot_sim_bridge.gazebo_ros_api.entities import WorldEntities
 from racebot_sim_bridge.gazebo_ros_api.service_group import ServiceGroup
 

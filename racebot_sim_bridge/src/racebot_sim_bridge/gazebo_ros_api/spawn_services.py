@@ -12,7 +12,7 @@ import xml.etree.ElementTree as ET
 from gazebo_msgs import srv
 
 from racebot_sim_bridge.description import model_path, sdf_reader, spawn_xml, urdf_model, urdf_reader
-from racebot_sim_bridge.engine.physics import PhysicsError
+from racebot_sim_bridge.engine.physics_types import PhysicsError
 from racebot_sim_bridge.engine.simulator import SpawnError
 from racebot_sim_bridge.gazebo_ros_api import frames
 from racebot_sim_bridge.gazebo_ros_api.service_group import ServiceGroup

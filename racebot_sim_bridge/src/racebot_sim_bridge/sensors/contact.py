@@ -74,7 +74,7 @@ def _lumped_collisions(model, link):
 
 
 def sdf_collision_shapes(link):
-    """[NamedShape] of an sdf_model.Link's collisions, poses in the link frame."""
+    """[NamedShape] of an sdf_model.SdfLink's collisions, poses in the link frame."""
     shapes = []
     for col in link.collisions:
         s = col.shape

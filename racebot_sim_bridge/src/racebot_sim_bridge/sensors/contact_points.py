@@ -15,7 +15,7 @@ import pybullet as pb
 
 from racebot_sim_bridge.sensors.contact import (CollisionKind, ContactPoint, friction_reversed, nearest_shape,
                                                 sdf_collision_shapes, urdf_collision_shapes)
-from racebot_sim_bridge.engine.physics import BodyKind
+from racebot_sim_bridge.engine.physics_types import BodyKind
 from racebot_sim_bridge.kinematics.rotations import rotate_back
 
 

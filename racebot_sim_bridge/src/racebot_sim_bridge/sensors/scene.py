@@ -8,7 +8,7 @@ for the TinyRenderer it is drawn analytically (see SceneColours).
 import numpy as np
 import pybullet as pb
 
-from racebot_sim_bridge.engine.physics import BodyKind
+from racebot_sim_bridge.engine.physics_types import BodyKind
 from racebot_sim_bridge.kinematics import rotations
 from racebot_sim_bridge.sensors.render import TINY, render
 
@@ -45,7 +45,7 @@ class SceneColours:
         self.done = set()  # (model name, body id) of the bodies already coloured
 
     def refresh(self, models=()):
-        """Colours every SDF body not coloured yet: those that carry their sdf_model.Model
+        """Colours every SDF body not coloured yet: those that carry their sdf_model.SdfModel
         (Model.source, as physics.PhysicsWorld records it) and those of `models`; forgets
         the planes of removed bodies."""
         world = self.world
@@ -63,7 +63,7 @@ class SceneColours:
         self.done &= alive
 
     def colour_model(self, model, body=None):
-        """`model`: sdf_model.Model, already added to the world (its Model found by name)."""
+        """`model`: sdf_model.SdfModel, already added to the world (its Model found by name)."""
         body = body if body is not None else self.world.bodies.get(model.name)
         if body is None:
             return

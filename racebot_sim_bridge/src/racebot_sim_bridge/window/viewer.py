@@ -28,7 +28,7 @@ import threading
 import time
 from multiprocessing.connection import Connection
 
-from racebot_sim_bridge.engine.physics import BodyKind
+from racebot_sim_bridge.engine.physics_types import BodyKind
 from racebot_sim_bridge.engine.world_copy import snapshot, sources
 
 SYNC_PERIOD = 1.0 / 30  # wall seconds between window updates

@@ -25,7 +25,8 @@ import traceback
 import pybullet as pb
 
 from racebot_sim_bridge.engine.child_process import helper_main
-from racebot_sim_bridge.engine.physics import PhysicsError, PhysicsWorld
+from racebot_sim_bridge.engine.physics import PhysicsWorld
+from racebot_sim_bridge.engine.physics_types import PhysicsError
 from racebot_sim_bridge.engine.world_copy import WorldCopy
 
 EXIT_STOPPED, EXIT_CLOSED, EXIT_LOST, EXIT_CRASHED, EXIT_NO_WINDOW = 0, 1, 3, 4, 5
