@@ -44,6 +44,7 @@ possible when it is 0. Messages, /clock included, are handed to a writer thread 
 """
 import math
 import os
+import signal
 import sys
 import time
 
@@ -281,7 +282,8 @@ class WorldServer:
         wall_start, steps_since = perf_counter(), 0
         last_paused_clock = 0.0
         next_view = 0.0
-        while not rospy.is_shutdown():
+        stop = STOP
+        while stop.received is None and not rospy.is_shutdown():
             if perf_counter() >= next_view:  # paused or not: windows attach, bodies move
                 next_view = perf_counter() + VIEWER_SYNC_PERIOD
                 with sim.lock:
@@ -359,6 +361,31 @@ def physics_reconfigure(properties, ns):
         return None
 
 
+class StopSignals:
+    """SIGINT and SIGTERM as a request that the update loop reads between two updates. rospy's own handler runs
+    signal_shutdown wherever the main thread happens to be when the signal comes: inside a publish (the loop's
+    /clock), whose connection's lock close_all then waits for in the same thread, for ever; Ctrl-C on roslaunch
+    stops the subscribers at the same moment, so it came exactly there one time in ten. Here the handler only
+    records the signal: the loop ends at its next check, and rospy shuts down after it, outside any publish.
+    A second signal before that (roslaunch's SIGTERM after its SIGINT) ends the process at once."""
+
+    def __init__(self):
+        self.received = None  # the name of the first signal, once one came
+
+    def install(self):
+        for number in (signal.SIGINT, signal.SIGTERM):
+            signal.signal(number, self._on_signal)
+        return self
+
+    def _on_signal(self, number, _frame):
+        if self.received is not None:
+            os._exit(128 + number)
+        self.received = signal.Signals(number).name
+
+
+STOP = StopSignals()
+
+
 def init_clock_source(name):
     """rospy.init_node for the node that publishes /clock. With /use_sim_time set, rospy would
     subscribe this node to its own /clock: a receive thread, a second connection and a message to
@@ -366,7 +393,8 @@ def init_clock_source(name):
     that out; the node's ROS time (its /rosout stamps) is then set where /clock is
     published, to the same value, so it reads exactly what its subscribers read."""
     global _OWN_SIM_TIME
-    rospy.init_node(name, anonymous=False, disable_rostime=True)
+    rospy.init_node(name, anonymous=False, disable_rostime=True, disable_signals=True)
+    STOP.install()  # rospy's signal handling, apart from the publishing path
     if rospy.get_param('/use_sim_time', False):
         _OWN_SIM_TIME = True
         set_own_ros_time(rospy.Time(0))
@@ -412,9 +440,11 @@ def main(argv=None, debugger=False, fallback_to_empty=False):
         server = WorldServer(path, paused, bool(rospy.get_param('~gui', False)), fallback_to_empty)
     except (sdf_reader.WorldError, PhysicsError) as err:
         rospy.logfatal('could not load world: %s' % err)
+        rospy.signal_shutdown('could not load world')
         sys.exit(1)
     try:
         server.run()
     finally:  # after the loop, never during a step: the physics client must outlive every step
         server.shutdown()
         queued_publishing.stop_writer()
+        rospy.signal_shutdown(STOP.received or 'the world server stopped')

@@ -16,5 +16,6 @@ filename="libgazebo_ros_diff_drive.so"; gazebo_ros_laser.py also answers libgaze
 A new plugin is a module here named after its library, with one class that lists its `libraries`, added to
 registry.py. What every gazebo_ros plugin shares lives below, in ../gazebo_ros_api/: PluginKind (plugin_kind.py)
 and where a plugin's topics go (plugin_namespace.py); the one way a filename becomes a library name, library_key,
-is the description's (../description/plugin_library.py).
+is the description's (../description/plugin_library.py). A worked example with its test:
+docs/WRITE_A_PLUGIN_OR_CONTROLLER.md.
 """

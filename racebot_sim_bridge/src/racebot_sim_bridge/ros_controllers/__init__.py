@@ -19,7 +19,8 @@ One module per ros_controllers package; each lists its classes in TYPES, and CON
 (type name -> class) is what the controller manager loads from (gazebo_ros_control's plugin gives it to the
 manager, which imports no controller). Import a class from its own module. A new controller type is a class
 with `type_name`, `interface` and ros_control's init (constructor) / starting / update / stopping,
-added to its module's TYPES and to MODULES below.
+added to its module's TYPES and to MODULES below (a worked example with its test:
+docs/WRITE_A_PLUGIN_OR_CONTROLLER.md).
 """
 from racebot_sim_bridge.ros_controllers import (ackermann_steering_controller as ackermann_steering,
                                                 diff_drive_controller as diff_drive, effort_controllers,
