@@ -89,7 +89,7 @@ class ShutdownStressTest(unittest.TestCase):
         launch = subprocess.Popen(['roslaunch', '-p', str(port), 'racebot_gazebo', 'racebot.launch', 'gui:=false',
                                    'teleop:=false'], env=env, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
                                   start_new_session=True)
-        subscribers = []
+        subscribers, processes = [], []
         try:
             self.assertTrue(first_clock(env, time.time() + START_LIMIT),
                             'iteration %d: no /clock from racebot.launch in %.0f s' % (index, START_LIMIT))
@@ -106,11 +106,14 @@ class ShutdownStressTest(unittest.TestCase):
             left = [p for p in processes if alive(p)]
             self.assertFalse(left, 'iteration %d: %.0f s after SIGINT these processes of racebot.launch still ran:\n%s'
                              % (index, EXIT_LIMIT, '\n'.join(command_line(p) for p in left)))
-        finally:
+        finally:  # nothing outlives the test: roslaunch's nodes each have a session of their own
             for proc in [launch] + subscribers:
                 if proc.poll() is None:
                     os.killpg(proc.pid, signal.SIGKILL)
                 proc.wait(10)
+            for pid in processes:
+                if alive(pid):
+                    os.kill(pid, signal.SIGKILL)
 
     def test_every_process_ends_within_seconds_of_a_sigint_at_any_moment(self):
         rng = random.Random(37)
