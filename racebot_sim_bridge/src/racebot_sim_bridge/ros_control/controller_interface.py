@@ -1,5 +1,5 @@
 """What every controller shares: ros_control's Controller life cycle over an injected I/O, the
-init error, a controller template made for one hardware interface (`instantiate`), the action controllers'
+init error, the action controllers'
 goal (`GoalController`), and the single-joint command controllers' `command` topic with its limits."""
 import math
 from enum import Enum
@@ -139,24 +139,6 @@ class GoalController(Controller):
             goal, self.active_goal = self.active_goal, None
         if goal is not None:
             goal.set_canceled()
-
-
-INTERFACE_KINDS = {hardware.POSITION: 'Position', hardware.VELOCITY: 'Velocity', hardware.EFFORT: 'Effort'}
-
-
-def instantiate(template, interface, module, name='{Kind}{template}', type_name='{kind}_controllers/{template}',
-                **attributes):
-    """`template` (a controller class written for any command interface) made for `interface`, as upstream's C++
-    instantiates its controller templates in typedefs (position_controllers::JointTrajectoryController is
-    JointTrajectoryController<..., PositionJointInterface>): a subclass with that `interface`, its own `type_name`
-    and `attributes`, defined in `module` (the caller's __name__). `name` and `type_name` are formats of {Kind}
-    ('Position'), {kind} ('position') and {template} (the template's class name)."""
-    kind = INTERFACE_KINDS[interface]
-    words = {'Kind': kind, 'kind': kind.lower(), 'template': template.__name__}
-    full_type = type_name.format(**words)
-    body = dict(attributes, type_name=full_type, interface=interface, __module__=module,
-                __doc__='%s: %s on a %s.' % (full_type, template.__name__, interface))
-    return type(name.format(**words), (template,), body)
 
 
 class Setpoint(str, Enum):

@@ -2,9 +2,19 @@
 JointPositionController (PID on the error, effort out)."""
 from racebot_sim_bridge.ros_control.hardware_interface import EFFORT, position_error
 from racebot_sim_bridge.ros_control.controller_interface import STATE_PUBLISH_EVERY, PidCommandController, Setpoint
-from racebot_sim_bridge.ros_controllers.forward_command_controller import forward_controllers
+from racebot_sim_bridge.ros_controllers.forward_command_controller import (ForwardCommandController,
+                                                                           ForwardJointGroupCommandController)
 
-EffortForwardController, JointGroupEffortController = forward_controllers(EFFORT, __name__)
+
+class EffortForwardController(ForwardCommandController):
+    type_name = 'effort_controllers/JointEffortController'
+    interface = EFFORT
+    setpoint = Setpoint.EFFORT
+
+
+class JointGroupEffortController(ForwardJointGroupCommandController):
+    type_name = 'effort_controllers/JointGroupEffortController'
+    interface = EFFORT
 
 
 class JointVelocityController(PidCommandController):

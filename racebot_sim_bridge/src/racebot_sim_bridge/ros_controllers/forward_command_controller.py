@@ -1,14 +1,13 @@
 """forward_command_controller: the command goes to the joint as it is (the base of
 effort_controllers/JointEffortController, velocity_controllers/JointVelocityController and
 position_controllers/JointPositionController), and to a group of joints (the base of the
-JointGroup{Effort,Velocity,Position}Controllers); `forward_controllers` makes both for one interface."""
+JointGroup{Effort,Velocity,Position}Controllers)."""
 import math
 
 from std_msgs.msg import Float64MultiArray
 
 from racebot_sim_bridge.ros_control.hardware_interface import POSITION
-from racebot_sim_bridge.ros_control.controller_interface import (INTERFACE_KINDS, CommandController, Controller,
-                                                                 ControllerInitError, Setpoint, instantiate)
+from racebot_sim_bridge.ros_control.controller_interface import CommandController, Controller, ControllerInitError
 
 
 class ForwardCommandController(CommandController):
@@ -72,14 +71,3 @@ class ForwardJointGroupCommandController(Controller):
     def claimed_resources(self):
         return [(self.interface, sorted(j.name for j in self.joints))]
 
-
-def forward_controllers(interface, module):
-    """A <kind>_controllers package's two forward controllers, as upstream's typedefs of forward_command_controller's
-    templates give them: <kind>_controllers/Joint<Kind>Controller (one joint; <Kind>ForwardController here) and
-    <kind>_controllers/JointGroup<Kind>Controller, defined in `module` (the caller's __name__)."""
-    setpoint = Setpoint(INTERFACE_KINDS[interface].lower())  # what the command sets: the interface's quantity
-    single = instantiate(ForwardCommandController, interface, module, '{Kind}ForwardController',
-                         '{kind}_controllers/Joint{Kind}Controller', setpoint=setpoint)
-    group = instantiate(ForwardJointGroupCommandController, interface, module, 'JointGroup{Kind}Controller',
-                        '{kind}_controllers/JointGroup{Kind}Controller')
-    return single, group

@@ -14,7 +14,7 @@ from control_msgs.msg import GripperCommandAction, GripperCommandResult
 
 from racebot_sim_bridge.ros_control.hardware_interface import EFFORT, POSITION
 from racebot_sim_bridge.ros_control.pid import Pid
-from racebot_sim_bridge.ros_control.controller_interface import ControllerInitError, GoalController, instantiate
+from racebot_sim_bridge.ros_control.controller_interface import ControllerInitError, GoalController
 
 
 def gripper_outcome(error_position, velocity, time, last_movement, goal_tolerance, stall_velocity, stall_timeout):
@@ -29,7 +29,7 @@ def gripper_outcome(error_position, velocity, time, last_movement, goal_toleranc
 
 
 class GripperActionController(GoalController):
-    """The template of both variants (position and effort), which instantiate() makes below."""
+    """The template of both variants (position and effort), each subclassed below for its interface."""
 
     def __init__(self, name, ns, params, hw, io):
         super().__init__(name, ns, params, hw, io)
@@ -131,6 +131,14 @@ class GripperActionController(GoalController):
         gh.set_canceled()
 
 
-# {position,effort}_controllers/GripperActionController
-TYPES = tuple(instantiate(GripperActionController, interface, __name__) for interface in (POSITION, EFFORT))
-PositionGripperActionController, EffortGripperActionController = TYPES
+class PositionGripperActionController(GripperActionController):
+    type_name = 'position_controllers/GripperActionController'
+    interface = POSITION
+
+
+class EffortGripperActionController(GripperActionController):
+    type_name = 'effort_controllers/GripperActionController'
+    interface = EFFORT
+
+
+TYPES = (PositionGripperActionController, EffortGripperActionController)

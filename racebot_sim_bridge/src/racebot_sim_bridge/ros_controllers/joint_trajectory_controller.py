@@ -28,7 +28,7 @@ from racebot_sim_bridge.ros_control.hardware_interface import EFFORT, POSITION, 
 from racebot_sim_bridge.kinematics import trajectory as jt
 from racebot_sim_bridge.kinematics.angles import shortest_angular_distance
 from racebot_sim_bridge.ros_control.pid import Pid
-from racebot_sim_bridge.ros_control.controller_interface import ControllerInitError, GoalController, instantiate
+from racebot_sim_bridge.ros_control.controller_interface import ControllerInitError, GoalController
 
 
 def _points(msg):
@@ -37,7 +37,7 @@ def _points(msg):
 
 
 class JointTrajectoryController(GoalController):
-    """The template of the three variants (position, velocity, effort), which instantiate() makes below."""
+    """The template of the three variants (position, velocity, effort), each subclassed below for its interface."""
 
     def __init__(self, name, ns, params, hw, io):
         super().__init__(name, ns, params, hw, io)
@@ -295,6 +295,19 @@ class JointTrajectoryController(GoalController):
         return res
 
 
-# {position,velocity,effort}_controllers/JointTrajectoryController
-TYPES = tuple(instantiate(JointTrajectoryController, interface, __name__) for interface in (POSITION, VELOCITY, EFFORT))
-PositionJointTrajectoryController, VelocityJointTrajectoryController, EffortJointTrajectoryController = TYPES
+class PositionJointTrajectoryController(JointTrajectoryController):
+    type_name = 'position_controllers/JointTrajectoryController'
+    interface = POSITION
+
+
+class VelocityJointTrajectoryController(JointTrajectoryController):
+    type_name = 'velocity_controllers/JointTrajectoryController'
+    interface = VELOCITY
+
+
+class EffortJointTrajectoryController(JointTrajectoryController):
+    type_name = 'effort_controllers/JointTrajectoryController'
+    interface = EFFORT
+
+
+TYPES = (PositionJointTrajectoryController, VelocityJointTrajectoryController, EffortJointTrajectoryController)

@@ -2,9 +2,20 @@
 position, a velocity out)."""
 from racebot_sim_bridge.ros_control.hardware_interface import VELOCITY
 from racebot_sim_bridge.ros_controllers.effort_controllers import JointPositionController
-from racebot_sim_bridge.ros_controllers.forward_command_controller import forward_controllers
+from racebot_sim_bridge.ros_control.controller_interface import Setpoint
+from racebot_sim_bridge.ros_controllers.forward_command_controller import (ForwardCommandController,
+                                                                           ForwardJointGroupCommandController)
 
-VelocityForwardController, JointGroupVelocityController = forward_controllers(VELOCITY, __name__)
+
+class VelocityForwardController(ForwardCommandController):
+    type_name = 'velocity_controllers/JointVelocityController'
+    interface = VELOCITY
+    setpoint = Setpoint.VELOCITY
+
+
+class JointGroupVelocityController(ForwardJointGroupCommandController):
+    type_name = 'velocity_controllers/JointGroupVelocityController'
+    interface = VELOCITY
 
 
 class VelocityJointPositionController(JointPositionController):
