@@ -12,7 +12,7 @@ from racebot_sim_bridge.ros_control.controller_switch import STRICT
 from racebot_sim_bridge.engine.simulator import Simulator
 from racebot_sim_bridge.gazebo_ros_control.gazebo_ros_control_plugin import GazeboRosControlPlugin
 
-from fakes import FakeLog
+from fakes import FakeIO, FakeLog
 from wheel_robot import EMPTY_WORLD, _robot
 
 PARAMS = {
@@ -22,41 +22,10 @@ PARAMS = {
 }
 
 
-class _Topic:
-    def __init__(self, callback=None):
-        self.callback, self.messages = callback, []
-
-    def publish(self, msg):
-        self.messages.append(msg)
-
-    def unregister(self):
-        pass
-
-    def get_num_connections(self):
-        return 1
-
-
-class _IO:
-    def __init__(self):
-        self.topics = {}
-
-    def publisher(self, topic, cls, queue_size):
-        return self.topics.setdefault(topic, _Topic())
-
-    def subscriber(self, topic, cls, callback):
-        return self.topics.setdefault(topic, _Topic(callback))
-
-    def stamp(self, t):
-        return t
-
-    def warn_throttle(self, key, period, message):
-        pass
-
-
 @pytest.fixture
 def driving():
     """A robot at the root namespace, its wheel controller started and commanded to 3 rad/s for 0.3 s."""
-    io = _IO()
+    io = FakeIO()
     world = sdf_reader.parse_world(EMPTY_WORLD.replace('<physics', '<gravity>0 0 0</gravity><physics'))
     sim = Simulator(world, io, FakeLog(), lambda path: PARAMS.get(path))
     GazeboRosControlPlugin.attach(sim)
