@@ -5,7 +5,8 @@
 failure count over the N runs: the way to tell a flaky test (fails 1 of 10) from a broken one.
 
 Three tiers: ruff over the repository (one test), pytest unit tests in tests/unit (no ROS master)
-and every rostest file in tests/integration (each brings up its own master, roslaunch and nodes). Results are counted
+and every rostest file in tests/integration (each brings up its own master, roslaunch and nodes; --jobs of them at
+a time, default 2, the bench and the soak alone). Results are counted
 from the JUnit XML both write, so a test node that crashes or never reports counts as failed.
 Run it from a shell where `devel/setup.bash` is sourced (the Makefile does that).
 """
@@ -15,13 +16,25 @@ import os
 import shutil
 import subprocess
 import sys
+import threading
 import time
 import xml.etree.ElementTree as ET
+from concurrent.futures import ThreadPoolExecutor
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 OUT = os.path.join(ROOT, 'out', 'test-results')
 ROSTEST_TIMEOUT_S = 420
 # The corpus of public packages (make corpus) needs the network or clones; the suite never runs it.
+# Rostest files run JOBS at a time: each brings up a master of its own on a free port (rostest's port 0), its own
+# Xvfb (-displayfd), temporary folders and render buffers, and most of a file's time is spent waiting for sim time,
+# so two at once on a 2-core machine take about 60 % of the serial time. Every test bounds its waits in wall time
+# generously: a test that fails because another one runs beside it is a defect of that test, as on a busy CI host.
+JOBS = int(os.environ.get('RACEBOT_TEST_JOBS', '2'))
+# Run alone, after the others: the bench measures the machine, and the soak drives as fast as the CPU allows
+# for minutes; beside another test the one's figures and the other's wall time would be each other's load.
+SOLO = ('bench_quick', 'soak_short')
+# Started first: each takes a minute or more; started last, one would leave a lane running alone at the end.
+LONG = ('readme_drive', 'shutdown_stress', 'robustness_input', 'racebot_launch', 'faults', 'robustness_world')
 CORPUS_NOT_RUN = 'corpus: not run here (no network/clones; make corpus; the last table is docs/CORPUS.md)'
 
 
@@ -107,10 +120,10 @@ def rostest_cases(test_file):
     Each test node writes rosunit-<test-name>.xml with its cases; rostest's own summary file
     (rostest-*.xml) has one case per node and marks a node that crashed or wrote nothing.
     """
-    name = os.path.splitext(os.path.basename(test_file))[0]
+    name = test_name(test_file)
     results_dir = os.path.join(OUT, name)
     cmd = ['rostest', '--results-base-dir', results_dir, '--package', 'racebot_tests', test_file]
-    print('== rostest %s' % os.path.relpath(test_file, ROOT), flush=True)
+    report = ['== rostest %s' % os.path.relpath(test_file, ROOT)]
     start = time.time()
     log = os.path.join(OUT, 'rostest-%s.log' % name)
     with open(log, 'w') as out:
@@ -132,13 +145,43 @@ def rostest_cases(test_file):
     if (code != 0 and failed == 0) or passed + failed + skipped == 0:
         failed += 1
         failures.append('%s: rostest exited %s' % (name, code))
-    print('   %d passed, %d failed in %.0f s (log: %s)' % (passed, failed, time.time() - start,
-                                                         os.path.relpath(log, ROOT)), flush=True)
+    report.append('   %d passed, %d failed in %.0f s (log: %s)' % (passed, failed, time.time() - start,
+                                                                  os.path.relpath(log, ROOT)))
     if failures:
         with open(log) as f:
             tail = f.read()[-4000:]
-        print('   --- last lines of the log ---\n' + tail, flush=True)
-    return passed, failed, skipped, failures
+        report.append('   --- last lines of the log ---\n' + tail)
+    return (passed, failed, skipped, failures), '\n'.join(report)
+
+
+def test_name(test_file):
+    return os.path.splitext(os.path.basename(test_file))[0]
+
+
+def rostest_order(test_files):
+    """(shared, solo): the files that run JOBS at a time, the LONG ones first, and those that run alone."""
+    shared = [f for f in test_files if test_name(f) not in SOLO]
+    shared.sort(key=lambda f: (test_name(f) not in LONG, LONG.index(test_name(f)) if test_name(f) in LONG else 0))
+    return shared, [f for f in test_files if test_name(f) in SOLO]
+
+
+def run_rostests(test_files, jobs, add):
+    """Runs the rostest files, `jobs` at a time but SOLO ones alone; hands each result to `add` and prints each
+    file's report whole, as it ends (the reports of files that run together never interleave)."""
+    lock = threading.Lock()
+
+    def run(test_file):
+        result, report = rostest_cases(test_file)
+        with lock:
+            print(report, flush=True)
+            add(result)
+
+    shared, solo = rostest_order(test_files)
+    with ThreadPoolExecutor(max(1, jobs)) as pool:
+        for done in [pool.submit(run, f) for f in shared]:
+            done.result()
+    for test_file in solo:
+        run(test_file)
 
 
 def failed_test(failure):
@@ -202,9 +245,14 @@ def main():
     parser.add_argument('--repeat', type=int, default=1, metavar='N',
                         help='run N times; end with each test\'s failure count')
     parser.add_argument('--out', default=OUT, help='results directory (emptied first; default %(default)s)')
+    parser.add_argument('--jobs', '-j', type=int, default=JOBS, metavar='N',
+                        help='rostest files at a time (default %(default)s, or RACEBOT_TEST_JOBS); '
+                             + ', '.join(SOLO) + ' always run alone')
     args = parser.parse_args()
     if args.repeat < 1:
         parser.error('--repeat N needs N >= 1, got %d' % args.repeat)
+    if args.jobs < 1:
+        parser.error('--jobs N needs N >= 1, got %d (RACEBOT_TEST_JOBS?)' % args.jobs)
     if 'ROS_PACKAGE_PATH' not in os.environ or ROOT not in os.environ['ROS_PACKAGE_PATH']:
         sys.exit('racebot: source devel/setup.bash first (or use `make test`)')
     use_loopback_ros_networking(os.environ)
@@ -241,10 +289,9 @@ def run_once(args):
         add(run_lint(sys.executable))
         add(run_unit(sys.executable))
     if not args.unit_only:
-        for test_file in sorted(glob.glob(os.path.join(ROOT, 'tests', 'integration', '*.test'))):
-            if args.only and args.only not in os.path.basename(test_file):
-                continue
-            add(rostest_cases(test_file))
+        test_files = [f for f in sorted(glob.glob(os.path.join(ROOT, 'tests', 'integration', '*.test')))
+                      if not args.only or args.only in os.path.basename(f)]
+        run_rostests(test_files, args.jobs, add)
     if not args.only and not args.unit_only:
         add(check_source_space())
     print(CORPUS_NOT_RUN, flush=True)
