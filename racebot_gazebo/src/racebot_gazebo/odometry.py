@@ -1,4 +1,4 @@
-"""Odometry maths: the Ackermann car's wheel odometry.
+"""Odometry maths: the Ackermann car's wheel odometry, and the sim-time schedule of the ground truth.
 
 Pure Python: no rospy, no pybullet (odometry_nodes.py wraps it in a ROS node; the ground truth's
 body-frame twist there is rotate_back, below).
@@ -99,3 +99,27 @@ def rotate_back(q, v):
     return (v[0] + w * tx + (y * tz - z * ty),
             v[1] + w * ty + (z * tx - x * tz),
             v[2] + w * tz + (x * ty - y * tx))
+
+
+class SimTimeTicks:
+    """When a node that publishes at `rate` Hz of sim time from a faster stream (gazebo_odometry from
+    /gazebo/link_states) publishes: a message is due every 1/rate s of sim time, counted from the due time, not
+    from the arrival, so a loaded machine that delivers the stream late still gets rate messages per sim second
+    (the ticks it missed are published with the next messages that arrive, one each). Only a gap of more than
+    `resync` s (a stalled node) or time going back (a world reset) starts the schedule again from now. Times are
+    seconds."""
+
+    def __init__(self, rate, resync=1.0):
+        self.period = 1.0 / rate if rate > 0 else 0.0
+        self.resync = resync
+        self.next = None  # sim time the next message is due
+
+    def due(self, now):
+        """True when a message is due at sim time `now` (and counts it)."""
+        if self.next is not None and now + 2 * self.period < self.next:
+            self.next = None  # time went back: a reset
+        if self.next is not None and now < self.next:
+            return False
+        behind = self.next is None or now - self.next > max(self.resync, self.period)
+        self.next = (now if behind else self.next) + self.period
+        return True

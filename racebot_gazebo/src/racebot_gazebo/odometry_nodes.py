@@ -11,7 +11,7 @@ gazebo_odometry (GroundTruthOdometry), as the racecar project's gazebo_odometry.
   ~link_name      (str, racebot::base_footprint)  the entry of link_states to report
   ~frame_id       (str, odom)
   ~child_frame_id (str, base_footprint)
-  ~rate           (Hz, 20)    at most this often, in sim time
+  ~rate           (Hz, 20)    this often, in sim time (odometry.SimTimeTicks; 0: every link_states)
   ~publish_tf     (bool, true)
 
 wheel_odometry (WheelOdometry): integrates the rear wheel speeds and steering hinge angles
@@ -68,24 +68,16 @@ class GroundTruthOdometry:
         self.link_name = rospy.get_param('~link_name', 'racebot::base_footprint')
         self.frame_id = _frame('~frame_id', 'odom')
         self.child_frame_id = _frame('~child_frame_id', 'base_footprint')
-        rate = float(rospy.get_param('~rate', 20.0))
-        self.period = rospy.Duration(1.0 / rate) if rate > 0 else rospy.Duration(0)
+        self.ticks = odometry.SimTimeTicks(float(rospy.get_param('~rate', 20.0)))
         self.tf = tf2_ros.TransformBroadcaster() if rospy.get_param('~publish_tf', True) else None
         self.pub = rospy.Publisher('odom', Odometry, queue_size=10)
-        self.next = None  # sim time the next message is due
         self.missing_warned = False
         self.sub = rospy.Subscriber('/gazebo/link_states', LinkStates, self.on_link_states, queue_size=1)
 
     def on_link_states(self, msg):
         now = rospy.Time.now()
-        if self.next is not None and now + self.period + self.period < self.next:
-            self.next = None  # simulation reset: time went back
-        if self.next is not None and now < self.next:
+        if not self.ticks.due(now.to_sec()):
             return
-        # Due one period after this message's due time, not after its arrival: 20 Hz of sim time
-        # however late link_states arrive (resynchronised after a gap of more than a period).
-        late = self.next is None or now - self.next > self.period
-        self.next = (now if late else self.next) + self.period
         try:
             i = msg.name.index(self.link_name)
         except ValueError:

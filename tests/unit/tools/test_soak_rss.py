@@ -1,65 +1,31 @@
-"""The soak's memory verdict (tools/soak.py, rss_windows): a point cloud on its way out raises the
-simulator's RSS by ~10 MB in about 40 % of the samples; that must not read as growth, and a leak must."""
-import random
-
+"""The soak's memory verdict (tools/soak.py): RSS read at rest (physics paused, frames delivered) after the
+warm-up, every REST_EVERY s, and at the end; the verdict compares the first rest with the last."""
 import soak
 
-BASE_KB = 188000
-CLOUD_KB = 9800   # one 640x480 PointCloud2 (32-byte points)
+
+def test_no_rest_before_the_warm_up_has_ended():
+    assert not soak.rest_due(5.0, None, [])      # the sensors are not warm yet
+    assert not soak.rest_due(19.0, 20.0, [])     # warm at 20 s of sim time
+    assert soak.rest_due(20.0, 20.0, [])
 
 
-def bursty(n, rng, leak_kb_per_sample=0.0, start=20.0, step=0.9):
-    """n (sim time, RSS) samples after a warm-up at `start`: a cloud in flight in 40 % of them."""
-    return [(start + i * step, int(BASE_KB + i * leak_kb_per_sample + (CLOUD_KB if rng.random() < 0.4 else 0)))
-            for i in range(n)]
+def test_rests_come_every_rest_every_seconds_after_the_last():
+    rests = [(20.0, 140000)]
+    assert not soak.rest_due(20.0 + soak.REST_EVERY - 0.1, 20.0, rests)
+    assert soak.rest_due(20.0 + soak.REST_EVERY, 20.0, rests)
 
 
-def growth_percent(samples):
-    warm, end = soak.rss_windows(samples, warmup=20.0)
-    return 100.0 * (end[1] - warm[1]) / warm[1]
-
-
-def test_clouds_in_flight_do_not_read_as_growth():
-    rng = random.Random(7)
-    worst = max(growth_percent(bursty(120, rng)) for _ in range(2000))
-    assert worst < 1.0
-
-
-def test_the_old_three_sample_window_did_misread_them():
-    # What failed CI: with 3 samples, the end window sometimes caught a cloud in each.
-    rng = random.Random(7)
-    runs = [soak.rss_windows(bursty(120, rng), warmup=20.0, window=3, dips=0) for _ in range(2000)]
-    false_growth = sum(1 for warm, end in runs if 100.0 * (end[1] - warm[1]) / warm[1] >= 5.0)
-    assert false_growth > 0
-
-
-def test_a_dip_or_two_in_the_warm_up_window_does_not_read_as_growth():
-    # What failed a full run: one sample 45 MB under the rest in the warm-up window, taken as the warm-up's
-    # size by the lowest-of-12 rule (145.2 -> 191.6 MB read as 32 % growth).
-    rng = random.Random(7)
-    for _ in range(500):
-        samples = bursty(120, rng)
-        for i in rng.sample(range(12), 2):  # in the old window and the new
-            samples[i] = (samples[i][0], BASE_KB - 45000)
-        assert growth_percent(samples) < 1.0
-        old_warm, old_end = soak.rss_windows(samples, warmup=20.0, window=12, dips=0)
-        assert 100.0 * (old_end[1] - old_warm[1]) / old_warm[1] > 5.0  # the old rule misread it
+def test_growth_is_the_last_rest_against_the_first():
+    rests = [(20.0, 100000), (50.0, 130000), (80.0, 103000)]
+    assert abs(soak.rest_growth(rests) - 3.0) < 1e-9
+    assert soak.rest_growth(rests[:1]) is None and soak.rest_growth([]) is None
 
 
 def test_a_leak_reads_as_growth():
-    # 12 MB over the drive (6 % of the simulator), in the same bursty noise.
-    rng = random.Random(7)
-    assert growth_percent(bursty(120, rng, leak_kb_per_sample=12000 / 120.0)) > 5.0
+    rests = [(20.0 + 30.0 * i, 140000 + 2000 * i) for i in range(5)]  # 2 MB every 30 s
+    assert soak.rest_growth(rests) > 5.0
 
 
-def test_samples_before_the_warm_up_are_ignored():
-    start_up = [(t, 90000) for t in (0.0, 5.0, 10.0, 15.0)]
-    steady = [(20.0 + i, BASE_KB) for i in range(2 * soak.RSS_WINDOW)]
-    warm, end = soak.rss_windows(start_up + steady, warmup=20.0)
-    assert warm[0] >= 20.0 and warm[1] == BASE_KB
-    assert end[1] == BASE_KB
-
-
-def test_too_few_samples_give_no_verdict():
-    samples = [(20.0 + i, BASE_KB) for i in range(2 * soak.RSS_WINDOW - 1)]
-    assert soak.rss_windows(samples, warmup=20.0) == (None, None)
+def test_the_median_of_the_readings_stands_for_the_rest():
+    assert soak.median([5, 1, 9]) == 5
+    assert soak.median([140000] * 7 + [180000]) == 140000  # one reading with a frame freed late

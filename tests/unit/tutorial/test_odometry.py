@@ -68,3 +68,27 @@ def test_quaternion_helpers_the_nodes_use():
     # the inverse of an arbitrary turn, as the simulator's own maths has it
     q = rpy_to_quaternion(0.3, -0.7, 2.1)
     assert rotate_back(q, (0.4, -1.5, 2.2)) == pytest.approx(rotations.rotate_back(q, (0.4, -1.5, 2.2)), abs=1e-12)
+
+
+def _published(ticks, arrivals):
+    return [t for t in arrivals if ticks.due(t)]
+
+
+def test_ground_truth_ticks_hold_the_rate_when_the_stream_comes_late():
+    from racebot_gazebo.odometry import SimTimeTicks
+    ticks = SimTimeTicks(20.0)
+    # link_states every 1 ms of sim time, but a loaded machine delivers none from 1.00 to 1.33 s
+    arrivals = [i / 1000.0 for i in range(0, 3001) if not 1000 < i < 1330]
+    stamps = _published(ticks, arrivals)
+    assert len(stamps) == 61  # as many as 0, 0.05, ..., 3.0: the ticks due in the gap come on arrival, one each
+    assert sum(1 for t in stamps if 1.33 <= t < 1.34) == 7  # those due from 1.0 to 1.3 s
+
+
+def test_ground_truth_ticks_start_again_after_a_stall_or_a_reset():
+    from racebot_gazebo.odometry import SimTimeTicks
+    ticks = SimTimeTicks(20.0)
+    assert _published(ticks, [0.0, 0.01, 0.05]) == [0.0, 0.05]
+    assert ticks.due(5.0) and not ticks.due(5.001)  # 5 s without a message: no burst of 100
+    assert ticks.due(0.2) and not ticks.due(0.21)   # time went back (a world reset)
+    every = SimTimeTicks(0.0)
+    assert _published(every, [0.0, 0.001, 0.002]) == [0.0, 0.001, 0.002]
