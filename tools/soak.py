@@ -136,6 +136,45 @@ def rest_growth(rests):
     return 100.0 * (rests[-1][1] - rests[0][1]) / rests[0][1]
 
 
+class RestMeter:
+    """The simulator's RSS at rest (see the module's doc): pause physics, wait until no sensor message came for
+    REST_QUIET wall s (or REST_TIMEOUT), read RSS REST_SAMPLES times, resume. `delivered()`: the sensor messages
+    received so far; `driven()`: sim s driven."""
+
+    def __init__(self, rospy, pid, delivered, driven):
+        from std_srvs.srv import Empty
+        self.pause = rospy.ServiceProxy('/gazebo/pause_physics', Empty)
+        self.unpause = rospy.ServiceProxy('/gazebo/unpause_physics', Empty)
+        self.pid, self.delivered, self.driven = pid, delivered, driven
+
+    def __call__(self):
+        """(sim time driven, RSS kB) at rest: the median of the readings."""
+        self.pause()
+        try:
+            deadline = time.time() + REST_TIMEOUT
+            last, quiet_since = None, time.time()
+            while True:
+                delivered, now = self.delivered(), time.time()
+                if delivered != last:
+                    last, quiet_since = delivered, now
+                elif now - quiet_since >= REST_QUIET:
+                    break
+                if now > deadline:
+                    print('soak: sensor messages still came %.0f s after the pause' % REST_TIMEOUT, flush=True)
+                    break
+                time.sleep(REST_SAMPLE_PERIOD)
+            readings = []
+            for _ in range(REST_SAMPLES):
+                readings.append(rss_kb(self.pid) or 0)
+                time.sleep(REST_SAMPLE_PERIOD)
+            rest = (round(self.driven(), 3), median(readings))
+            print('soak: at rest at %.0f s of sim time: RSS %.1f MB (readings %.1f to %.1f MB)'
+                  % (rest[0], rest[1] / 1024.0, min(readings) / 1024.0, max(readings) / 1024.0), flush=True)
+            return rest
+        finally:
+            self.unpause()
+
+
 class Soak:
     def __init__(self, args, run_dir):
         self.args = args
@@ -186,9 +225,6 @@ class Soak:
         self.list_controllers = rospy.ServiceProxy('/racebot/controller_manager/list_controllers', ListControllers)
         self.world_properties = rospy.ServiceProxy('/gazebo/get_world_properties', GetWorldProperties)
         self.model_state = rospy.ServiceProxy('/gazebo/get_model_state', GetModelState)
-        from std_srvs.srv import Empty
-        self.pause_physics = rospy.ServiceProxy('/gazebo/pause_physics', Empty)
-        self.unpause_physics = rospy.ServiceProxy('/gazebo/unpause_physics', Empty)
         self._wait(lambda: self.running() == set(CONTROLLERS), 'the seven controllers to run', deadline)
         from ackermann_msgs.msg import AckermannDriveStamped
         self.command_msg = AckermannDriveStamped()
@@ -198,6 +234,7 @@ class Soak:
         if self.sim_pid is None:
             raise SystemExit('soak: cannot find the process of the simulator (/gazebo)')
         self._subscribe_sensors()
+        self.rest = RestMeter(rospy, self.sim_pid, self._delivered, self._driven)
 
     def _wait(self, condition, what, deadline):
         while not condition():
@@ -328,41 +365,15 @@ class Soak:
         with self.lock:
             return (self.clock or 0.0) - self.start_sim
 
+    def _delivered(self):
+        with self.lock:
+            return sum(self.sensor_counts.values())
+
     def _note_warm(self, driven):
         if self.sensors_warm_at is None:
             with self.lock:
                 if all(n >= WARM_SENSOR_MESSAGES for n in self.sensor_counts.values()):
                     self.sensors_warm_at = driven
-
-    def rest(self):
-        """(sim time driven, RSS kB) at rest: physics paused, the frames in flight delivered (no sensor message
-        for REST_QUIET wall s, or REST_TIMEOUT), the median of REST_SAMPLES readings; then physics resumes."""
-        self.pause_physics()
-        try:
-            deadline = time.time() + REST_TIMEOUT
-            last, quiet_since = None, time.time()
-            while True:
-                with self.lock:
-                    delivered = sum(self.sensor_counts.values())
-                now = time.time()
-                if delivered != last:
-                    last, quiet_since = delivered, now
-                elif now - quiet_since >= REST_QUIET:
-                    break
-                if now > deadline:
-                    print('soak: sensor messages still came %.0f s after the pause' % REST_TIMEOUT, flush=True)
-                    break
-                time.sleep(REST_SAMPLE_PERIOD)
-            readings = []
-            for _ in range(REST_SAMPLES):
-                readings.append(rss_kb(self.sim_pid) or 0)
-                time.sleep(REST_SAMPLE_PERIOD)
-            rest = (round(self._driven(), 3), median(readings))
-            print('soak: at rest at %.0f s of sim time: RSS %.1f MB (readings %.1f to %.1f MB)'
-                  % (rest[0], rest[1] / 1024.0, min(readings) / 1024.0, max(readings) / 1024.0), flush=True)
-            return rest
-        finally:
-            self.unpause_physics()
 
     # -- verdict ----------------------------------------------------------------------------------
     def final_checks(self):
