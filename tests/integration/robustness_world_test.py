@@ -5,8 +5,9 @@ This test starts the simulators itself (rosrun world_server ...) so that it can 
 stop and restart them. Cases:
   missing / not-XML world file  -> the world server exits 1 with a fatal log naming the file and
                                    saying what to do;
-  degenerate / unsupported geometry -> one warning per element, the element skipped, the world loads
-                                   and serves;
+  degenerate / unsupported geometry -> one warning per element, the element skipped, the model kept and
+                                   listed (Gazebo's loader keeps it: a missing mesh, a link without
+                                   shapes), the world loads and serves;
   a spawner started long before the simulator -> it waits (saying why), then loads and starts;
   the simulator restarted under a running spawner -> the new controller manager starts empty (as with
                                    ros_control); our spawner notices, says what to do and forgets its
@@ -39,6 +40,9 @@ DEGENERATE = {
     'nan_cylinder': '<cylinder><radius>0.2</radius><length>nan</length></cylinder>',
     'mesh_thing': '<mesh><uri>model://thing/meshes/thing.dae</uri></mesh>',
 }
+# a link with neither collision nor visual: Gazebo keeps and lists its model
+BARE = ('<model name="bare"><pose>0 -3 0.5 0 0 0</pose><link name="link"><inertial><mass>2</mass></inertial>'
+        '</link></model>')
 
 
 def world(body):
@@ -125,23 +129,28 @@ class RobustnessWorldTest(unittest.TestCase):
         self.assertIn('check it with xmllint', p.text)
         self.assert_no_crash(p)
 
-    def test_3_degenerate_geometry_is_skipped_with_a_warning_and_the_world_loads(self):
-        path = self.write('degenerate.world', world(GOOD_BOX + ''.join(
-            bad_model(name, geometry) for name, geometry in sorted(DEGENERATE.items()))))
+    def test_3_degenerate_geometry_is_skipped_with_a_warning_its_model_kept_and_the_world_loads(self):
+        # a mesh named in other capitals than the file on disk (a model made on Windows): kept, 'did you mean'
+        on_disk = self.write('Lamp_Shade.DAE', 'not read: the name is what matters')
+        capitals = {'mesh_capitals': '<mesh><uri>file://%s</uri></mesh>' % os.path.join(self.tmp, 'lamp_shade.DAE')}
+        path = self.write('degenerate.world', world(GOOD_BOX + BARE + ''.join(
+            bad_model(name, geometry) for name, geometry in sorted(dict(DEGENERATE, **capitals).items()))))
         p = self.start('racebot_sim_bridge', 'world_server', path, '__name:=gazebo')
         self.sim.clock = None
         self.sim.wait_ready()
         res = self.sim.assert_serving(self, sim_seconds=0.5)
         self.assertIn('good_box', res.model_names)
         self.assertIn('ground_plane', res.model_names)
-        for name in DEGENERATE:
-            self.assertNotIn(name, res.model_names)
+        self.assertIn('bare', res.model_names)
+        for name in list(DEGENERATE) + list(capitals):
+            self.assertIn(name, res.model_names)  # as Gazebo: the model stays, its link without the shape
             warnings = [line for line in p.text.splitlines() if '[WARN]' in line and "model '%s'" % name in line]
             self.assertTrue(warnings, 'no warning names %s:\n%s' % (name, p.text[-3000:]))
         self.assertIn('box size must be > 0, got 1 0 1', p.text)
         self.assertIn('sphere radius must be > 0', p.text)
         self.assertIn('cylinder length must be finite', p.text)
         self.assertIn('model://thing/meshes/thing.dae not found; searched', p.text)  # a mesh that is nowhere
+        self.assertIn('did you mean %s?' % on_disk, p.text)
         self.assertTrue(p.alive())
         self.assertEqual(p.stop(), 0, p.text[-3000:])
         self.assert_no_crash(p)

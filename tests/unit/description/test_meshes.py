@@ -285,8 +285,9 @@ def test_a_missing_mesh_used_by_many_models_is_one_warning_naming_it(isolated, m
     assert len(world.warnings) == 2, world.warnings  # the collision's mesh and the visual's, once each
     assert 'model://cone/meshes/cone.stl not found; searched' in world.warnings[0]
     skipped = []
-    assert physics().load_world(world, warn=skipped.append) == []  # nothing left to build: one line per model
-    assert all("model 'cone_%d' has no link with supported geometry" % i in skipped[i] for i in range(3)), skipped
+    # Gazebo keeps a model whose meshes are missing (MeshManager::Load logs, the link loads without the shape)
+    assert physics().load_world(world, warn=skipped.append) == ['cone_0', 'cone_1', 'cone_2']
+    assert skipped == []
 
 
 @pytest.mark.parametrize('sdf, needle', [

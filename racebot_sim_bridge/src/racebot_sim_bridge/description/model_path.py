@@ -16,7 +16,8 @@ gazebo_ros_paths_plugin.cpp):
   looks there for absolute paths that do not exist, for worlds saved on another machine);
 - plain relative paths: relative to `base_dir` (a model's folder, or the world file's), else as find_file.
 
-A URI that cannot be found raises ResolveError naming the URI and every place searched.
+A URI that cannot be found raises ResolveError naming the URI and every place searched, and a file in one of those
+folders whose name differs only in upper and lower case ("did you mean ...").
 """
 from __future__ import annotations
 
@@ -31,7 +32,7 @@ if TYPE_CHECKING:
 from racebot_sim_bridge.description import xml_document
 
 __all__ = ['ResolveError', 'resolve_uri', 'model_path', 'resource_path', 'find_file', 'find_model', 'model_sdf_file',
-           'package_dir']
+           'package_dir', 'nearest_match']
 
 
 class ResolveError(ValueError):
@@ -235,6 +236,27 @@ def _existing(uri, candidates, hint=None):
     for c in candidates:
         if os.path.isfile(c):
             return os.path.abspath(c)
+    near = nearest_match(candidates)
+    if near is not None:  # a model made on Windows or macOS, whose file systems ignore case
+        hint = 'did you mean %s? (a file of that name in other capitals; file names are case-sensitive here, ' \
+               'as for Gazebo on Linux)%s' % (near, '; %s' % hint if hint else '')
     raise ResolveError('%s not found; searched %s%s' % (
         uri, ', '.join(candidates) if candidates else 'nowhere (the search path is empty)',
         '; %s' % hint if hint else ''))
+
+
+def nearest_match(candidates: list[str]) -> str | None:
+    """The first file, in the order of `candidates` (paths that do not exist), in a candidate's own folder whose
+    name is the candidate's but for upper and lower case (aws_Spotlight_01.DAE for aws_spotlight_01.dae), or
+    None."""
+    for candidate in candidates:
+        folder, name = os.path.split(candidate)
+        try:
+            entries = sorted(os.listdir(folder or '.'))
+        except OSError:
+            continue
+        for entry in entries:
+            path = os.path.join(folder, entry)
+            if entry != name and entry.lower() == name.lower() and os.path.isfile(path):
+                return os.path.abspath(path)
+    return None

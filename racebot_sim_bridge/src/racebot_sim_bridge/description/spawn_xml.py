@@ -2,12 +2,16 @@
 
 Pure Python: no rospy, no pybullet. gazebo_ros_api_plugin (noetic) tells the formats apart by the
 document's root element (<robot>: URDF; <sdf> or <gazebo>: SDF) and, when the request names a
-robot_namespace, gives every <plugin> that has no <robotNamespace> of its own one with that namespace.
+robot_namespace, gives every <plugin> that has no <robotNamespace> of its own one with that namespace. Gazebo
+then reads the document with TinyXML (sdformat 9, also for a URDF's <gazebo> blocks): its text is condensed as
+TinyXML condenses it at the one parse here (xml_document.condense_white_space).
 """
 from __future__ import annotations
 
 import re
 import xml.etree.ElementTree as ET
+
+from racebot_sim_bridge.description import xml_document
 
 PACKAGE_PREFIX = 'package://'
 
@@ -22,9 +26,11 @@ def strip_xml_declaration(xml: str) -> str:
 
 
 def parse(xml: str | bytes) -> ET.Element | None:
-    """The document's root element (its one parse per spawn), or None when the text is not XML."""
+    """The document's root element (its one parse per spawn), its text condensed as TinyXML condenses it, or None
+    when the text is not XML."""
     try:
-        return ET.fromstring(strip_xml_declaration(xml) if isinstance(xml, str) else xml)
+        text = strip_xml_declaration(xml) if isinstance(xml, str) else xml
+        return xml_document.condense_white_space(ET.fromstring(text), text)
     except (ET.ParseError, ValueError, TypeError):
         return None
 

@@ -3,8 +3,8 @@
 No rospy, no pybullet. resolve_assets() gives the URDF (text, or its parsed tree) with
 - every <mesh filename> (package://, file://, plain path; STL, OBJ, DAE) replaced by the absolute
   path of its checked OBJ in the mesh cache (meshes.convert); a mesh that cannot be found or read
-  is left out with one warning naming the URI and where it was looked for (Gazebo too loads the
-  robot without it);
+  is left out with one warning per file naming the URI, the elements that use it, where it was looked for
+  and a file there of that name in other capitals (Gazebo too loads the robot without it);
 - every visual given its colour inline, in Gazebo's order of precedence: the link's
   <gazebo reference><material>Gazebo/Name</material>, else the URDF <material> colour (also one
   named at robot level), else the mesh file's own single colour, else none (PyBullet's default).
@@ -32,6 +32,7 @@ def resolve_assets(urdf: str | ET.Element, urdf_model: RobotModel,
     resolved text is returned, or its root element (as parsed once per spawn), changed in place and returned."""
     warn = warn or (lambda message: None)
     root = urdf if isinstance(urdf, ET.Element) else ET.fromstring(urdf)
+    failed = {}  # mesh filename -> (why, [the elements left out]): one warning per file
     for link_elem in root.findall('link'):
         name = link_elem.get('name')
         spec = urdf_model.links.get(name)
@@ -53,8 +54,8 @@ def resolve_assets(urdf: str | ET.Element, urdf_model: RobotModel,
                         path = model_path.resolve_uri(mesh.get('filename'))
                         converted = meshes.convert(path)
                     except (model_path.ResolveError, meshes.MeshError) as err:
-                        warn("link '%s' <%s> #%d: %s; left out (the robot is spawned without it)"
-                             % (name, kind, index + 1, err))
+                        failed.setdefault(mesh.get('filename'), (err, []))[1].append(
+                            "link '%s' <%s> #%d" % (name, kind, index + 1))
                         link_elem.remove(elem)
                         continue
                     mesh.set('filename', converted.obj_path)
@@ -67,6 +68,9 @@ def resolve_assets(urdf: str | ET.Element, urdf_model: RobotModel,
                         geometry.rgba = tuple(rgba)
                 kept.append(geometry)
             geometries[:] = kept
+    for err, places in failed.values():  # Gazebo too loads the robot, its links, their inertia, without the mesh
+        warn('%s: %s; left out (the robot is spawned without %s, its links keep their inertia)'
+             % (', '.join(places), err, 'it' if len(places) == 1 else 'them'))
     return root if root is urdf else ET.tostring(root, encoding='unicode')
 
 

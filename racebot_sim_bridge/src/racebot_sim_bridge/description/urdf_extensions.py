@@ -52,6 +52,7 @@ def read_gazebo(model: RobotModel, elem: ET.Element) -> None:
     """Reads a <gazebo> block into `model` (its links and joints already read)."""
     reference = elem.get('reference')
     if reference is None:
+        _model_static(model, elem)
         for child in elem:
             if child.tag == 'plugin':
                 model.plugins.append(read_plugin(child, '<gazebo>', None))
@@ -79,6 +80,20 @@ def read_gazebo(model: RobotModel, elem: ET.Element) -> None:
                 model.plugins.append(read_plugin(plugin, what + ' <visual>', reference))
         elif len(child) == 0:
             _property(model, properties, child, what, reference)
+
+
+def _model_static(model, elem):
+    """The model's <static> as sdformat 9 reads it (parser_urdf.cc): each <gazebo> block without reference is an
+    extension whose static flag is its <static> (false without one), and InsertSDFExtensionRobot writes every such
+    block's flag into the model in turn, so the last block decides (sdformat warns of the overwrite)."""
+    flag = False
+    for child in elem.findall('static'):
+        flag = _extension_flag('static', _extension_text(child))
+    if model.static and not flag:
+        model.warnings.append('a <gazebo> block without reference and without <static>true</static> follows one '
+                              'with it: sdformat takes the last block\'s <static> (false), so the model is not '
+                              'static; put <static>true</static> in the last <gazebo> block')
+    model.static = flag
 
 
 def _property(model, properties, child, what, reference):

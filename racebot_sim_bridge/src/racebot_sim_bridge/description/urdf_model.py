@@ -288,6 +288,7 @@ class RobotModel:
     root_link: str = None
     materials: dict = field(default_factory=dict)
     warnings: list = field(default_factory=list)
+    static: bool = False  # <gazebo><static> without reference, as sdformat reads it (urdf_extensions)
 
     def mimics(self) -> dict[str, Mimic]:
         """{joint: its Mimic} of the <mimic> joints racebot drives (beyond Gazebo 11, which ignores <mimic>): both

@@ -16,7 +16,7 @@ from __future__ import annotations
 
 import xml.etree.ElementTree as ET
 
-from racebot_sim_bridge.description import sdf_reduction
+from racebot_sim_bridge.description import sdf_reduction, xml_document
 from racebot_sim_bridge.description.urdf_extensions import read_gazebo
 from racebot_sim_bridge.description.urdf_joints import check_mimics, check_tree, read_joint
 from racebot_sim_bridge.description.urdf_links import read_link, read_material
@@ -79,8 +79,8 @@ def urdf_root(xml_text: str | bytes) -> ET.Element:
     if not xml_text.strip():
         raise UrdfError('the robot description is empty; set it, e.g. <param '
                         'name="robot_description" command="xacro ..."/> in the launch file')
-    try:
-        return ET.fromstring(xml_text)
+    try:  # text condensed as TinyXML condenses it (urdfdom, sdformat and ros_control read URDF with TinyXML)
+        return xml_document.condense_white_space(ET.fromstring(xml_text), xml_text)
     except ET.ParseError as err:
         # The parser's message ends with "line L, column C" (column counted from 0).
         raise UrdfError('the robot description is not valid XML: %s; if it is a .xacro file, '

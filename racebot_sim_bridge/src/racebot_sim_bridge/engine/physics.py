@@ -72,9 +72,10 @@ class PhysicsWorld:
     # -- models -------------------------------------------------------------------------------
     def load_world(self, world: sdf_model.World, warn: Callable[[str], None] | None = None) -> list[str]:
         """Creates every model of a parsed sdf_model.World but its robots (Model.is_robot, spawned through
-        the URDF path by the Simulator); returns the names created. With `warn`,
-        a model that cannot be built (no link with usable geometry left) is skipped and warn(message)
-        told, as the reader skips degenerate elements; without it, PhysicsError."""
+        the URDF path by the Simulator); returns the names created. A model whose links have no shape left
+        (a mesh missing, none written) is built all the same, as Gazebo keeps it (sdf_bodies.py). With `warn`,
+        a model that cannot be built (no link, a shape PyBullet refuses) is skipped and warn(message) told;
+        without it, PhysicsError."""
         created = []
         for model in world.models:
             if model.is_robot:

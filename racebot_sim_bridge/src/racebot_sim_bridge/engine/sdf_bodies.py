@@ -1,12 +1,14 @@
 """The PyBullet bodies of an SDF model: one body per link, its collision shapes, visual shapes and colours.
 
 No ROS here. PhysicsWorld.add_sdf_model calls build_model; the Model it returns holds the bodies (its first
-link's is the Model's own, the others `extra_bodies`). A static body collides with the exact triangles of its
-meshes (concave triangle mesh, as Gazebo does); a dynamic one with one convex hull per mesh part. Colours are
-given when a body is built (visual shapes with their rgba), so a copy built from its BodySource (the viewer's)
-looks the same. Friction: ODE takes the smaller mu of two touching surfaces, Bullet multiplies them, so a
-static surface gets friction 1 and a dynamic one its own mu; a ground plane's mu is reported to the world
-(PhysicsWorld.ground_mu), which gives robots min(their mu, the ground's).
+link's is the Model's own, the others `extra_bodies`). Every link is a body, also one with no collision and no
+visual left (none written, or a missing mesh skipped by the reader): Gazebo keeps such a link and its model.
+A static body collides with the exact triangles of its meshes (concave triangle mesh, as Gazebo does); a dynamic
+one with one convex hull per mesh part. Colours are given when a body is built (visual shapes with their rgba),
+so a copy built from its BodySource (the viewer's) looks the same. Friction: ODE takes the smaller mu of two
+touching surfaces, Bullet multiplies them, so a static surface gets friction 1 and a dynamic one its own mu; a
+ground plane's mu is reported to the world (PhysicsWorld.ground_mu), which gives robots min(their mu, the
+ground's).
 """
 from __future__ import annotations
 
@@ -35,11 +37,10 @@ def build_model(client: PybulletClient, applied: dict, model: sdf_model.SdfModel
         for link in model.links:
             body_id, mu = _link_body(client, model, link, visuals)
             ground_mu = mu if mu is not None else ground_mu
-            if body_id is not None:
-                ids.append((link.name, body_id))
-                retro = next((c.laser_retro for c in link.collisions if c.laser_retro), 0.0)
-                if retro:
-                    laser_retro[(body_id, -1)] = retro
+            ids.append((link.name, body_id))
+            retro = next((c.laser_retro for c in link.collisions if c.laser_retro), 0.0)
+            if retro:
+                laser_retro[(body_id, -1)] = retro
     except Exception as err:  # the links built so far go too: nothing of a refused model stays behind
         for _, body_id in ids:
             client.removeBody(body_id)
@@ -48,9 +49,8 @@ def build_model(client: PybulletClient, applied: dict, model: sdf_model.SdfModel
             raise
         raise PhysicsError("model '%s' link '%s' could not be built (%s: %s)"
                            % (model.name, link.name, type(err).__name__, err)) from err
-    if not ids:
-        raise PhysicsError("model '%s' has no link with supported geometry (give it a box, cylinder, sphere, "
-                           "plane or mesh of positive size)" % model.name)
+    if not ids:  # sdformat 9 refuses a model without a link ("A model must have at least one link")
+        raise PhysicsError("model '%s' has no link; a model needs at least one <link>" % model.name)
     # A multi-link SDF model is kept as its first link's body plus extra bodies named model::link.
     first_link, first_id = ids[0]
     return Model(client, applied, model.name, first_id, model.static, BodySource(BodyKind.SDF, model),
@@ -58,7 +58,9 @@ def build_model(client: PybulletClient, applied: dict, model: sdf_model.SdfModel
 
 
 def _link_body(client, model, link, visuals):
-    """(PyBullet body of one SDF link or None when it has nothing to build, mu of its ground plane or None)."""
+    """(PyBullet body of one SDF link, mu of its ground plane or None). A link left with no shape (none written,
+    or each skipped: a mesh that is missing, a degenerate size) is still a body, as Gazebo keeps the link and
+    its model: its mass and inertia, nothing to collide with or draw."""
     shapes, drawn = [], []
     static = link.is_static(model) or link.mass is None or link.mass <= 0  # a nested model's: its own
     try:
@@ -72,8 +74,6 @@ def _link_body(client, model, link, visuals):
     except pb.error as err:
         raise PhysicsError("model '%s' link '%s': PyBullet could not build its shapes (%s)"
                            % (model.name, link.name, err))
-    if not shapes and vis_id < 0:
-        return None, None
     world_pos, world_orn = model.world_pose_of(link)
     mass = 0.0 if static else link.mass
     col_id = shapes[0][0] if len(shapes) == 1 else _compound(client, link, static) if shapes else -1
@@ -83,8 +83,10 @@ def _link_body(client, model, link, visuals):
         if len(drawn) > 1:  # createVisualShapeArray takes no colours: one call per shape
             for i, vis in enumerate(drawn):
                 client.changeVisualShape(body, -1, shapeIndex=i, rgbaColor=_rgba(vis))
-        if not static and link.inertia is not None:
-            ixx, _, _, iyy, _, izz = link.inertia
+        # Without a shape PyBullet has no inertia to derive: the SDF's, else SDF's default (1 kg m^2 each)
+        inertia = link.inertia if link.inertia is not None or shapes else _SDF_DEFAULT_INERTIA
+        if not static and inertia is not None:
+            ixx, _, _, iyy, _, izz = inertia
             client.changeDynamics(body, -1, localInertiaDiagonal=(ixx, iyy, izz))
         mus = [c.mu for _, c in shapes if c.mu is not None]
         is_ground = any(c.shape.kind is ShapeKind.PLANE for _, c in shapes)
@@ -95,6 +97,9 @@ def _link_body(client, model, link, visuals):
         client.removeBody(body)
         raise
     return body, (min(mus) if is_ground and mus else None)
+
+
+_SDF_DEFAULT_INERTIA = (1.0, 0.0, 0.0, 1.0, 0.0, 1.0)  # <inertia>'s defaults: ixx, ixy, ixz, iyy, iyz, izz
 
 
 def _compound(client, link, static):

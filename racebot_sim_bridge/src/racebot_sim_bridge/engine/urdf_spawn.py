@@ -11,6 +11,8 @@ differently without them:
   min(its mu, the ground's mu) (static world surfaces have 1: sdf_bodies.py), so the product is Gazebo's
   minimum for the contacts that matter (robot on ground);
 - joint velocity motors (PyBullet's default) are switched off: joints move only by applied effort;
+- a static URDF (sdformat's model <static> from <gazebo><static>true</static></gazebo>) gets a fixed base: it
+  neither falls nor is pushed (its movable joints still move, where Gazebo holds every link of it);
 - URDF cylinders (the wheels) stay true cylinders (URDF_USE_IMPLICIT_CYLINDER): PyBullet's default
   convex-hull approximation makes the contact point jump between hull vertices, and the car veered
   ~2 degrees per metre driving straight with the hinges locked.
@@ -72,7 +74,8 @@ class UrdfSpawn:
         urdf_assets.resolve_assets(root, urdf_model, warn)
         urdf_xml = ET.tostring(root, encoding='unicode')  # what a copy is built from: before PyBullet's rewrite
         # A root link named world is the world (sdformat's URDF reader): its joints hold the robot to the world.
-        fixed = urdf_model.root_link == 'world'
+        # A static model (<gazebo><static>true</static></gazebo>) is held where it is spawned, as Gazebo holds it.
+        fixed = urdf_model.root_link == 'world' or urdf_model.static
         bullet_urdf = prepare_urdf_for_bullet(root, urdf_model, self.visuals)
         links = len(root.findall('link'))
         if links > MAX_BULLET_LINKS:
@@ -112,7 +115,8 @@ class UrdfSpawn:
         """The Model of a URDF PyBullet just loaded, with Gazebo's friction, damping and joint motors."""
         client = self.client
         # urdf_xml has its meshes resolved: a copy needs no package path
-        model = Model(client, self.applied, name, body_id, False, BodySource(BodyKind.URDF, urdf_model, urdf_xml))
+        model = Model(client, self.applied, name, body_id, urdf_model.static,
+                      BodySource(BodyKind.URDF, urdf_model, urdf_xml))
         for link, index in model.link_index.items():
             # PyBullet's default link damping (0.04) has no counterpart in Gazebo: a free wheel would slow down.
             friction = min(link_friction(urdf_model, link), ground_mu)
