@@ -3,12 +3,12 @@
 No ROS here. PhysicsWorld.add_sdf_model calls build_model; the Model it returns holds the bodies (its first
 link's is the Model's own, the others `extra_bodies`). Every link is a body, also one with no collision and no
 visual left (none written, or a missing mesh skipped by the reader): Gazebo keeps such a link and its model.
-A static body collides with the exact triangles of its meshes (concave triangle mesh, as Gazebo does); a dynamic
-one with one convex hull per mesh part. Colours are given when a body is built (visual shapes with their rgba),
-so a copy built from its BodySource (the viewer's) looks the same. Friction: ODE takes the smaller mu of two
-touching surfaces, Bullet multiplies them, so a static surface gets friction 1 and a dynamic one its own mu; a
-ground plane's mu is reported to the world (PhysicsWorld.ground_mu), which gives robots min(their mu, the
-ground's).
+A static body collides with the exact surface of its meshes, each triangle one-sided as in ODE
+(one_sided_mesh.py); a dynamic one with one convex hull per mesh part. Colours are given when a body is built
+(visual shapes with their rgba), so a copy built from its BodySource (the viewer's) looks the same. Friction: ODE
+takes the smaller mu of two touching surfaces, Bullet multiplies them, so a static surface gets friction 1 and a
+dynamic one its own mu; a ground plane's mu is reported to the world (PhysicsWorld.ground_mu), which gives robots
+min(their mu, the ground's).
 """
 from __future__ import annotations
 
@@ -17,6 +17,7 @@ from typing import TYPE_CHECKING
 import pybullet as pb
 
 from racebot_sim_bridge.description.geometry import ShapeKind
+from racebot_sim_bridge.engine import one_sided_mesh
 from racebot_sim_bridge.engine.model import Model
 from racebot_sim_bridge.engine.physics_types import BodyKind, BodySource, PhysicsError
 from racebot_sim_bridge.engine.pybullet_client import PybulletClient
@@ -113,9 +114,10 @@ def _compound(client, link, static):
         pos, orn = as_transform(col.pose)
         kwargs['shapeTypes'].append({'box': pb.GEOM_BOX, 'cylinder': pb.GEOM_CYLINDER,
                                      'sphere': pb.GEOM_SPHERE, 'mesh': pb.GEOM_MESH}[s.kind])
-        kwargs['fileNames'].append(s.filename or '')
-        kwargs['meshScales'].append(list(s.scale or (1.0, 1.0, 1.0)))
-        kwargs['flags'].append(_mesh_flags(static) if s.kind is ShapeKind.MESH else 0)
+        filename, scale, flags = _mesh_file(s, static) if s.kind is ShapeKind.MESH else ('', [1.0, 1.0, 1.0], 0)
+        kwargs['fileNames'].append(filename)
+        kwargs['meshScales'].append(scale)
+        kwargs['flags'].append(flags)
         kwargs['radii'].append(s.radius or 0.0)
         kwargs['halfExtents'].append([x / 2.0 for x in (s.size or (0, 0, 0))])
         kwargs['lengths'].append(s.length or 0.0)
@@ -130,9 +132,9 @@ def _compound(client, link, static):
 def _collision_shape(client, shape, pos, orn, static):
     """A collision shape for one geometry.Shape at (pos, orn), None for a kind PyBullet has no shape for."""
     if shape.kind is ShapeKind.MESH:
-        return client.createCollisionShape(pb.GEOM_MESH, fileName=shape.filename, meshScale=list(shape.scale),
-                                      flags=_mesh_flags(static), collisionFramePosition=pos,
-                                      collisionFrameOrientation=orn)
+        filename, scale, flags = _mesh_file(shape, static)
+        return client.createCollisionShape(pb.GEOM_MESH, fileName=filename, meshScale=scale, flags=flags,
+                                           collisionFramePosition=pos, collisionFrameOrientation=orn)
     if shape.kind is ShapeKind.BOX:
         return client.createCollisionShape(pb.GEOM_BOX, halfExtents=[x / 2.0 for x in shape.size],
                                       collisionFramePosition=pos, collisionFrameOrientation=orn)
@@ -191,9 +193,17 @@ def _visual_geometry(shape):
     return dict(shapeType=pb.GEOM_BOX, halfExtents=[size[0] / 2.0, size[1] / 2.0, 0.0005])
 
 
-def _mesh_flags(static):
-    # Bullet collides static bodies with triangle meshes, dynamic ones only with convex shapes.
-    return pb.GEOM_FORCE_CONCAVE_TRIMESH if static else 0
+def _mesh_file(shape, static):
+    """(file, scale, flags) of a mesh collision: a static one's triangles as one-sided prisms (one_sided_mesh.py,
+    ODE's one-sided triangles), or its exact triangles when it has too many for prisms; a dynamic one as one convex
+    hull per part (Bullet collides dynamic bodies only with convex shapes)."""
+    scale = list(shape.scale or (1.0, 1.0, 1.0))
+    if not static:
+        return shape.filename, scale, 0
+    prisms = one_sided_mesh.prism_mesh(shape.filename, scale)
+    if prisms is None:
+        return shape.filename, scale, pb.GEOM_FORCE_CONCAVE_TRIMESH
+    return prisms, [1.0, 1.0, 1.0], 0
 
 
 def _rgba(visual):
