@@ -5,8 +5,8 @@
 failure count over the N runs: the way to tell a flaky test (fails 1 of 10) from a broken one.
 
 Three tiers: ruff over the repository (one test), pytest unit tests in tests/unit (no ROS master)
-and every rostest file in tests/integration (each brings up its own master, roslaunch and nodes; --jobs of them at
-a time, default 2, the bench and the soak alone). Results are counted
+and every rostest file in tests/integration (each brings up its own master, roslaunch and nodes), --jobs of them
+(and of pytest's workers) at a time, default 2. Results are counted
 from the JUnit XML both write, so a test node that crashes or never reports counts as failed.
 Run it from a shell where `devel/setup.bash` is sourced (the Makefile does that).
 """
@@ -24,17 +24,17 @@ from concurrent.futures import ThreadPoolExecutor
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 OUT = os.path.join(ROOT, 'out', 'test-results')
 ROSTEST_TIMEOUT_S = 420
-# The corpus of public packages (make corpus) needs the network or clones; the suite never runs it.
 # Rostest files run JOBS at a time: each brings up a master of its own on a free port (rostest's port 0), its own
 # Xvfb (-displayfd), temporary folders and render buffers, and most of a file's time is spent waiting for sim time,
 # so two at once on a 2-core machine take about 60 % of the serial time. Every test bounds its waits in wall time
 # generously: a test that fails because another one runs beside it is a defect of that test, as on a busy CI host.
 JOBS = int(os.environ.get('RACEBOT_TEST_JOBS', '2'))
-# Run alone, after the others: the bench measures the machine, and the soak drives as fast as the CPU allows
-# for minutes; beside another test the one's figures and the other's wall time would be each other's load.
-SOLO = ('bench_quick', 'soak_short')
 # Started first: each takes a minute or more; started last, one would leave a lane running alone at the end.
-LONG = ('readme_drive', 'shutdown_stress', 'robustness_input', 'racebot_launch', 'faults', 'robustness_world')
+# The bench's quick run and the soak share a lane too: neither judges a timing (bench_quick_test checks that
+# figures exist, the soak reads memory at rest), so another test beside them changes only how long they take.
+LONG = ('soak_short', 'bench_quick', 'shutdown_stress', 'readme_drive', 'robustness_input', 'racebot_launch',
+        'faults', 'robustness_world', 'viewer')
+# The corpus of public packages (make corpus) needs the network or clones; the suite never runs it.
 CORPUS_NOT_RUN = 'corpus: not run here (no network/clones; make corpus; the last table is docs/CORPUS.md)'
 
 
@@ -86,10 +86,12 @@ def count_junit(path):
     return passed, failed, skipped, failures
 
 
-def run_unit(python):
+def run_unit(python, jobs=1):
     xml = os.path.join(OUT, 'unit.xml')
     cmd = [python, '-m', 'pytest', os.path.join(ROOT, 'tests', 'unit'), '-q', '-p', 'no:cacheprovider',
            '--junitxml', xml]
+    if jobs > 1:  # pytest-xdist: the unit tests are CPU-bound, one worker per core
+        cmd += ['-n', str(jobs)]
     print('== unit tests: %s' % ' '.join(cmd), flush=True)
     code = subprocess.call(cmd, cwd=ROOT)
     if not os.path.exists(xml):
@@ -159,15 +161,14 @@ def test_name(test_file):
 
 
 def rostest_order(test_files):
-    """(shared, solo): the files that run JOBS at a time, the LONG ones first, and those that run alone."""
-    shared = [f for f in test_files if test_name(f) not in SOLO]
-    shared.sort(key=lambda f: (test_name(f) not in LONG, LONG.index(test_name(f)) if test_name(f) in LONG else 0))
-    return shared, [f for f in test_files if test_name(f) in SOLO]
+    """The rostest files in the order they start: the LONG ones first, then the others as given."""
+    rank = {name: i for i, name in enumerate(LONG)}
+    return sorted(test_files, key=lambda f: rank.get(test_name(f), len(LONG)))
 
 
 def run_rostests(test_files, jobs, add):
-    """Runs the rostest files, `jobs` at a time but SOLO ones alone; hands each result to `add` and prints each
-    file's report whole, as it ends (the reports of files that run together never interleave)."""
+    """Runs the rostest files `jobs` at a time; hands each result to `add` and prints each file's report whole, as
+    it ends (the reports of files that run together never interleave)."""
     lock = threading.Lock()
 
     def run(test_file):
@@ -176,12 +177,9 @@ def run_rostests(test_files, jobs, add):
             print(report, flush=True)
             add(result)
 
-    shared, solo = rostest_order(test_files)
     with ThreadPoolExecutor(max(1, jobs)) as pool:
-        for done in [pool.submit(run, f) for f in shared]:
+        for done in [pool.submit(run, f) for f in rostest_order(test_files)]:
             done.result()
-    for test_file in solo:
-        run(test_file)
 
 
 def failed_test(failure):
@@ -246,8 +244,8 @@ def main():
                         help='run N times; end with each test\'s failure count')
     parser.add_argument('--out', default=OUT, help='results directory (emptied first; default %(default)s)')
     parser.add_argument('--jobs', '-j', type=int, default=JOBS, metavar='N',
-                        help='rostest files at a time (default %(default)s, or RACEBOT_TEST_JOBS); '
-                             + ', '.join(SOLO) + ' always run alone')
+                        help='rostest files (and pytest workers) at a time (default %(default)s, or '
+                             'RACEBOT_TEST_JOBS)')
     args = parser.parse_args()
     if args.repeat < 1:
         parser.error('--repeat N needs N >= 1, got %d' % args.repeat)
@@ -287,7 +285,7 @@ def run_once(args):
 
     if not args.only:
         add(run_lint(sys.executable))
-        add(run_unit(sys.executable))
+        add(run_unit(sys.executable, args.jobs))
     if not args.unit_only:
         test_files = [f for f in sorted(glob.glob(os.path.join(ROOT, 'tests', 'integration', '*.test')))
                       if not args.only or args.only in os.path.basename(f)]
