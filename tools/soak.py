@@ -487,12 +487,14 @@ def main():
     json_path = args.json or os.path.join(ROOT, 'out', 'soak', 'soak-%s-%gmin.json' % (stamp, args.sim_minutes))
     soak = Soak(args, run_dir)
     report = {}
+    # SIGTERM as SIGINT: either ends the soak through the `finally` below, which takes its roslaunch down too
+    signal.signal(signal.SIGTERM, lambda *_: signal.raise_signal(signal.SIGINT))
     try:
         soak.start()
         soak.drive()
         report = soak.final_checks()
-    except SystemExit as err:
-        soak.failures.append(str(err))
+    except (SystemExit, KeyboardInterrupt) as err:
+        soak.failures.append(str(err) or 'stopped by a signal before the end')
         soak.wall_seconds = getattr(soak, 'wall_seconds', 0.0)
         soak.samples, soak.rests = getattr(soak, 'samples', []), getattr(soak, 'rests', [])
     finally:
