@@ -467,6 +467,10 @@ class Soak:
         return report
 
 
+def stopped(signum, _frame):
+    raise KeyboardInterrupt('stopped by signal %d before the end' % signum)
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument('--sim-minutes', type=float, default=30.0, help='sim time to drive (default 30)')
@@ -488,7 +492,7 @@ def main():
     soak = Soak(args, run_dir)
     report = {}
     # SIGTERM as SIGINT: either ends the soak through the `finally` below, which takes its roslaunch down too
-    signal.signal(signal.SIGTERM, lambda *_: signal.raise_signal(signal.SIGINT))
+    signal.signal(signal.SIGTERM, stopped)
     try:
         soak.start()
         soak.drive()
