@@ -188,3 +188,11 @@ def test_a_mesh_of_more_triangles_than_one_ray_batch_gets_a_depth_for_each():
     got = one_sided_mesh.depths(tri, normals)
     assert got.shape == (len(tri),)
     assert np.all(got > one_sided_mesh.MARGIN)
+
+
+def test_a_mesh_of_more_than_max_triangles_keeps_its_two_sided_triangles(tmp_path):
+    small = meshes.convert(str(write_dae(tmp_path / 'small.dae', trimesh.creation.box(extents=(1, 1, 1)), 1.0)))
+    big = meshes.convert(str(write_dae(tmp_path / 'big.dae', trimesh.creation.icosphere(subdivisions=4), 1.0)))
+    assert len(one_sided_mesh.read_obj(big.obj_path)[1]) > one_sided_mesh.MAX_TRIANGLES  # 5,120
+    assert one_sided_mesh.prism_mesh(small.obj_path, None) is not None
+    assert one_sided_mesh.prism_mesh(big.obj_path, None) is None  # prisms would cost ~17 MB
