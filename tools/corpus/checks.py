@@ -511,7 +511,7 @@ def check_floor(check, row):
         raise CheckFailed('get_model_state(%s): %s' % (model, reply.status_message))
     p = reply.pose.position
     path = resolve_find(check['world'])
-    world = floor.World(path, model_paths(), exported_paths('gazebo_media_path', 'GAZEBO_RESOURCE_PATH'),
+    world = floor.WorldCollisions(path, model_paths(), exported_paths('gazebo_media_path', 'GAZEBO_RESOURCE_PATH'),
                         rospkg.RosPack().get_path)
     below = float(check.get('below', 0.5))
     height, surface = world.height_at(p.x, p.y, below)

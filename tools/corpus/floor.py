@@ -38,8 +38,8 @@ def _pose(element):
     return pose_matrix(found.text if found is not None else None)
 
 
-class World:
-    """The world file's collision geometries: surfaces(), then height_at(x, y, below)."""
+class WorldCollisions:
+    """The collision geometries of a world file, read once; height_at(x, y, below) asks for the floor under a point."""
 
     def __init__(self, path, model_paths, resource_paths=(), find_package=None):
         self.path = path

@@ -417,7 +417,7 @@ def write_floor_world(root):
 
 
 def test_the_floor_is_the_highest_collision_surface_under_a_point(tmp_path):
-    world = floor.World(str(write_floor_world(tmp_path)), [str(tmp_path / 'models')], [str(tmp_path)])
+    world = floor.WorldCollisions(str(write_floor_world(tmp_path)), [str(tmp_path / 'models')], [str(tmp_path)])
     assert world.notes == []
     # the slab: 0.2 m (20 cm, unit 0.01, node at z 20) scaled by 2 = 0.4, posed at -0.3: its top at 0.1
     z, name = world.height_at(0.2, -0.3, 0.5)
@@ -431,7 +431,7 @@ def test_the_floor_is_the_highest_collision_surface_under_a_point(tmp_path):
 def test_a_missing_mesh_is_said_and_the_rest_of_the_world_read(tmp_path):
     path = write_floor_world(tmp_path)
     (tmp_path / 'models' / 'slab_floor' / 'meshes' / 'slab.DAE').unlink()
-    world = floor.World(str(path), [str(tmp_path / 'models')], [str(tmp_path)])
+    world = floor.WorldCollisions(str(path), [str(tmp_path / 'models')], [str(tmp_path)])
     assert any('slab.DAE' in note and 'not found' in note for note in world.notes)
     assert world.height_at(0.2, -0.3, 0.5) == (pytest.approx(0.0), 'ground_plane::link::collision')
 
