@@ -2,7 +2,7 @@
 """Soak: a long drive in the room, as fast as possible, watching memory, logs and the clock.
 
     make soak                                  30 min of sim time (the full soak)
-    python3 tools/soak.py --sim-minutes 2      the short form (the test suite runs it)
+    python3 tools/soak.py --sim-minutes 1      the short form (the test suite runs it)
 
 Starts `roslaunch racebot_gazebo racebot.launch gui:=false teleop:=false` on a master of its own (a
 free port) with a copy of the room world whose real_time_update_rate is 0 (as fast as possible),
@@ -467,6 +467,10 @@ class Soak:
         return report
 
 
+def stopped(signum, _frame):
+    raise KeyboardInterrupt('stopped by signal %d before the end' % signum)
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument('--sim-minutes', type=float, default=30.0, help='sim time to drive (default 30)')
@@ -487,12 +491,14 @@ def main():
     json_path = args.json or os.path.join(ROOT, 'out', 'soak', 'soak-%s-%gmin.json' % (stamp, args.sim_minutes))
     soak = Soak(args, run_dir)
     report = {}
+    # SIGTERM as SIGINT: either ends the soak through the `finally` below, which takes its roslaunch down too
+    signal.signal(signal.SIGTERM, stopped)
     try:
         soak.start()
         soak.drive()
         report = soak.final_checks()
-    except SystemExit as err:
-        soak.failures.append(str(err))
+    except (SystemExit, KeyboardInterrupt) as err:
+        soak.failures.append(str(err) or 'stopped by a signal before the end')
         soak.wall_seconds = getattr(soak, 'wall_seconds', 0.0)
         soak.samples, soak.rests = getattr(soak, 'samples', []), getattr(soak, 'rests', [])
     finally:

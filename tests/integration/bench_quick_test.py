@@ -69,10 +69,11 @@ class BenchQuickTest(unittest.TestCase):
         self.assertTrue(0.1 < rt['window']['rtf'] < 10.0, rt['window'])
         self.assertTrue(0.0 < rt['window']['cpu'] < 2.0, rt['window'])
         lat = rt['latency']
-        self.assertEqual(lat['delivered'], lat['sent'], lat)
-        # How many are applied is the machine's load: ros_control applies the newest command, so two
-        # that arrive between updates (a stalled process on a busy machine) count once. The last is
-        # always applied: nothing overtakes it.
+        # How many arrive and how many are applied is the machine's load: the controllers subscribe to their
+        # command with a queue of 1 (as ros_controllers do) and ros_control applies the newest command, so two that
+        # arrive together (a stalled process on a busy machine, another test beside this one) count once. The
+        # last is always delivered and applied: nothing overtakes it.
+        self.assertTrue(1 <= lat['delivered'] <= lat['sent'], lat)
         self.assertTrue(lat['last_applied'], lat)
         self.assertTrue(1 <= lat['applied'] <= lat['sent'], lat)
         for part in ('callback_ms', 'applied_ms'):

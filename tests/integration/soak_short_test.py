@@ -1,9 +1,10 @@
 #!/usr/bin/env python3
-"""Runs the soak's short form (tools/soak.py --sim-minutes 2) and checks its JSON report: the
+"""Runs the soak's short form (tools/soak.py --sim-minutes 1) and checks its JSON report: the
 simulator's memory did not grow after the warm-up, no ERROR in the logs, /clock never went back,
 every sensor topic delivered, the car and its controllers were fine at the end."""
 import json
 import os
+import signal
 import subprocess
 import sys
 import unittest
@@ -12,17 +13,30 @@ import rostest
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 REPORT = os.path.join(ROOT, 'out', 'soak', 'soak-short.json')
-SIM_MINUTES = 2
+WALL_LIMIT = 200  # wall s soak.py drives at most (a minute of sim time at RTF 0.3, start-up apart)
+BACKSTOP = 230    # wall s before the test stops soak.py itself (soak_short.test's time-limit is 300)
+SIM_MINUTES = 1  # read at rest, memory agrees to 1.5 % between rests: a minute gives a verdict, not noise
 
 
 class SoakShortTest(unittest.TestCase):
-    def test_two_minutes_of_driving_leave_memory_logs_and_clock_clean(self):
+    def test_a_minute_of_driving_leaves_memory_logs_and_clock_clean(self):
         if os.path.exists(REPORT):
             os.remove(REPORT)
-        proc = subprocess.run([sys.executable, os.path.join(ROOT, 'tools', 'soak.py'), '--sim-minutes',
-                               str(SIM_MINUTES), '--json', REPORT], stdout=subprocess.PIPE,
-                              stderr=subprocess.STDOUT, timeout=280)
-        output = proc.stdout.decode('utf-8', 'replace')
+        # soak.py gives up by itself after WALL_LIMIT s and reports why; the backstop stops it as Ctrl-C would, so
+        # that it takes its roslaunch down with it (killed outright, it would leave the simulator running)
+        proc = subprocess.Popen([sys.executable, os.path.join(ROOT, 'tools', 'soak.py'), '--sim-minutes',
+                                 str(SIM_MINUTES), '--wall-timeout', str(WALL_LIMIT), '--json', REPORT],
+                                stdout=subprocess.PIPE, stderr=subprocess.STDOUT)
+        try:
+            out, _ = proc.communicate(timeout=BACKSTOP)
+        except subprocess.TimeoutExpired:
+            proc.send_signal(signal.SIGINT)
+            try:
+                out, _ = proc.communicate(timeout=60)
+            except subprocess.TimeoutExpired:
+                proc.kill()
+                out, _ = proc.communicate()
+        output = out.decode('utf-8', 'replace')
         print(output)
         self.assertTrue(os.path.exists(REPORT), 'soak.py wrote no report:\n' + output[-3000:])
         with open(REPORT) as f:

@@ -32,6 +32,14 @@ HOUSE_ROW = 'aws_small_house'
 _LIGHT_URIS = ('model://sun',)
 
 
+
+def cache_counts(cache):
+    """{'cached_meshes': meshes converted to OBJ, 'prism_meshes': static meshes' one-sided prisms} in the mesh cache
+    (engine/one_sided_mesh.py writes its prisms there too, as prisms_*.obj)."""
+    objs = [os.path.basename(f) for f in glob.glob(os.path.join(cache, '*.obj'))]
+    prisms = sum(1 for name in objs if name.startswith('prisms_'))
+    return {'cached_meshes': len(objs) - prisms, 'prism_meshes': prisms}
+
 def world_models(world_file):
     """How many models get_world_properties lists once the world is in: the top-level <model>s and
     <include>s of its <world> (an <include> of the sun is a light)."""
@@ -251,8 +259,7 @@ def start(p, out):
         pid = node_pid(WORLD_SERVER, port)
         result = {'label': p['label'], 'cache': p['cache'], 'master_s': master_s, 'clock_s': first[0] - started,
                   'models_s': models_s, 'models': len(names), 'rss_bytes': common.rss_bytes(pid),
-                  'cpu_s': common.cpu_seconds(pid), 'cached_meshes': len(glob.glob(os.path.join(p['mesh_cache'],
-                                                                                              '*.obj')))}
+                  'cpu_s': common.cpu_seconds(pid), **cache_counts(p['mesh_cache'])}
         sub.unregister()
         return result
     finally:

@@ -177,3 +177,14 @@ def test_the_prisms_front_faces_are_the_mesh_and_are_cached(tmp_path):
     extent = np.ptp(vertices, axis=0)  # scaled; inside the box by Bullet's margin, which pads each hull back out
     assert extent == pytest.approx([4.0, 1.0, 0.1], abs=2 * one_sided_mesh.MARGIN + 1e-9)
     assert (extent <= np.array([4.0, 1.0, 0.1]) + 1e-9).all()
+
+
+def test_a_mesh_of_more_triangles_than_one_ray_batch_gets_a_depth_for_each():
+    # 5,120 triangles, 4 rays each: more than PyBullet answers in one rayTestBatch (the bench's big world's
+    # meshes failed here: "cannot reshape array of size 20479")
+    sphere = trimesh.creation.icosphere(subdivisions=4, radius=1.0)
+    tri = np.asarray(sphere.vertices)[np.asarray(sphere.faces)]
+    normals = np.asarray(sphere.face_normals)
+    got = one_sided_mesh.depths(tri, normals)
+    assert got.shape == (len(tri),)
+    assert np.all(got > one_sided_mesh.MARGIN)

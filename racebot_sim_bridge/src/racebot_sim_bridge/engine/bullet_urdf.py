@@ -2,21 +2,36 @@
 
 prepare_urdf_for_bullet rewrites a spawned robot's parsed URDF for loadURDF: Gazebo's fixed-joint lumping
 (../description/urdf_lumping.py), the links in tree order (PyBullet crashes on a root written last), negligible
-inertia where none is declared, the Gazebo-only blocks dropped. No PyBullet calls here: urdf_spawn.py loads the text.
+inertia where none is declared, each inertia as Gazebo's ODE takes it (../kinematics/inertia.py: one that is not
+positive definite becomes the identity, with a warning; one PyBullet's importer would zero, though ODE takes it, is
+written in its principal axes and its moments set after loading), the Gazebo-only blocks dropped. No PyBullet calls
+here: urdf_spawn.py loads the text.
 """
 from __future__ import annotations
 
 import xml.etree.ElementTree as ET
+from collections.abc import Callable
+from typing import NamedTuple
 
 from racebot_sim_bridge.description import urdf_lumping
 from racebot_sim_bridge.description.urdf_model import RobotModel
+from racebot_sim_bridge.kinematics import inertia as inertia_maths
+from racebot_sim_bridge.kinematics.rotations import quaternion_multiply, quaternion_to_rpy, rpy_to_quaternion
 
-__all__ = ['NEGLIGIBLE_MASS', 'NEGLIGIBLE_INERTIA', 'prepare_urdf_for_bullet', 'joint_friction', 'link_friction',
-           'link_laser_retro']
+__all__ = ['NEGLIGIBLE_MASS', 'NEGLIGIBLE_INERTIA', 'BulletUrdf', 'prepare_urdf_for_bullet', 'joint_friction',
+           'link_friction', 'link_laser_retro']
 
 # Mass and inertia given to links that declare no <inertial> (Gazebo drops such links' mass; PyBullet would give 1 kg).
 NEGLIGIBLE_MASS = 1e-4
 NEGLIGIBLE_INERTIA = 1e-9
+_INERTIA_KEYS = ('ixx', 'ixy', 'ixz', 'iyy', 'iyz', 'izz')
+
+
+class BulletUrdf(NamedTuple):
+    """What loadURDF reads (`text`), and the principal moments to give links after it (`moments`: {link: (x, y,
+    z)}), where PyBullet's importer would zero an inertia that ODE takes as it is."""
+    text: str
+    moments: dict
 
 
 def joint_friction(urdf_model: RobotModel, joint_name: str) -> float:
@@ -52,11 +67,13 @@ def link_friction(urdf_model: RobotModel, link: str) -> float:
     return min(mus) if mus else 1.0
 
 
-def prepare_urdf_for_bullet(root: ET.Element, urdf_model: RobotModel, visuals: bool = True) -> str:
+def prepare_urdf_for_bullet(root: ET.Element, urdf_model: RobotModel, visuals: bool = True, name: str = '',
+                            warn: Callable[[str], None] | None = None) -> BulletUrdf:
     """The URDF text PyBullet should read, rewritten from its root element (changed in place): links
-    lumped as Gazebo lumps them; negligible inertia for links that declare none; <gazebo>, <transmission>
-    and sensor blocks dropped; the visuals dropped unless `visuals`; an <axis> without xyz given urdfdom's
-    default, 1 0 0 (PyBullet would read uninitialised memory for it). Mesh filenames must already be files
+    lumped as Gazebo lumps them; negligible inertia for links that declare none; each inertia as ODE takes it
+    (_inertias_as_ode_takes_them: warn(message) hears of model `name`'s that are not positive definite); <gazebo>,
+    <transmission> and sensor blocks dropped; the visuals dropped unless `visuals`; an <axis> without xyz given
+    urdfdom's default, 1 0 0 (PyBullet would read uninitialised memory for it). Mesh filenames must already be files
     PyBullet reads (urdf_assets.resolve_assets)."""
     for tag in ('gazebo', 'transmission'):
         for el in root.findall(tag):
@@ -75,8 +92,43 @@ def prepare_urdf_for_bullet(root: ET.Element, urdf_model: RobotModel, visuals: b
         if not visuals:
             for el in link.findall('visual'):
                 link.remove(el)
+    moments = _inertias_as_ode_takes_them(root, name, warn or (lambda message: None))
     _indent(root)  # PyBullet's URDF reader fails on some very long lines (a one-line document)
-    return ET.tostring(root, encoding='unicode')
+    return BulletUrdf(ET.tostring(root, encoding='unicode'), moments)
+
+
+def _inertias_as_ode_takes_them(root: ET.Element, name: str, warn: Callable[[str], None]) -> dict:
+    """Each (lumped) link's inertia rewritten so that PyBullet simulates what Gazebo's ODE does with it
+    (kinematics/inertia.py): not positive definite, the identity (dBodySetMass's fallback), with one warning; positive
+    definite but refused by PyBullet's importer (a moment larger than the other two together), written in its
+    principal axes with placeholder moments, the real ones returned ({link: moments}) to be set after loading.
+    Links without mass are left alone (a massless root is PyBullet's fixed base)."""
+    moments = {}
+    for link in root.findall('link'):
+        inertial = link.find('inertial')
+        mass, inertia = (None, None) if inertial is None else (inertial.find('mass'), inertial.find('inertia'))
+        if mass is None or inertia is None or not float(mass.get('value', '0')) > 0.0:
+            continue
+        values = [float(inertia.get(key, '0')) for key in _INERTIA_KEYS]
+        rows = inertia_maths.tensor(*values)
+        if not inertia_maths.ode_positive_definite(rows):
+            warn("model '%s' link '%s': its inertia (%s; mass %s kg) is not positive definite (a moment about some "
+                 "axis is zero or negative). Gazebo/ODE uses the identity inertia (1 kg m^2 about each axis) for such "
+                 "a link (dBodySetMass), and so does racebot; give the link a real inertia"
+                 % (name, link.get('name'), ', '.join('%s %g' % kv for kv in zip(_INERTIA_KEYS, values)),
+                    mass.get('value')))
+            inertia.attrib.update({key: repr(v) for key, v in zip(_INERTIA_KEYS, inertia_maths.IDENTITY)})
+        elif inertia_maths.bullet_importer_zeroes(rows):
+            principal, rpy = inertia_maths.principal_axes(rows)
+            origin = inertial.find('origin')
+            if origin is None:
+                origin = ET.SubElement(inertial, 'origin')
+            turned = quaternion_multiply(rpy_to_quaternion(*[float(v) for v in origin.get('rpy', '0 0 0').split()]),
+                                         rpy_to_quaternion(*rpy))
+            origin.set('rpy', ' '.join(repr(float(v)) for v in quaternion_to_rpy(turned)))
+            inertia.attrib.update({key: repr(v) for key, v in zip(_INERTIA_KEYS, inertia_maths.IDENTITY)})
+            moments[link.get('name')] = principal
+    return moments
 
 
 def _links_in_tree_order(root: ET.Element, urdf_model: RobotModel) -> None:

@@ -36,7 +36,7 @@ MIN_DEPTH = 1e-4  # m: a face with another just behind it (a sheet) stays a flat
 MARGIN = 0.001  # m: PyBullet's collision margin around a convex hull: the prism's front is set back by it
 MAX_TRIANGLES = 200000  # beyond: the plain two-sided triangle mesh (prisms cost memory and load time)
 _VERSION = '4'  # part of the cache key: bump when the written prisms change
-_RAY_BATCH = 16384  # PyBullet's MAX_RAY_INTERSECTION_BATCH_SIZE
+_RAY_BATCH = 8192  # PyBullet 3.2.7 refuses more than 16384 rays and answers 16383 of a batch of 16384
 
 
 def prism_mesh(path: str, scale: Sequence[float] | None) -> str | None:
@@ -149,6 +149,8 @@ def _cast(tri, origins, ends):
         for start in range(0, len(origins), _RAY_BATCH):
             chunk = slice(start, start + _RAY_BATCH)
             results = pb.rayTestBatch(origins[chunk].tolist(), ends[chunk].tolist(), physicsClientId=client)
+            if len(results) != len(origins[chunk]):
+                raise RuntimeError('PyBullet answered %d of %d rays' % (len(results), len(origins[chunk])))
             fractions.extend(r[2] if r[0] >= 0 else 1.0 for r in results)
         return np.asarray(fractions)
     finally:

@@ -81,7 +81,7 @@ class PhysicsWorld:
             if model.is_robot:
                 continue  # joints, plugins or sensors: Simulator.spawn_world_robots spawns it as a URDF
             try:
-                self.add_sdf_model(model)
+                self.add_sdf_model(model, warn)
             except PhysicsError as err:
                 if warn is None:
                     raise
@@ -90,11 +90,13 @@ class PhysicsWorld:
             created.append(model.name)
         return created
 
-    def add_sdf_model(self, model: sdf_model.SdfModel) -> Model:
-        """One PyBullet body per SDF link (sdf_bodies.py); returns the new Model."""
+    def add_sdf_model(self, model: sdf_model.SdfModel, warn: Callable[[str], None] | None = None) -> Model:
+        """One PyBullet body per SDF link (sdf_bodies.py); returns the new Model. warn(message) hears of what is
+        simulated otherwise than written (an inertia that is not positive definite)."""
         if model.name in self.bodies:
             raise PhysicsError("a model named '%s' already exists" % model.name)
-        built, ground_mu = sdf_bodies.build_model(self.client, self.applied, model, self.visuals, self.laser_retro)
+        built, ground_mu = sdf_bodies.build_model(self.client, self.applied, model, self.visuals, self.laser_retro,
+                                                  warn)
         if ground_mu is not None:
             self.ground_mu = ground_mu
         self.bodies[model.name] = built

@@ -8,10 +8,12 @@ A static body collides with the exact surface of its meshes, each triangle one-s
 (visual shapes with their rgba), so a copy built from its BodySource (the viewer's) looks the same. Friction: ODE
 takes the smaller mu of two touching surfaces, Bullet multiplies them, so a static surface gets friction 1 and a
 dynamic one its own mu; a ground plane's mu is reported to the world (PhysicsWorld.ground_mu), which gives robots
-min(their mu, the ground's).
+min(their mu, the ground's). Inertia as Gazebo's ODE takes it (../kinematics/inertia.py): one that is not positive
+definite is the identity (dBodySetMass's fallback), with one warning.
 """
 from __future__ import annotations
 
+from collections.abc import Callable
 from typing import TYPE_CHECKING
 
 import pybullet as pb
@@ -21,6 +23,7 @@ from racebot_sim_bridge.engine import one_sided_mesh
 from racebot_sim_bridge.engine.model import Model
 from racebot_sim_bridge.engine.physics_types import BodyKind, BodySource, PhysicsError
 from racebot_sim_bridge.engine.pybullet_client import PybulletClient
+from racebot_sim_bridge.kinematics import inertia as inertia_maths
 from racebot_sim_bridge.kinematics.rotations import as_transform
 
 if TYPE_CHECKING:
@@ -28,15 +31,16 @@ if TYPE_CHECKING:
 
 
 def build_model(client: PybulletClient, applied: dict, model: sdf_model.SdfModel, visuals: bool,
-                laser_retro: dict) -> tuple[Model, float | None]:
+                laser_retro: dict, warn: Callable[[str], None] | None = None) -> tuple[Model, float | None]:
     """The Model of an SDF model, one PyBullet body per link (joints between SDF links are not supported), and
     the mu of its ground plane if it has one (else None). `visuals`: build visual shapes; `laser_retro`: the
-    world's {(body id, link index): laser_retro}, given this model's. PhysicsError when it cannot be built:
-    nothing of it stays behind then."""
+    world's {(body id, link index): laser_retro}, given this model's; warn(message) hears of an inertia that is
+    not positive definite. PhysicsError when it cannot be built: nothing of it stays behind then."""
     ids, ground_mu = [], None
+    warn = warn or (lambda message: None)
     try:
         for link in model.links:
-            body_id, mu = _link_body(client, model, link, visuals)
+            body_id, mu = _link_body(client, model, link, visuals, warn)
             ground_mu = mu if mu is not None else ground_mu
             ids.append((link.name, body_id))
             retro = next((c.laser_retro for c in link.collisions if c.laser_retro), 0.0)
@@ -58,7 +62,7 @@ def build_model(client: PybulletClient, applied: dict, model: sdf_model.SdfModel
                  extra_bodies=ids[1:], root_link=first_link), ground_mu
 
 
-def _link_body(client, model, link, visuals):
+def _link_body(client, model, link, visuals, warn):
     """(PyBullet body of one SDF link, mu of its ground plane or None). A link left with no shape (none written,
     or each skipped: a mesh that is missing, a degenerate size) is still a body, as Gazebo keeps the link and
     its model: its mass and inertia, nothing to collide with or draw."""
@@ -87,7 +91,7 @@ def _link_body(client, model, link, visuals):
         # Without a shape PyBullet has no inertia to derive: the SDF's, else SDF's default (1 kg m^2 each)
         inertia = link.inertia if link.inertia is not None or shapes else _SDF_DEFAULT_INERTIA
         if not static and inertia is not None:
-            ixx, _, _, iyy, _, izz = inertia
+            ixx, _, _, iyy, _, izz = _as_ode_takes_it(model, link, inertia, warn)
             client.changeDynamics(body, -1, localInertiaDiagonal=(ixx, iyy, izz))
         mus = [c.mu for _, c in shapes if c.mu is not None]
         is_ground = any(c.shape.kind is ShapeKind.PLANE for _, c in shapes)
@@ -101,6 +105,19 @@ def _link_body(client, model, link, visuals):
 
 
 _SDF_DEFAULT_INERTIA = (1.0, 0.0, 0.0, 1.0, 0.0, 1.0)  # <inertia>'s defaults: ixx, ixy, ixz, iyy, iyz, izz
+
+
+def _as_ode_takes_it(model, link, inertia, warn):
+    """(ixx, ixy, ixz, iyy, iyz, izz) as Gazebo's ODE simulates them: the identity, with one warning, when they are
+    not positive definite (dBodySetMass's fallback), else as given."""
+    if inertia_maths.ode_positive_definite(inertia_maths.tensor(*inertia)):
+        return inertia
+    warn("model '%s' link '%s': its inertia (%s; mass %g kg) is not positive definite (a moment about some axis is "
+         "zero or negative). Gazebo/ODE uses the identity inertia (1 kg m^2 about each axis) for such a link "
+         "(dBodySetMass), and so does racebot; give the link a real inertia"
+         % (model.name, link.name, ', '.join('%s %g' % kv for kv in zip(('ixx', 'ixy', 'ixz', 'iyy', 'iyz', 'izz'),
+                                                                         inertia)), link.mass))
+    return inertia_maths.IDENTITY
 
 
 def _compound(client, link, static):

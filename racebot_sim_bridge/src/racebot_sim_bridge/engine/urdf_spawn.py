@@ -10,6 +10,10 @@ differently without them:
 - friction: ODE takes the smaller mu of two touching surfaces, Bullet multiplies them. A robot link gets
   min(its mu, the ground's mu) (static world surfaces have 1: sdf_bodies.py), so the product is Gazebo's
   minimum for the contacts that matter (robot on ground);
+- inertia as Gazebo's ODE takes it (bullet_urdf.py, ../kinematics/inertia.py): one that is not positive definite
+  is the identity (1 kg m^2 about each axis, dBodySetMass's fallback; PyBullet would zero it), with one warning;
+  one PyBullet's importer would zero though ODE takes it (a moment larger than the other two together) is set
+  after loading;
 - joint velocity motors (PyBullet's default) are switched off: joints move only by applied effort;
 - a static URDF (sdformat's model <static> from <gazebo><static>true</static></gazebo>) gets a fixed base: it
   neither falls nor is pushed (its movable joints still move, where Gazebo holds every link of it);
@@ -76,16 +80,16 @@ class UrdfSpawn:
         # A root link named world is the world (sdformat's URDF reader): its joints hold the robot to the world.
         # A static model (<gazebo><static>true</static></gazebo>) is held where it is spawned, as Gazebo holds it.
         fixed = urdf_model.root_link == 'world' or urdf_model.static
-        bullet_urdf = prepare_urdf_for_bullet(root, urdf_model, self.visuals)
+        bullet = prepare_urdf_for_bullet(root, urdf_model, self.visuals, name, warn)
         links = len(root.findall('link'))
         if links > MAX_BULLET_LINKS:
             raise PhysicsError("'%s' has %d links once fixed joints are merged as Gazebo merges them; PyBullet "
                                "cannot report the state of a body of more than %d (its MAX_DEGREE_OF_FREEDOM): "
                                "join links with fixed joints or spawn it as several models"
                                % (name, links, MAX_BULLET_LINKS))
-        body_id = self._load(name, bullet_urdf, position, orientation, fixed, load_trial)
+        body_id = self._load(name, bullet.text, position, orientation, fixed, load_trial)
         try:
-            return self._set_up(name, body_id, urdf_model, urdf_xml, ground_mu)
+            return self._set_up(name, body_id, urdf_model, urdf_xml, ground_mu, bullet.moments)
         except Exception as err:  # a body half set up would stay in the world, stepped and never reported
             self.client.removeBody(body_id)
             for key in [k for k in self.laser_retro if k[0] == body_id]:
@@ -111,8 +115,9 @@ class UrdfSpawn:
             except pb.error as err:
                 raise PhysicsError("PyBullet could not load the URDF of '%s': %s" % (name, err))
 
-    def _set_up(self, name, body_id, urdf_model, urdf_xml, ground_mu):
-        """The Model of a URDF PyBullet just loaded, with Gazebo's friction, damping and joint motors."""
+    def _set_up(self, name, body_id, urdf_model, urdf_xml, ground_mu, moments):
+        """The Model of a URDF PyBullet just loaded, with Gazebo's friction, damping and joint motors, and the
+        principal `moments` ({link: (x, y, z)}) its importer would have zeroed."""
         client = self.client
         # urdf_xml has its meshes resolved: a copy needs no package path
         model = Model(client, self.applied, name, body_id, urdf_model.static,
@@ -123,6 +128,8 @@ class UrdfSpawn:
             client.changeDynamics(body_id, index, lateralFriction=friction)
             # separate call: PyBullet ignores the friction when damping comes in the same call
             client.changeDynamics(body_id, index, linearDamping=0.0, angularDamping=0.0)
+            if link in moments:  # changeDynamics takes the moments the importer refuses
+                client.changeDynamics(body_id, index, localInertiaDiagonal=moments[link])
             retro = link_laser_retro(urdf_model, link)
             if retro:
                 self.laser_retro[(body_id, index)] = retro

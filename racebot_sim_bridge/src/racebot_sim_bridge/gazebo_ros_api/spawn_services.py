@@ -151,7 +151,7 @@ class SpawnServices(ServiceGroup):
         if model.is_robot:  # joints, plugins or sensors: the URDF path simulates them
             return self._spawned(lambda: self.sim.spawn_sdf_robot(model, req.robot_namespace))
         try:
-            self.sim.world.add_sdf_model(model)
+            self.sim.world.add_sdf_model(model, lambda m: self.rospy.logwarn('spawn_sdf_model: %s' % m))
         except PhysicsError as err:
             return self._not_loaded(model.name, str(err))
         return srv.SpawnModelResponse(True, SPAWN_OK)
