@@ -23,7 +23,7 @@ sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 import rospy  # noqa: E402
 from roslib.message import get_message_class  # noqa: E402
 
-from corpus import sensors  # noqa: E402
+from corpus import floor, sensors  # noqa: E402
 
 WALL_MARGIN_S = 60.0     # sim-time waits may take this much wall time beyond their length (RTF < 1)
 MESSAGE_TIMEOUT_S = 20.0
@@ -409,14 +409,19 @@ def check_sensors(check, row):
     return numbers
 
 
+def exported_paths(attribute, variable):
+    """A Gazebo path as gazebo_ros would set it: the variable's folders, then every package's export of
+    `attribute` (rospack plugins)."""
+    paths = [p for p in os.environ.get(variable, '').split(':') if p]
+    done = subprocess.run(['rospack', 'plugins', '--attrib=' + attribute, 'gazebo_ros'],
+                          stdout=subprocess.PIPE, stderr=subprocess.DEVNULL, text=True)
+    return paths + [line.split(' ', 1)[1] for line in done.stdout.splitlines() if ' ' in line]
+
+
 def model_paths():
     """Gazebo's model path as gazebo_ros would set it: GAZEBO_MODEL_PATH, every package's
     gazebo_model_path export, ~/.gazebo/models."""
-    paths = [p for p in os.environ.get('GAZEBO_MODEL_PATH', '').split(':') if p]
-    done = subprocess.run(['rospack', 'plugins', '--attrib=gazebo_model_path', 'gazebo_ros'],
-                          stdout=subprocess.PIPE, stderr=subprocess.DEVNULL, text=True)
-    paths += [line.split(' ', 1)[1] for line in done.stdout.splitlines() if ' ' in line]
-    return paths + [os.path.expanduser('~/.gazebo/models')]
+    return exported_paths('gazebo_model_path', 'GAZEBO_MODEL_PATH') + [os.path.expanduser('~/.gazebo/models')]
 
 
 def included_name(uri, paths):
@@ -487,8 +492,47 @@ def check_world(check, row):
     return numbers
 
 
+def check_floor(check, row):
+    """The model stands on the floor: its height (get_model_state) against the world's highest collision
+    surface under it no higher than `below` (floor.py, read from the world file, its models and meshes), within
+    `tolerance` m. `offset`: the model's origin above its contact points when it rests (0 for a base_footprint)."""
+    import rospkg
+    from gazebo_msgs.srv import GetModelState
+    getter = service('/gazebo/get_model_state', GetModelState)
+    model = check.get('model', row.get('model'))
+    deadline = time.time() + float(row.get('ready_timeout', 120))
+    while not getter(model_name=model, relative_entity_name='').success:  # a model a later command spawns
+        if time.time() > deadline:
+            raise CheckFailed('model %r not in the world after %.0f s' % (model, float(row.get('ready_timeout', 120))))
+        time.sleep(1.0)
+    sim_sleep(float(check.get('settle', 1.0)))
+    reply = getter(model_name=model, relative_entity_name='')
+    if not reply.success:
+        raise CheckFailed('get_model_state(%s): %s' % (model, reply.status_message))
+    p = reply.pose.position
+    path = resolve_find(check['world'])
+    world = floor.WorldCollisions(path, model_paths(), exported_paths('gazebo_media_path', 'GAZEBO_RESOURCE_PATH'),
+                        rospkg.RosPack().get_path)
+    below = float(check.get('below', 0.5))
+    height, surface = world.height_at(p.x, p.y, below)
+    tol, offset = float(check['tolerance']), float(check.get('offset', 0.0))
+    if height is None:
+        raise CheckFailed('no collision surface of %s under (%.2f, %.2f) below z %.2f' % (
+            os.path.basename(path), p.x, p.y, below), '%s at z %.4f' % (model, p.z))
+    numbers = '%s at (%.2f, %.2f) z %.4f m; floor %.4f m there (%s)%s; off by %.4f (tolerance %.3f)' % (
+        model, p.x, p.y, p.z, height, surface, ', offset %.3f' % offset if offset else '',
+        p.z - offset - height, tol)
+    if world.notes:
+        numbers += '; ' + '; '.join(world.notes[:3]) + (' (+%d)' % (len(world.notes) - 3) if len(world.notes) > 3
+                                                          else '')
+    if abs(p.z - offset - height) > tol:
+        raise CheckFailed('%s at z %.4f m, the floor under it at %.4f m (%s)' % (model, p.z, height, surface), numbers)
+    return numbers
+
+
 KINDS = {'controllers': check_controllers, 'drive': check_drive, 'joint_position': check_joint_position,
-         'trajectory': check_trajectory, 'gripper': check_gripper, 'sensors': check_sensors, 'world': check_world}
+         'trajectory': check_trajectory, 'gripper': check_gripper, 'sensors': check_sensors, 'world': check_world,
+         'floor': check_floor}
 
 
 def run(row):

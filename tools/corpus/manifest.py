@@ -25,11 +25,13 @@ CHECK_KEYS = {
     'gripper': ('action', 'joint_states', 'joint', 'position', 'tolerance'),
     'sensors': ('description', 'count'),
     'world': ('world', 'min_models'),
+    'floor': ('world', 'tolerance'),
 }
 # the numbers a kind is judged by: at least one must be in a row
 NUMERIC = {'drive': ('expect_speed', 'tolerance'), 'joint_position': ('target', 'tolerance'),
            'trajectory': ('tolerance',), 'gripper': ('position', 'tolerance'), 'sensors': ('count',),
-           'controllers': (), 'world': ('min_models',)}
+           'controllers': (), 'world': ('min_models',), 'floor': ('tolerance',)}
+FILE_NAME = re.compile(r'^[A-Za-z0-9_][A-Za-z0-9_.-]*$')
 
 
 def load(path=MANIFEST):
@@ -67,6 +69,15 @@ def validate(rows):
         commands = row.get('commands') or []
         if not isinstance(commands, list) or not all(isinstance(c, str) and c.strip() for c in commands):
             errors.append('%s: commands must be a list of command lines' % where)
+        files = row.get('files') or {}
+        if not isinstance(files, dict):
+            errors.append('%s: files must map a file name to its text' % where)
+            files = {}
+        for file_name, text in files.items():
+            if not isinstance(file_name, str) or not FILE_NAME.match(file_name):
+                errors.append('%s: file name %r is not a plain name in the row\'s folder' % (where, file_name))
+            if not isinstance(text, str) or not text.strip():
+                errors.append('%s: file %s has no text' % (where, file_name))
         for package, why in (row.get('blacklist') or {}).items():
             if not why:
                 errors.append('%s: blacklisted %s without a reason' % (where, package))

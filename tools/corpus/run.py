@@ -240,8 +240,22 @@ def row_env(row, ws, env_base, logs, result):
     return env, port
 
 
+def write_files(row, folder):
+    """The row's own files (`files`: name -> text; a user's small launch file, say) into the folder its commands
+    run in, as a user keeps them in the folder they type the command in; their paths."""
+    paths = []
+    for name, text in sorted((row.get('files') or {}).items()):
+        path = os.path.join(folder, name)
+        with open(path, 'w') as f:
+            f.write(text)
+        paths.append(path)
+    return paths
+
+
 def start_commands(row, env, logs, procs, result):
-    """The row's commands, each once the world server offers its services; their log paths."""
+    """The row's commands, each once the world server offers its services, in the row's folder (`logs`, holding
+    its files); their log paths."""
+    write_files(row, logs)
     launch_logs = []
     for i, command in enumerate(row['commands']):
         if i and not wait_for_service(env, '/gazebo/get_world_properties', float(row.get('ready_timeout', 120))):
@@ -316,7 +330,8 @@ def run_row(row, out, env_base):
     logs = os.path.join(out, 'logs', row['name'])
     os.makedirs(logs, exist_ok=True)
     result = {'name': row['name'], 'covers': row['covers'], 'commands': row['commands'], 'env': row.get('env') or {},
-              'blacklist': row.get('blacklist') or {}, 'repos': [], 'checks': [], 'notes': [], 'build': 'not run'}
+              'blacklist': row.get('blacklist') or {}, 'files': sorted(row.get('files') or {}), 'repos': [],
+              'checks': [], 'notes': [], 'build': 'not run'}
     trees = checkout_row(row, logs, env_base, result)
     if trees is None:
         return result

@@ -68,6 +68,9 @@ def markdown(results, header):
                                               ' (%s)' % repo['note'] if repo.get('note') else ''))
         if r.get('env'):
             lines.append('- env: ' + ' '.join('`%s=%s`' % kv for kv in sorted(r['env'].items())))
+        if r.get('files'):
+            lines.append("- the user's own files, in the folder the commands run in (the row's files in the manifest): "
+                         + ', '.join('`%s`' % name for name in r['files']))
         for command in r.get('commands', []):
             lines.append('- `%s`' % command)
         if r.get('blacklist'):

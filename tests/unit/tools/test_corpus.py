@@ -8,7 +8,7 @@ from pathlib import Path
 
 import pytest
 
-from corpus import manifest, sensors, sources, table
+from corpus import floor, manifest, sensors, sources, table
 from corpus import run as corpus_run
 
 REPO = Path(__file__).resolve().parents[3]
@@ -77,6 +77,45 @@ def test_a_bad_row_is_refused_with_a_reason(change, words):
 
 def test_two_rows_of_one_name_are_refused():
     assert any('used twice' in e for e in manifest.validate([good_row(), copy.deepcopy(good_row())]))
+
+
+def test_a_rows_own_files_validate_and_bad_names_or_empty_texts_are_refused():
+    spawn = '<launch><node pkg="gazebo_ros" type="spawn_model" name="spawn_urdf"/></launch>'
+    assert manifest.validate([good_row(files={'spawn_bot.launch': spawn})]) == []
+    for files, words in (({'../spawn.launch': spawn}, 'not a plain name'), ({'a/b.launch': spawn}, 'not a plain name'),
+                         ({'.hidden': spawn}, 'not a plain name'), ({'spawn.launch': ' '}, 'has no text'),
+                         (['spawn.launch'], 'must map a file name')):
+        errors = manifest.validate([good_row(files=files)])
+        assert any(words in e for e in errors), (files, errors)
+
+
+def test_a_floor_check_needs_its_world_and_a_tolerance():
+    check = {'kind': 'floor', 'world': '$(find w)/worlds/w.world', 'tolerance': 0.01, 'from': 'urdf'}
+    assert manifest.validate([good_row(checks=[check])]) == []
+    errors = manifest.validate([good_row(checks=[dict(check, tolerance=None), {'kind': 'floor', 'from': 'x'}])])
+    assert any('without world' in e for e in errors) and any('no number' in e for e in errors)
+
+
+def test_world_rows_spawn_a_turtlebot3_from_the_users_own_launch_and_check_the_floor():
+    rows = {r['name']: r for r in manifest.load()}
+    for name in ('aws_bookstore_turtlebot3', 'aws_small_warehouse_turtlebot3', 'aws_racetrack_turtlebot3_racecar'):
+        row = rows[name]
+        spawn = row['files']['spawn_turtlebot3.launch']
+        assert '-urdf -model turtlebot3_$(arg model)' in spawn and '-param robot_description' in spawn
+        assert row['commands'][1].startswith('roslaunch spawn_turtlebot3.launch ')
+        kinds = [c['kind'] for c in row['checks']]
+        assert kinds[0] == 'world' and 'floor' in kinds and 'drive' in kinds, name
+    for row in rows.values():  # a command naming a file of the row's own has it
+        for command in row['commands']:
+            first = command.split()[1] if command.startswith('roslaunch ') else ''
+            if first.endswith('.launch'):
+                assert first in (row.get('files') or {}), (row['name'], first)
+
+
+def test_the_runner_writes_a_rows_files_into_the_folder_its_commands_run_in(tmp_path):
+    paths = corpus_run.write_files(good_row(files={'spawn.launch': '<launch/>\n'}), str(tmp_path))
+    assert paths == [str(tmp_path / 'spawn.launch')] and (tmp_path / 'spawn.launch').read_text() == '<launch/>\n'
+    assert corpus_run.write_files(good_row(), str(tmp_path)) == []
 
 
 def test_a_sensors_check_without_a_count_has_no_number():
@@ -332,3 +371,72 @@ def test_console_and_json():
     results = [result('bot_a', checks=[{'kind': 'drive', 'ok': False, 'reason': 'speed 0'}])]
     assert 'bot_a  fail' in table.console(results) and 'drive: speed 0' in table.console(results)
     assert '"racebot_commit": "abc"' in table.to_json(results, {'racebot_commit': 'abc'})
+
+
+# --- the floor under a point, read from a world file -------------------------------------------------
+
+DAE = """<?xml version="1.0" encoding="utf-8"?>
+<COLLADA xmlns="http://www.collada.org/2005/11/COLLADASchema" version="1.4.1">
+  <asset><unit meter="0.01" name="centimeter"/><up_axis>Z_UP</up_axis></asset>
+  <library_geometries><geometry id="slab" name="slab"><mesh>
+    <source id="slab-pos"><float_array id="slab-pos-array" count="12">-100 -100 0 100 -100 0 100 100 0 -100 100 0
+      </float_array><technique_common><accessor source="#slab-pos-array" count="4" stride="3">
+      <param name="X" type="float"/><param name="Y" type="float"/><param name="Z" type="float"/></accessor>
+      </technique_common></source>
+    <vertices id="slab-vtx"><input semantic="POSITION" source="#slab-pos"/></vertices>
+    <triangles count="2"><input semantic="VERTEX" source="#slab-vtx" offset="0"/><p>0 1 2 0 2 3</p></triangles>
+  </mesh></geometry></library_geometries>
+  <library_visual_scenes><visual_scene id="scene"><node id="top">
+    <matrix>1 0 0 0 0 1 0 0 0 0 1 20 0 0 0 1</matrix>
+    <instance_geometry url="#slab"/></node></visual_scene></library_visual_scenes>
+  <scene><instance_visual_scene url="#scene"/></scene>
+</COLLADA>
+"""
+
+
+def write_floor_world(root):
+    """A world as the AWS packages write them: a <model> holding an <include> of a model whose mesh URI is a
+    relative file:// (found on the resource path), a box, and Gazebo's ground plane (not on the model path)."""
+    model = root / 'models' / 'slab_floor'
+    (model / 'meshes').mkdir(parents=True)
+    (model / 'meshes' / 'slab.DAE').write_text(DAE)
+    (model / 'model.config').write_text('<model><name>slab</name><sdf version="1.6">model.sdf</sdf></model>')
+    (model / 'model.sdf').write_text(
+        '<sdf version="1.6"><model name="slab_floor"><static>1</static><link name="link"><collision name="c">'
+        '<geometry><mesh><uri>file://models/slab_floor/meshes/slab.DAE</uri><scale>1 1 2</scale></mesh></geometry>'
+        '</collision></link></model></sdf>')
+    world = root / 'test.world'
+    world.write_text(
+        '<?xml version="1.0"?>\n<sdf version="1.6"><world name="default">'
+        '<include><uri>model://sun</uri></include><include><uri>model://ground_plane</uri></include>'
+        '<model name="Floor_001"><include><uri>model://slab_floor</uri></include><pose>0 0 -0.3 0 0 0</pose></model>'
+        '<model name="crate"><static>1</static><pose>5 0 0 0 0 0.5</pose><link name="l"><pose>0 0 0.25 0 0 0</pose>'
+        '<collision name="c"><geometry><box><size>1 1 0.5</size></box></geometry></collision></link></model>'
+        '</world></sdf>')
+    return world
+
+
+def test_the_floor_is_the_highest_collision_surface_under_a_point(tmp_path):
+    world = floor.WorldCollisions(str(write_floor_world(tmp_path)), [str(tmp_path / 'models')], [str(tmp_path)])
+    assert world.notes == []
+    # the slab: 0.2 m (20 cm, unit 0.01, node at z 20) scaled by 2 = 0.4, posed at -0.3: its top at 0.1
+    z, name = world.height_at(0.2, -0.3, 0.5)
+    assert z == pytest.approx(0.1) and name == 'Floor_001::slab_floor::link::c'
+    assert world.height_at(1.5, 0.0, 0.5) == (pytest.approx(0.0), 'ground_plane::link::collision')  # off the slab
+    assert world.height_at(5.0, 0.0, 1.0) == (pytest.approx(0.5), 'crate::l::c')
+    assert world.height_at(5.0, 0.0, 0.4)[1] == 'ground_plane::link::collision'  # the crate's top is above 0.4
+    assert world.height_at(5.0, 0.0, -1.0) == (None, None)
+
+
+def test_a_missing_mesh_is_said_and_the_rest_of_the_world_read(tmp_path):
+    path = write_floor_world(tmp_path)
+    (tmp_path / 'models' / 'slab_floor' / 'meshes' / 'slab.DAE').unlink()
+    world = floor.WorldCollisions(str(path), [str(tmp_path / 'models')], [str(tmp_path)])
+    assert any('slab.DAE' in note and 'not found' in note for note in world.notes)
+    assert world.height_at(0.2, -0.3, 0.5) == (pytest.approx(0.0), 'ground_plane::link::collision')
+
+
+def test_pose_matrix_turns_as_sdf_does():
+    m = floor.pose_matrix('1 2 3 0 0 1.5707963267948966')
+    assert m[:3, 3].tolist() == [1, 2, 3]
+    assert (m[:3, :3] @ [1, 0, 0]) == pytest.approx([0, 1, 0])
