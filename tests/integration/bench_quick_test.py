@@ -106,7 +106,9 @@ class BenchQuickTest(unittest.TestCase):
             self.assertTrue(0.1 < sens[path]['rtf'] < 10.0, sens[path])
             for topic in ('/scan', '/imu', '/rrbot/camera1/image_raw', '/real_sense/depth/image_raw'):
                 self.assertGreater(sens[path]['topics'][topic]['wall_hz'], 0.0, (path, topic))
+                self.assertGreater(sens[path]['plain']['topics'][topic]['wall_hz'], 0.0, (path, topic, 'plain'))
         self.assertIn('TinyRenderer in the physics thread', self.output)  # the side-by-side table
+        self.assertIn('plain subscriber (as rostopic hz)', self.output)
 
     def test_fleet_beside_bare_pybullet(self):
         fleet = self.results['fleet']

@@ -76,6 +76,10 @@ def key_figures(r):
         for label, topic, _, _ in report.SENSOR_ROWS:
             add('sensors.hz.' + topic, 'sensors in real time: %s, wall Hz' % label,
                 new['topics'].get(topic, {}).get('wall_hz'), ' Hz', 'higher', '%.1f', 0.05)
+            plain = (new.get('plain') or {}).get('topics', {}).get(topic, {}).get('wall_hz')
+            if plain is not None:  # runs before the plain subscriber was measured have none
+                add('sensors.plain_hz.' + topic, 'sensors in real time: %s, plain subscriber, wall Hz' % label,
+                    plain, ' Hz', 'higher', '%.1f', 0.05)
     su = r.get('startup')
     if su and su.get('cold_runs'):
         add('startup.cold_s', 'start-up, cold, to 7 controllers running', stats.spread(su['cold_runs']), ' s',

@@ -229,6 +229,12 @@ def sensor_table(sens):
     for label, topic, declared, _ in SENSOR_ROWS:
         rows_.append(('%s (declared %g Hz), wall Hz' % (label, declared),) + tuple(
             _fmt(sens[k]['topics'].get(topic, {}).get('wall_hz'), '%.1f') for k in paths))
+    rows_.append(('the same through a plain subscriber (as rostopic hz), RTF',) + tuple(
+        _fmt((sens[k].get('plain') or {}).get('rtf'), '%.3f') for k in paths))
+    for label, topic, declared, _ in SENSOR_ROWS:
+        rows_.append(('%s, plain subscriber, wall Hz' % label,) + tuple(
+            _fmt(((sens[k].get('plain') or {}).get('topics') or {}).get(topic, {}).get('wall_hz'), '%.1f')
+            for k in paths))
     rows_.append(('CPU: world server / render worker (one core = 100 %)',) + tuple(
         '%.0f %% / %.0f %%' % (100 * sens[k]['cpu_world_server'], 100 * sens[k]['cpu_children']) for k in paths))
     rows_.append(('renderer',) + tuple(str(sens[k].get('renderer') or '-') for k in paths))

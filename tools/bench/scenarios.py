@@ -100,9 +100,14 @@ def sensor_topics():
     return {t: types.get(t) for t, nodes in pubs if WORLD_SERVER in nodes and types.get(t) in SENSOR_TYPES}
 
 
-def subscribe_counting(topics):
-    """Subscribes to every topic (as any type) and counts its messages -> ({topic: count}, subscribers),
-    once every subscription is connected."""
+# The subscribers the sensors part measures with: the bench's own (any type, a queue of 2) and a plain one, as
+# `rostopic hz` subscribes (any type, rospy's default queue, no tcp_nodelay), which is what a user's first look is.
+SUBSCRIBERS = {'bench': dict(queue_size=2), 'plain': {}}
+
+
+def subscribe_counting(topics, subscriber='bench'):
+    """Subscribes to every topic (as any type, the SUBSCRIBERS way) and counts its messages -> ({topic: count},
+    subscribers), once every subscription is connected."""
     import rospy
     counts = dict.fromkeys(topics, 0)
 
@@ -110,7 +115,7 @@ def subscribe_counting(topics):
         def cb(_msg):
             counts[topic] += 1
         return cb
-    subs = [rospy.Subscriber(t, rospy.AnyMsg, counter(t), queue_size=2) for t in sorted(topics)]
+    subs = [rospy.Subscriber(t, rospy.AnyMsg, counter(t), **SUBSCRIBERS[subscriber]) for t in sorted(topics)]
     common.wait_for(lambda: all(s.get_num_connections() > 0 for s in subs), 20, 'sensor subscriptions')
     return counts, subs
 
@@ -180,10 +185,29 @@ SENSOR_PATHS = {
 }
 
 
+def _plain_subscriber_rates(world, topics, p):
+    """Every sensor topic subscribed as `rostopic hz` does (SUBSCRIBERS['plain']) for a window: the real-time
+    factor and each topic's messages per wall and per sim second."""
+    counts, subs = subscribe_counting(topics, 'plain')
+    try:
+        time.sleep(p['settle_s'])
+        before, s0, w0 = dict(counts), world.time(), time.perf_counter()
+        time.sleep(p['window_s'])
+        after, s1, w1 = dict(counts), world.time(), time.perf_counter()
+    finally:
+        for s in subs:
+            s.unregister()
+    wall, sim = w1 - w0, s1 - s0
+    return {'rtf': sim / wall, 'topics': {t: {'wall_hz': (after[t] - before[t]) / wall,
+                                              'sim_hz': (after[t] - before[t]) / sim if sim > 0 else None}
+                                          for t in sorted(topics)}}
+
+
 def sensors_realtime(p, out):
     """racebot.launch in real time with every sensor topic subscribed, rendering the `path` way:
     the real-time factor, each topic's messages per wall second, the CPU of the world server and
-    of its render worker, and the load average."""
+    of its render worker, and the load average; before those, the same topics through a plain subscriber
+    (`plain`: as `rostopic hz` subscribes), one window of its own."""
     import rosgraph
     port, path = p['port'], p['path']
     result = {'path': path}
@@ -202,6 +226,7 @@ def sensors_realtime(p, out):
         pid = node_pid(WORLD_SERVER, port)
         world = GazeboClient()
         topics = sensor_topics()
+        result['plain'] = _plain_subscriber_rates(world, topics, p)
         counts, subs = subscribe_counting(topics)
         time.sleep(p['settle_s'])  # the worker starts with the first frame wanted
         before, s0, w0 = dict(counts), world.time(), time.perf_counter()

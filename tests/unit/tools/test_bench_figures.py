@@ -214,3 +214,21 @@ def test_the_realtime_cpu_is_judged_against_the_issue_target(cpu, met):
     row = [r for r in report.rows(results) if r[0].startswith('real time: simulator CPU')][0]
     assert row[3:] == ('<= 20 %', met)
     assert any('CPU above 20 %' in n for n in report.notes(results)) == (met == 'NO')
+
+
+def _sensor_run(rtf, camera_hz, plain_camera_hz=None):
+    run = {'rtf': rtf, 'cpu_world_server': 0.5, 'cpu_children': 0.3, 'renderer': 'egl', 'loadavg': [1.0, 1.0, 1.0],
+           'topics': {'/rrbot/camera1/image_raw': {'wall_hz': camera_hz}}}
+    if plain_camera_hz is not None:
+        run['plain'] = {'rtf': rtf, 'topics': {'/rrbot/camera1/image_raw': {'wall_hz': plain_camera_hz}}}
+    return run
+
+
+def test_the_sensor_table_and_the_kept_figures_carry_the_plain_subscribers_rates():
+    sens = {'old': _sensor_run(0.9, 20.0), 'new': _sensor_run(1.0, 30.0, plain_camera_hz=27.6)}
+    table = report.sensor_table(sens)
+    row = [line for line in table.splitlines() if line.startswith('| camera 800x800, plain subscriber')][0]
+    assert row.split('|')[2].strip() == '-' and row.split('|')[3].strip() == '27.6'  # old: not measured then
+    figures = kept_figures.key_figures({'sensors': sens})
+    assert figures['sensors.plain_hz./rrbot/camera1/image_raw']['median'] == 27.6
+    assert figures['sensors.hz./rrbot/camera1/image_raw']['median'] == 30.0
