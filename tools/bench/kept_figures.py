@@ -67,19 +67,7 @@ def key_figures(r):
         lat = rt['latency']['applied_ms']
         add('realtime.command_p50_ms', 'command path p50: publish -> applied', lat['p50'], ' ms', 'lower', '%.2f', 0.20)
         add('realtime.command_p99_ms', 'command path p99: publish -> applied', lat['p99'], ' ms', 'lower', '%.2f', 0.20)
-    new = (r.get('sensors') or {}).get('new')
-    if new:
-        add('sensors.rtf', 'sensors in real time, render worker: real-time factor', new['rtf'], better='higher',
-            fmt='%.3f', tolerance=0.02)
-        add('sensors.cpu', 'sensors in real time: world server CPU (one core = 1)', new['cpu_world_server'],
-            better='lower', fmt='%.3f', tolerance=0.10)
-        for label, topic, _, _ in report.SENSOR_ROWS:
-            add('sensors.hz.' + topic, 'sensors in real time: %s, wall Hz' % label,
-                new['topics'].get(topic, {}).get('wall_hz'), ' Hz', 'higher', '%.1f', 0.05)
-            plain = (new.get('plain') or {}).get('topics', {}).get(topic, {}).get('wall_hz')
-            if plain is not None:  # runs before the plain subscriber was measured have none
-                add('sensors.plain_hz.' + topic, 'sensors in real time: %s, plain subscriber, wall Hz' % label,
-                    plain, ' Hz', 'higher', '%.1f', 0.05)
+    _sensor_figures((r.get('sensors') or {}).get('new'), add)
     su = r.get('startup')
     if su and su.get('cold_runs'):
         add('startup.cold_s', 'start-up, cold, to 7 controllers running', stats.spread(su['cold_runs']), ' s',
@@ -111,6 +99,24 @@ def key_figures(r):
 
 
 # -- the kept file -----------------------------------------------------------------------------------
+
+def _sensor_figures(new, add):
+    """The sensor part's figures (the render worker's run `new`, None when not run), through key_figures' `add`."""
+    if not new:
+        return
+    add('sensors.rtf', 'sensors in real time, render worker: real-time factor', new['rtf'], better='higher',
+        fmt='%.3f', tolerance=0.02)
+    add('sensors.cpu', 'sensors in real time: world server CPU (one core = 1)', new['cpu_world_server'],
+        better='lower', fmt='%.3f', tolerance=0.10)
+    for label, topic, _, _ in report.SENSOR_ROWS:
+        add('sensors.hz.' + topic, 'sensors in real time: %s, wall Hz' % label,
+            new['topics'].get(topic, {}).get('wall_hz'), ' Hz', 'higher', '%.1f', 0.05)
+        plain = (new.get('plain') or {}).get('topics', {}).get(topic, {}).get('wall_hz')
+        if plain is not None:  # runs before the plain subscriber was measured have none
+            add('sensors.plain_hz.' + topic, 'sensors in real time: %s, plain subscriber, wall Hz' % label,
+                plain, ' Hz', 'higher', '%.1f', 0.05)
+
+
 def load(path=KEPT_FILE):
     """-> (kept dictionary, problem): ({}, why) when there is nothing usable to compare with."""
     try:
