@@ -24,7 +24,6 @@ __all__ = ['NEGLIGIBLE_MASS', 'NEGLIGIBLE_INERTIA', 'BulletUrdf', 'prepare_urdf_
 # Mass and inertia given to links that declare no <inertial> (Gazebo drops such links' mass; PyBullet would give 1 kg).
 NEGLIGIBLE_MASS = 1e-4
 NEGLIGIBLE_INERTIA = 1e-9
-_INERTIA_KEYS = ('ixx', 'ixy', 'ixz', 'iyy', 'iyz', 'izz')
 
 
 class BulletUrdf(NamedTuple):
@@ -109,15 +108,11 @@ def _inertias_as_ode_takes_them(root: ET.Element, name: str, warn: Callable[[str
         mass, inertia = (None, None) if inertial is None else (inertial.find('mass'), inertial.find('inertia'))
         if mass is None or inertia is None or not float(mass.get('value', '0')) > 0.0:
             continue
-        values = [float(inertia.get(key, '0')) for key in _INERTIA_KEYS]
+        values = [float(inertia.get(key, '0')) for key in inertia_maths.KEYS]
         rows = inertia_maths.tensor(*values)
         if not inertia_maths.ode_positive_definite(rows):
-            warn("model '%s' link '%s': its inertia (%s; mass %s kg) is not positive definite (a moment about some "
-                 "axis is zero or negative). Gazebo/ODE uses the identity inertia (1 kg m^2 about each axis) for such "
-                 "a link (dBodySetMass), and so does racebot; give the link a real inertia"
-                 % (name, link.get('name'), ', '.join('%s %g' % kv for kv in zip(_INERTIA_KEYS, values)),
-                    mass.get('value')))
-            inertia.attrib.update({key: repr(v) for key, v in zip(_INERTIA_KEYS, inertia_maths.IDENTITY)})
+            warn(inertia_maths.not_positive_definite(name, link.get('name'), values, float(mass.get('value'))))
+            inertia.attrib.update({key: repr(v) for key, v in zip(inertia_maths.KEYS, inertia_maths.IDENTITY)})
         elif inertia_maths.bullet_importer_zeroes(rows):
             principal, rpy = inertia_maths.principal_axes(rows)
             origin = inertial.find('origin')
@@ -126,7 +121,7 @@ def _inertias_as_ode_takes_them(root: ET.Element, name: str, warn: Callable[[str
             turned = quaternion_multiply(rpy_to_quaternion(*[float(v) for v in origin.get('rpy', '0 0 0').split()]),
                                          rpy_to_quaternion(*rpy))
             origin.set('rpy', ' '.join(repr(float(v)) for v in quaternion_to_rpy(turned)))
-            inertia.attrib.update({key: repr(v) for key, v in zip(_INERTIA_KEYS, inertia_maths.IDENTITY)})
+            inertia.attrib.update({key: repr(v) for key, v in zip(inertia_maths.KEYS, inertia_maths.IDENTITY)})
             moments[link.get('name')] = principal
     return moments
 

@@ -112,11 +112,7 @@ def _as_ode_takes_it(model, link, inertia, warn):
     not positive definite (dBodySetMass's fallback), else as given."""
     if inertia_maths.ode_positive_definite(inertia_maths.tensor(*inertia)):
         return inertia
-    warn("model '%s' link '%s': its inertia (%s; mass %g kg) is not positive definite (a moment about some axis is "
-         "zero or negative). Gazebo/ODE uses the identity inertia (1 kg m^2 about each axis) for such a link "
-         "(dBodySetMass), and so does racebot; give the link a real inertia"
-         % (model.name, link.name, ', '.join('%s %g' % kv for kv in zip(('ixx', 'ixy', 'ixz', 'iyy', 'iyz', 'izz'),
-                                                                         inertia)), link.mass))
+    warn(inertia_maths.not_positive_definite(model.name, link.name, inertia, link.mass))
     return inertia_maths.IDENTITY
 
 

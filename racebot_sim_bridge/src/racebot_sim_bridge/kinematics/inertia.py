@@ -14,9 +14,11 @@ import math
 
 import numpy as np
 
-__all__ = ['IDENTITY', 'tensor', 'ode_positive_definite', 'bullet_importer_zeroes', 'principal_axes']
+__all__ = ['IDENTITY', 'KEYS', 'tensor', 'ode_positive_definite', 'not_positive_definite', 'bullet_importer_zeroes',
+           'principal_axes']
 
-IDENTITY = (1.0, 0.0, 0.0, 1.0, 0.0, 1.0)  # (ixx, ixy, ixz, iyy, iyz, izz): what ODE's inverse falls back to
+KEYS = ('ixx', 'ixy', 'ixz', 'iyy', 'iyz', 'izz')
+IDENTITY = (1.0, 0.0, 0.0, 1.0, 0.0, 1.0)  # in KEYS' order: what ODE's inverse falls back to
 
 
 def tensor(ixx: float, ixy: float, ixz: float, iyy: float, iyz: float, izz: float) -> list[list[float]]:
@@ -37,6 +39,14 @@ def ode_positive_definite(rows) -> bool:
             return False
         low[i][i] = math.sqrt(pivot)
     return True
+
+
+def not_positive_definite(model: str, link: str, values, mass: float) -> str:
+    """The one warning for a link whose inertia (`values`, in KEYS' order) ODE cannot invert."""
+    return ("model '%s' link '%s': its inertia (%s; mass %g kg) is not positive definite (a moment about some axis is "
+            "zero or negative). Gazebo/ODE uses the identity inertia (1 kg m^2 about each axis) for such a link "
+            "(dBodySetMass), and so does racebot; give the link a real inertia"
+            % (model, link, ', '.join('%s %g' % kv for kv in zip(KEYS, values)), mass))
 
 
 def bullet_importer_zeroes(rows) -> bool:
