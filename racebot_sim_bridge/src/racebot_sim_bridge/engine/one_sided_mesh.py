@@ -47,16 +47,17 @@ def prism_mesh(path: str, scale: Sequence[float] | None) -> str | None:
     """The path of the cached OBJ of one-sided prisms for a mesh file (STL, OBJ, COLLADA; the mesh cache's OBJ as
     it is) at `scale`, in metres (to be loaded with scale 1), or None when the mesh has more than MAX_TRIANGLES
     triangles."""
-    obj_path = meshes.convert(path).obj_path
+    converted = meshes.convert(path)
+    if converted.triangles is not None and converted.triangles > MAX_TRIANGLES:
+        return None  # known from the cache's record: nothing read or parsed again at every load
     scale = tuple(float(s) for s in (scale or (1.0, 1.0, 1.0)))
-    key = hashlib.sha256(('%s|%s|%r' % (_VERSION, os.path.abspath(obj_path), scale)).encode())
-    with open(obj_path, 'rb') as handle:
-        key.update(handle.read())
+    # the converted OBJ's name is already the hash of its source's content (meshes.convert): no need to read it
+    key = hashlib.sha256(('%s|%s|%r' % (_VERSION, os.path.basename(converted.obj_path), scale)).encode())
     target = os.path.join(meshes.cache_dir(), 'prisms_' + key.hexdigest()[:32] + '.obj')
     if os.path.isfile(target):
         return target
-    vertices, faces = read_obj(obj_path)
-    if len(faces) > MAX_TRIANGLES:
+    vertices, faces = read_obj(converted.obj_path)
+    if len(faces) > MAX_TRIANGLES:  # a cache entry without its record of triangles
         return None
     vertices = vertices * np.asarray(scale)
     if np.prod(np.sign(scale)) < 0:  # a mirroring scale turns the winding over
