@@ -41,6 +41,8 @@ import sys
 import threading
 import time
 
+from bench import stats  # tools/bench, beside this script
+
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 ROOM_WORLD = os.path.join(ROOT, 'racebot_gazebo', 'worlds', 'room_mini.world')
 REST_QUIET = 0.5      # wall s without a sensor message: the frames in flight have been delivered
@@ -115,11 +117,6 @@ def rss_kb(pid):
     return None
 
 
-def median(values):
-    ordered = sorted(values)
-    return ordered[len(ordered) // 2]
-
-
 def rest_due(driven, warm, rests, every=REST_EVERY):
     """True when the drive, `driven` s of sim time in, should pause for a rest: once warm (`warm`: the sim time
     the warm-up ended, None before), first at once, then every `every` s after the last of `rests`."""
@@ -167,7 +164,7 @@ class RestMeter:
             for _ in range(REST_SAMPLES):
                 readings.append(rss_kb(self.pid) or 0)
                 time.sleep(REST_SAMPLE_PERIOD)
-            rest = (round(self.driven(), 3), median(readings))
+            rest = (round(self.driven(), 3), stats.median(readings))
             print('soak: at rest at %.0f s of sim time: RSS %.1f MB (readings %.1f to %.1f MB)'
                   % (rest[0], rest[1] / 1024.0, min(readings) / 1024.0, max(readings) / 1024.0), flush=True)
             return rest

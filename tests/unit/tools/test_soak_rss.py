@@ -27,5 +27,5 @@ def test_a_leak_reads_as_growth():
 
 
 def test_the_median_of_the_readings_stands_for_the_rest():
-    assert soak.median([5, 1, 9]) == 5
-    assert soak.median([140000] * 7 + [180000]) == 140000  # one reading with a frame freed late
+    assert soak.stats.median([5, 1, 9]) == 5
+    assert soak.stats.median([140000] * 7 + [180000]) == 140000  # one reading with a frame freed late
