@@ -45,7 +45,10 @@ class SocketTransport(RecordingTransport):
         self.peer.settimeout(timeout)
         got = b''
         while len(got) < count:
-            got += self.peer.recv(count - len(got))
+            chunk = self.peer.recv(count - len(got))
+            if not chunk:
+                raise EOFError('the stream ended after %d of %d bytes' % (len(got), count))
+            got += chunk
         return got
 
 

@@ -131,4 +131,5 @@ def test_what_the_socket_cannot_take_is_queued_and_its_rest_never_dropped():
             assert conn._queue[1:] == [b'last'] and isinstance(conn._queue[0], queued_publishing._Rest)
         assert transport.received(len(big) + 4) == big + b'last'
     finally:
+        transport.peer.close()  # a writer still blocked on the full socket (the test failed) gets an error and ends
         close(conn, transport)
