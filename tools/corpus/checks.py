@@ -27,8 +27,7 @@ from corpus import floor, sensors  # noqa: E402
 
 WALL_MARGIN_S = 60.0     # sim-time waits may take this much wall time beyond their length (RTF < 1)
 MESSAGE_TIMEOUT_S = 20.0
-HOLD_S = 0.5  # sim s: the hold command (hold_command) reaches the rest pose in this
-HELD_NOTE_RAD = 0.01  # a controller's hold this far from the rest pose is said in the numbers
+PATH_TOLERANCE_VIOLATED = -4  # control_msgs/FollowJointTrajectoryResult
 
 
 class CheckFailed(Exception):
@@ -258,61 +257,67 @@ def _goal_tolerance(check, joint):
     return float(check['tolerance']), 'row'
 
 
-def hold_command(state, seconds=HOLD_S):
-    """A trajectory_msgs/JointTrajectory for a JointTrajectoryController's `command` topic taking its desired
-    state from where it is to where the joints are (`state`: its control_msgs/JointTrajectoryControllerState)
-    in `seconds`. Upstream follows a command from the topic without path tolerances, and a goal sent after it
-    starts from its end: from where the joints rest."""
-    from trajectory_msgs.msg import JointTrajectory, JointTrajectoryPoint
-    msg = JointTrajectory(joint_names=list(state.joint_names))
-    msg.points = [JointTrajectoryPoint(positions=list(state.actual.positions), time_from_start=rospy.Duration(seconds))]
-    return msg
-
-
-def hold_where_resting(controller):
-    """Makes the trajectory controller under `controller` hold the joints where they rest (hold_command);
-    returns (largest |error| its hold had, its joint) before. A controller started while an effort-driven arm
-    still fell holds where its stop trajectory (stop_trajectory_duration) carries the fall on, beyond the
-    ground; upstream's JTC does the same, and a goal's first segment starts from that unreachable pose."""
-    from trajectory_msgs.msg import JointTrajectory
+def controller_hold(controller):
+    """(largest |desired - actual| of the trajectory controller under `controller`, its joint) as its `state`
+    topic reads now: how far from the joints the position it holds is."""
     state = message(controller + '/state', 'control_msgs/JointTrajectoryControllerState')
-    pub = rospy.Publisher(controller + '/command', JointTrajectory, queue_size=1, latch=True)
-    deadline = time.time() + MESSAGE_TIMEOUT_S
-    while pub.get_num_connections() == 0:
-        if time.time() > deadline:
-            raise CheckFailed('%s/command has no subscriber after %.0f s' % (controller, MESSAGE_TIMEOUT_S))
-        time.sleep(0.02)
-    pub.publish(hold_command(state))
-    sim_sleep(2 * HOLD_S)
-    pub.unregister()
     return max(zip((abs(e) for e in state.error.positions), state.joint_names), default=(0.0, '-'))
 
 
-def check_trajectory(check, row):
-    import actionlib
-    from control_msgs.msg import FollowJointTrajectoryAction, FollowJointTrajectoryGoal
+def _path_tolerance(controller, joint):
+    value = rospy.get_param('%s/constraints/%s/trajectory' % (controller, joint), 0.0)
+    return float(value) if value and value > 0 else None
+
+
+def start_race(code, held, path_tolerance):
+    """True when an abort is upstream's start race (universal_robot#627): a PATH_TOLERANCE_VIOLATED goal sent while
+    the controller held, before the goal, further from the joints than its own path tolerance (the `held` joint's
+    constraints/<joint>/trajectory; None when it has none, and then nothing is a start race). Started while an
+    effort-driven arm still fell, joint_trajectory_controller holds where stop_trajectory_duration carries the fall
+    on (below the ground), and a goal's first segment starts from that hold, in Gazebo as here."""
+    return code == PATH_TOLERANCE_VIOLATED and path_tolerance is not None and held[0] > path_tolerance
+
+
+def _send_goal(client, target, duration):
+    from control_msgs.msg import FollowJointTrajectoryGoal
     from trajectory_msgs.msg import JointTrajectoryPoint
-    client = actionlib.SimpleActionClient(check['action'], FollowJointTrajectoryAction)
-    if not client.wait_for_server(rospy.Duration(60.0)):
-        raise CheckFailed('action server %s not up in 60 s' % check['action'])
-    # settle_s: sim seconds to let the robot come to rest first (an effort-driven arm falls until its controller
-    # starts; a goal sent while it still moves starts with path errors nobody's robot would have at rest), then
-    # the controller is made to hold it where it rests (hold_where_resting)
-    held = None
-    if check.get('settle_s'):
-        sim_sleep(float(check['settle_s']))
-        held = hold_where_resting(check['action'].rsplit('/', 1)[0])
-    now = joint_positions(check['joint_states'])
-    target = {j: float(v) + (now.get(j, 0.0) if check.get('relative') else 0.0) for j, v in check['target'].items()}
     goal = FollowJointTrajectoryGoal()
     goal.trajectory.joint_names = list(target)
     goal.trajectory.points = [JointTrajectoryPoint(positions=list(target.values()),
-                                                   time_from_start=rospy.Duration(float(check['duration'])))]
+                                                   time_from_start=rospy.Duration(duration))]
     client.send_goal(goal)
-    if not client.wait_for_result(rospy.Duration(float(check['duration']) + WALL_MARGIN_S)):
-        raise CheckFailed('no result in %.0f s' % (float(check['duration']) + WALL_MARGIN_S))
+    if not client.wait_for_result(rospy.Duration(duration + WALL_MARGIN_S)):
+        raise CheckFailed('no result in %.0f s' % (duration + WALL_MARGIN_S))
     result = client.get_result()
-    code = result.error_code if result is not None else None
+    return (result.error_code if result is not None else None), (result.error_string if result else 'no result')
+
+
+def check_trajectory(check, row):
+    """What a user does: once the controllers run (the controllers check before this one), wait settle_s (the
+    moment it takes to type the goal), send a FollowJointTrajectory goal, read the result and where the joints
+    end. When that first goal is aborted by upstream's start race (start_race), the user sends it again, as
+    universal_robot#627's users do ("the arm can be controlled just fine") once the arm has stopped moving along
+    the aborted goal's trajectory; the numbers say so."""
+    import actionlib
+    from control_msgs.msg import FollowJointTrajectoryAction
+    controller = check['action'].rsplit('/', 1)[0]
+    client = actionlib.SimpleActionClient(check['action'], FollowJointTrajectoryAction)
+    if not client.wait_for_server(rospy.Duration(60.0)):
+        raise CheckFailed('action server %s not up in 60 s' % check['action'])
+    if check.get('settle_s'):
+        sim_sleep(float(check['settle_s']))
+    now = joint_positions(check['joint_states'])
+    target = {j: float(v) + (now.get(j, 0.0) if check.get('relative') else 0.0) for j, v in check['target'].items()}
+    duration = float(check['duration'])
+    held = controller_hold(controller)
+    code, why = _send_goal(client, target, duration)
+    first = None
+    if start_race(code, held, _path_tolerance(controller, held[1])):
+        first = ('first goal aborted (%s: %s): the controller held %.3f rad (%s) from the joints before it, '
+                 "upstream's start race (universal_robot#627); sent again once its trajectory's time had passed"
+                 % (code, why, held[0], held[1]))
+        sim_sleep(duration)  # upstream's controller goes on along an aborted goal's trajectory: the user sees it end
+        code, why = _send_goal(client, target, duration)
     sim_sleep(0.5)
     final = joint_positions(check['joint_states'])
     worst, worst_joint, bad = 0.0, None, []
@@ -324,13 +329,12 @@ def check_trajectory(check, row):
         if not err <= worst:
             worst, worst_joint = err, joint
     numbers = 'error_code %s, max |error| %.4f rad (%s), %d joints' % (code, worst, worst_joint, len(target))
-    if held is not None and held[0] > HELD_NOTE_RAD:
-        numbers += ("; after settle_s the controller's hold was %.3f rad (%s) from the joints; made to hold where they "
-                    'rest first' % held)
+    if first:
+        numbers += '; ' + first
     if code != 0:  # where the goal started from: a failure is read against the robot's pose then
         start = ', '.join('%s %.3f' % (j, now[j]) for j in target if j in now)
-        raise CheckFailed('error_code %s (%s); %s; started from %s'
-                          % (code, result.error_string if result else 'no result', numbers, start))
+        raise CheckFailed('error_code %s (%s); %s; started from %s, the controller holding %.3f rad (%s) from the '
+                          'joints' % (code, why, numbers, start, held[0], held[1]))
     if bad:
         raise CheckFailed('; '.join(bad), numbers)
     return numbers

@@ -137,6 +137,41 @@ def test_on_the_same_floor_mesh_it_drives_as_on_a_ground_plane(tmp_path):
     assert on_mesh == pytest.approx(on_plane, rel=0.02)
 
 
+SLAB = 0.10  # a race track's slab (issue 37): 10 cm thick on the ground, its top above the wheels' centres
+
+
+def test_a_robot_spawned_with_its_wheels_inside_a_closed_slab_is_lifted_onto_it_and_drives(tmp_path):
+    """At z = 0 on a 10 cm slab the wheels' centres (23 + 10 mm up) lie 67 mm below its top, deeper than its top
+    face's prism reaches (half the slab): Bullet held the robot inside (z 0.069 where the top is at 0.10). ODE's
+    faces push out the base box that crosses the top face's plane and give the wheels, centres behind every face,
+    nothing, so Gazebo lifts it onto the top; so does the spawn here (lift_onto_floor)."""
+    height, distance, turned = drive(floor_world(tmp_path, top=SLAB, thickness=SLAB))
+    assert height == pytest.approx(SLAB, abs=0.002)
+    assert turned > 10.0
+    assert distance > 0.9 * turned * WHEEL_RADIUS
+
+
+def test_the_lift_leaves_a_robot_alone_where_no_floor_top_crosses_it(tmp_path):
+    """Standing on the top already, or beside a wall whose top is above it: nothing to lift."""
+    world = PhysicsWorld()
+    try:
+        for model in sdf_reader.load_world(str(floor_world(tmp_path, top=SLAB, thickness=SLAB, size=2.0))).models:
+            world.add_sdf_model(model)
+        floors = [i for m in world.bodies.values() for i in m.one_sided_bodies]
+        assert len(floors) == 1
+        client = world.client
+        box = client.createCollisionShape(3, halfExtents=[0.05, 0.05, 0.05])
+        on_top = client.createMultiBody(1.0, box, basePosition=[0, 0, SLAB + 0.05])
+        assert one_sided_mesh.lift_onto_floor(client, on_top, floors) == 0.0
+        beside = client.createMultiBody(1.0, box, basePosition=[1.5, 0, 0.05])  # on the ground, off the slab
+        assert one_sided_mesh.lift_onto_floor(client, beside, floors) == 0.0
+        sunk = client.createMultiBody(1.0, box, basePosition=[0.5, 0, 0.06])
+        assert one_sided_mesh.lift_onto_floor(client, sunk, floors) == pytest.approx(SLAB - 0.01, abs=1e-4)
+        assert client.getBasePositionAndOrientation(sunk)[0][2] == pytest.approx(SLAB + 0.05, abs=1e-4)
+    finally:
+        world.close()
+
+
 def test_a_box_whose_centre_starts_below_the_top_face_is_pushed_out_through_the_top(tmp_path):
     """ODE's box-trimesh collider never flips a face's normal (collision_trimesh_box.cpp, _cldTestNormal): a box
     whose centre is behind a face is pushed out through its front. Bullet's two-sided triangles pushed it down."""

@@ -2,7 +2,9 @@
 JointTrajectoryController started while the arm still falls holds where its stop trajectory carries the fall
 on, below the ground, as upstream's StopTrajectoryBuilder does; a goal sent once the arm rests starts from that
 pose and is aborted at once (PATH_TOLERANCE_VIOLATED). The check's hold_command, sent first on the controller's
-`command` topic, makes it hold where the arm rests, and the goal succeeds.
+`command` topic, would make it hold where the arm rests, but a user does not do that: the check, as a user, reads
+the abort as that start race (start_race, from the hold the controller's state showed before the goal) and sends
+the goal again, which succeeds (upstream's controller carries on along the aborted trajectory).
 
 Real PyBullet, the gazebo_ros_control plugin and its controller manager stepped by a Simulator (loaded and
 started as the spawner does), the controller's topics and action in memory (tests/unit/trajectory_io.py's
@@ -19,7 +21,7 @@ from racebot_sim_bridge.ros_control.controller_switch import STRICT
 from fakes import FakeLog
 from trajectory_io import IO, GoalHandle, trajectory
 
-from corpus.checks import HOLD_S, hold_command
+from corpus.checks import PATH_TOLERANCE_VIOLATED, start_race
 
 # Bolted to the world, both joints about y on effort transmissions; at 0 the arm points along x, level, and
 # gravity turns both joints positive (down) until the arm lies on the ground.
@@ -83,10 +85,11 @@ class Rig:
     def topic(self, leaf):
         return next(t for name, t in self.io.topics.items() if name.endswith('/arm_controller/' + leaf))
 
-    def lift(self):
-        """The row's goal, relative to where the arm is; the goal handle once it has ended (or after 5 s)."""
-        goal = FollowJointTrajectoryGoal(trajectory=trajectory(
-            [([self.hw.handles[j].position + LIFT[j] for j in LIFT], 3.0)], joints=list(LIFT)))
+    def lift(self, target=None):
+        """The row's goal (`target`, else LIFT relative to where the arm is); the goal handle once it has ended
+        (or after 5 s)."""
+        target = target or [self.hw.handles[j].position + LIFT[j] for j in LIFT]
+        goal = FollowJointTrajectoryGoal(trajectory=trajectory([(target, 3.0)], joints=list(LIFT)))
         handle = GoalHandle(goal)
         goal_cb, _ = next(a for ns, a in self.io.actions.items() if ns.endswith('/follow_joint_trajectory'))
         goal_cb(handle)
@@ -141,13 +144,25 @@ def test_a_controller_started_at_rest_holds_where_the_arm_lies_and_the_goal_succ
     assert handle.status == 'succeeded', handle.result
 
 
-def test_the_checks_hold_command_makes_a_controller_started_mid_fall_hold_the_rest_pose(rig_at):
+def worst_hold(rig):
+    return max((e, j) for j, e in hold_error(rig).items())
+
+
+def test_the_check_tells_the_start_race_by_the_hold_and_a_users_second_goal_succeeds(rig_at):
     rig = rig_at(MID_FALL_STEPS)
     assert rig.start_velocity > 1.0 and at_rest(rig)
-    rest = {j: rig.hw.handles[j].position for j in LIFT}
-    rig.topic('command').callback(hold_command(rig.topic('state').messages[-1]))
-    rig.run(2 * HOLD_S)  # as hold_where_resting waits
-    assert max(hold_error(rig).values()) < 0.01
-    assert all(rig.hw.handles[j].position == pytest.approx(rest[j], abs=0.01) for j in LIFT)  # the arm stayed
-    handle = rig.lift()
-    assert handle.status == 'succeeded', handle.result
+    held = worst_hold(rig)
+    target = [rig.hw.handles[j].position + LIFT[j] for j in LIFT]
+    first = rig.lift(target)
+    assert start_race(first.result.error_code, held, TOLERANCE)
+    rig.run(3.0)  # the user reads the abort while the arm goes on along the aborted trajectory, as upstream's does
+    second = rig.lift(target)
+    assert second.status == 'succeeded', second.result
+    assert all(rig.hw.handles[j].position == pytest.approx(t, abs=TOLERANCE) for j, t in zip(LIFT, target))
+
+
+def test_an_abort_is_no_start_race_without_a_hold_beyond_the_path_tolerance():
+    assert not start_race(PATH_TOLERANCE_VIOLATED, (0.05, 'shoulder'), TOLERANCE)  # a path error of the goal's own
+    assert not start_race(PATH_TOLERANCE_VIOLATED, (0.5, 'shoulder'), None)  # no path tolerance: no path abort
+    assert not start_race(FollowJointTrajectoryResult.GOAL_TOLERANCE_VIOLATED, (0.5, 'shoulder'), TOLERANCE)
+    assert start_race(PATH_TOLERANCE_VIOLATED, (0.5, 'shoulder'), TOLERANCE)

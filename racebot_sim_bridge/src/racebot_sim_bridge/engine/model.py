@@ -47,6 +47,7 @@ class Model:
         self.kind = source.kind
         self.extra_bodies = list(extra_bodies)
         self.copy_key = None
+        self.one_sided_bodies = []  # its static bodies colliding through one-sided prisms (sdf_bodies.py)
         self.model_offset = None
         dyn = client.getDynamicsInfo(body_id, -1)
         self._inertial = (tuple(dyn[3]), tuple(dyn[4]))  # base inertial frame in the link frame

@@ -17,6 +17,13 @@ front, as by ODE, as long as its centre is less deep than the prism (deeper insi
 pushes it out); nothing stands outside the mesh's volume where the mesh is closed. PyBullet builds one convex
 hull per OBJ object (`o`), so the prisms are written as one OBJ, one object each, cached beside the converted mesh
 (keyed by it and the scale); static bodies only.
+
+A model spawned deeper into such a floor than its prisms reach (a robot spawned at z = 0 onto a race track's 10 cm
+slab: its wheels' centres lie behind the top face, inside the bottom face's prism) is held there by Bullet's
+nearest-face pushes. ODE pushes it up: each face pushes a box that crosses its plane out through its front, and
+gives a cylinder or sphere whose centre is behind it nothing, so the links that cross the top face lift the model
+until its wheels stand on it. lift_onto_floor does that at the spawn: the model is raised straight up onto the top
+face that crosses it (PhysicsWorld.spawn_urdf; its spawn pose is then the lifted one).
 """
 from __future__ import annotations
 
@@ -39,6 +46,9 @@ MARGIN = 0.001  # m: PyBullet's collision margin around a convex hull: the prism
 # 630 MB as prisms, 276 MB with this limit. The collision meshes worlds give robots to stand on are small: the AWS
 # bookstore's, warehouse's and racetrack's hold 28 to 1,418 triangles each.
 MAX_TRIANGLES = 2000
+SUNK = 0.002  # m: a model whose lowest point starts this far below a one-sided floor's top is lifted onto it
+FLOOR_NORMAL_Z = 0.7  # a face whose normal points this much up is a floor's top
+FOOTPRINT_RAYS = 5  # per side: rays cast down over a model's footprint find the top faces under it
 _VERSION = '4'  # part of the cache key: bump when the written prisms change
 _RAY_BATCH = 8192  # PyBullet 3.2.7 refuses more than 16384 rays and answers 16383 of a batch of 16384
 
@@ -160,3 +170,47 @@ def _cast(tri, origins, ends):
         return np.asarray(fractions)
     finally:
         pb.disconnect(client)
+
+
+def lift_onto_floor(client, body_id: int, floors: Sequence[int]) -> float:
+    """Raises a model just spawned (`body_id`) straight up onto the top face of a one-sided floor (`floors`: body
+    ids with prisms, Model.one_sided_bodies) that crosses it, as ODE's faces push out the links that cross them;
+    returns the lift in m (0 when no top face crosses it deeper than SUNK)."""
+    if not floors:
+        return 0.0
+    boxes = [client.getAABB(body_id, link) for link in range(-1, client.getNumJoints(body_id))]
+    low = np.min([b[0] for b in boxes], axis=0)
+    high = np.max([b[1] for b in boxes], axis=0)
+    xs = np.linspace(low[0], high[0], FOOTPRINT_RAYS)
+    ys = np.linspace(low[1], high[1], FOOTPRINT_RAYS)
+    tops = [hit[3][2] for hit in _rays_past(client, body_id, [(x, y, high[2]) for x in xs for y in ys], low[2])
+            if hit[0] in floors and hit[4][2] > FLOOR_NORMAL_Z]
+    top = max(tops, default=None)
+    if top is None or top - low[2] <= SUNK:
+        return 0.0
+    lift = float(top - low[2])
+    position, orientation = client.getBasePositionAndOrientation(body_id)
+    client.resetBasePositionAndOrientation(body_id, (position[0], position[1], position[2] + lift), orientation)
+    return lift
+
+
+def _rays_past(client, body_id, starts, bottom, rounds=16):
+    """rayTestBatch's results of rays cast straight down from `starts` to z = `bottom`, each carried on past the
+    hits on the model `body_id` itself (PyBullet reports only a ray's first hit)."""
+    results = [None] * len(starts)
+    pending = list(range(len(starts)))
+    starts = [tuple(p) for p in starts]
+    for _ in range(rounds):
+        if not pending:
+            break
+        hits = client.rayTestBatch([starts[i] for i in pending], [(starts[i][0], starts[i][1], bottom)
+                                                                   for i in pending])
+        again = []
+        for i, hit in zip(pending, hits):
+            if hit[0] == body_id and hit[3][2] > bottom:
+                starts[i] = (starts[i][0], starts[i][1], hit[3][2] - 1e-5)
+                again.append(i)
+            else:
+                results[i] = hit
+        pending = again
+    return [r for r in results if r is not None]

@@ -20,7 +20,7 @@ from typing import TYPE_CHECKING
 
 import pybullet as pb
 
-from racebot_sim_bridge.engine import sdf_bodies
+from racebot_sim_bridge.engine import one_sided_mesh, sdf_bodies
 from racebot_sim_bridge.engine.model import Model
 from racebot_sim_bridge.engine.physics_types import BodyKind, BodySource, PhysicsError
 from racebot_sim_bridge.engine.pybullet_client import PybulletClient
@@ -106,11 +106,16 @@ class PhysicsWorld:
                    orientation: Quat = (0, 0, 0, 1), warn: Callable[[str], None] | None = None) -> Model:
         """Spawns a parsed URDF (urdf_model.RobotModel) under `name`; returns its Model (urdf_spawn.py says
         how). `urdf`: the URDF text, or its root element as already parsed (rewritten in place). warn(message)
-        hears of meshes that cannot be resolved (the element is left out, the robot is spawned)."""
+        hears of meshes that cannot be resolved (the element is left out, the robot is spawned). A robot spawned
+        sunk into a one-sided floor mesh is lifted onto its top (one_sided_mesh.lift_onto_floor)."""
         if name in self.bodies:
             raise PhysicsError("a model named '%s' already exists" % name)
         model = self._urdf.spawn(name, urdf_model, urdf, position, orientation, warn, self.ground_mu,
                                  self.load_trial)
+        if not (urdf_model.static or urdf_model.root_link == 'world'):  # a body held in place is never pushed
+            floors = [i for m in self.bodies.values() for i in m.one_sided_bodies]
+            if one_sided_mesh.lift_onto_floor(self.client, model.id, floors):
+                model.spawn_pose = model.pose()  # Model::Reset puts it back where it stands, not inside the floor
         if model.dampers is not None:
             self._damped.append(model)
         self.bodies[name] = model

@@ -36,11 +36,14 @@ def build_model(client: PybulletClient, applied: dict, model: sdf_model.SdfModel
     the mu of its ground plane if it has one (else None). `visuals`: build visual shapes; `laser_retro`: the
     world's {(body id, link index): laser_retro}, given this model's; warn(message) hears of an inertia that is
     not positive definite. PhysicsError when it cannot be built: nothing of it stays behind then."""
-    ids, ground_mu = [], None
+    ids, ground_mu, one_sided = [], None, []
     warn = warn or (lambda message: None)
     try:
         for link in model.links:
-            body_id, mu = _link_body(client, model, link, visuals, warn)
+            prisms = []
+            body_id, mu = _link_body(client, model, link, visuals, warn, prisms)
+            if prisms:
+                one_sided.append(body_id)
             ground_mu = mu if mu is not None else ground_mu
             ids.append((link.name, body_id))
             retro = next((c.laser_retro for c in link.collisions if c.laser_retro), 0.0)
@@ -58,20 +61,23 @@ def build_model(client: PybulletClient, applied: dict, model: sdf_model.SdfModel
         raise PhysicsError("model '%s' has no link; a model needs at least one <link>" % model.name)
     # A multi-link SDF model is kept as its first link's body plus extra bodies named model::link.
     first_link, first_id = ids[0]
-    return Model(client, applied, model.name, first_id, model.static, BodySource(BodyKind.SDF, model),
-                 extra_bodies=ids[1:], root_link=first_link), ground_mu
+    built = Model(client, applied, model.name, first_id, model.static, BodySource(BodyKind.SDF, model),
+                  extra_bodies=ids[1:], root_link=first_link)
+    built.one_sided_bodies = one_sided
+    return built, ground_mu
 
 
-def _link_body(client, model, link, visuals, warn):
+def _link_body(client, model, link, visuals, warn, prisms):
     """(PyBullet body of one SDF link, mu of its ground plane or None). A link left with no shape (none written,
     or each skipped: a mesh that is missing, a degenerate size) is still a body, as Gazebo keeps the link and
-    its model: its mass and inertia, nothing to collide with or draw."""
+    its model: its mass and inertia, nothing to collide with or draw. `prisms` hears of the one-sided prism
+    files its meshes collide through (_mesh_file)."""
     shapes, drawn = [], []
     static = link.is_static(model) or link.mass is None or link.mass <= 0  # a nested model's: its own
     try:
         for col in link.collisions:
             pos, orn = as_transform(col.pose)
-            shape = _collision_shape(client, col.shape, pos, orn, static)
+            shape = _collision_shape(client, col.shape, pos, orn, static, prisms)
             if shape is not None:
                 shapes.append((shape, col))
         drawn = [v for v in link.visuals if _drawable(v.shape)] if visuals else []
@@ -81,7 +87,7 @@ def _link_body(client, model, link, visuals, warn):
                            % (model.name, link.name, err))
     world_pos, world_orn = model.world_pose_of(link)
     mass = 0.0 if static else link.mass
-    col_id = shapes[0][0] if len(shapes) == 1 else _compound(client, link, static) if shapes else -1
+    col_id = shapes[0][0] if len(shapes) == 1 else _compound(client, link, static, []) if shapes else -1
     body = client.createMultiBody(baseMass=mass, baseCollisionShapeIndex=col_id, baseVisualShapeIndex=vis_id,
                                   basePosition=world_pos, baseOrientation=world_orn)
     try:
@@ -116,7 +122,7 @@ def _as_ode_takes_it(model, link, inertia, warn):
     return inertia_maths.IDENTITY
 
 
-def _compound(client, link, static):
+def _compound(client, link, static, prisms):
     """One compound collision shape of a link's collisions (planes left out), -1 for none."""
     kwargs = dict(shapeTypes=[], radii=[], halfExtents=[], lengths=[], planeNormals=[], fileNames=[],
                   meshScales=[], flags=[], collisionFramePositions=[], collisionFrameOrientations=[])
@@ -127,7 +133,8 @@ def _compound(client, link, static):
         pos, orn = as_transform(col.pose)
         kwargs['shapeTypes'].append({'box': pb.GEOM_BOX, 'cylinder': pb.GEOM_CYLINDER,
                                      'sphere': pb.GEOM_SPHERE, 'mesh': pb.GEOM_MESH}[s.kind])
-        filename, scale, flags = _mesh_file(s, static) if s.kind is ShapeKind.MESH else ('', [1.0, 1.0, 1.0], 0)
+        filename, scale, flags = _mesh_file(s, static, prisms) if s.kind is ShapeKind.MESH else \
+            ('', [1.0, 1.0, 1.0], 0)
         kwargs['fileNames'].append(filename)
         kwargs['meshScales'].append(scale)
         kwargs['flags'].append(flags)
@@ -142,10 +149,10 @@ def _compound(client, link, static):
     return client.createCollisionShapeArray(**kwargs)
 
 
-def _collision_shape(client, shape, pos, orn, static):
+def _collision_shape(client, shape, pos, orn, static, prisms):
     """A collision shape for one geometry.Shape at (pos, orn), None for a kind PyBullet has no shape for."""
     if shape.kind is ShapeKind.MESH:
-        filename, scale, flags = _mesh_file(shape, static)
+        filename, scale, flags = _mesh_file(shape, static, prisms)
         return client.createCollisionShape(pb.GEOM_MESH, fileName=filename, meshScale=scale, flags=flags,
                                            collisionFramePosition=pos, collisionFrameOrientation=orn)
     if shape.kind is ShapeKind.BOX:
@@ -206,17 +213,18 @@ def _visual_geometry(shape):
     return dict(shapeType=pb.GEOM_BOX, halfExtents=[size[0] / 2.0, size[1] / 2.0, 0.0005])
 
 
-def _mesh_file(shape, static):
+def _mesh_file(shape, static, prisms):
     """(file, scale, flags) of a mesh collision: a static one's triangles as one-sided prisms (one_sided_mesh.py,
     ODE's one-sided triangles), or its exact triangles when it has too many for prisms; a dynamic one as one convex
-    hull per part (Bullet collides dynamic bodies only with convex shapes)."""
+    hull per part (Bullet collides dynamic bodies only with convex shapes). A prisms file is appended to `prisms`."""
     scale = list(shape.scale or (1.0, 1.0, 1.0))
     if not static:
         return shape.filename, scale, 0
-    prisms = one_sided_mesh.prism_mesh(shape.filename, scale)
-    if prisms is None:
+    path = one_sided_mesh.prism_mesh(shape.filename, scale)
+    if path is None:
         return shape.filename, scale, pb.GEOM_FORCE_CONCAVE_TRIMESH
-    return prisms, [1.0, 1.0, 1.0], 0
+    prisms.append(path)
+    return path, [1.0, 1.0, 1.0], 0
 
 
 def _rgba(visual):
