@@ -14,6 +14,17 @@ BUILD_TIMEOUT = 240.0  # wall s for catkin_make of a few tiny packages on a busy
 STOP_TIMEOUT = 30.0    # wall s roslaunch gets to stop its nodes after SIGINT
 
 
+def user_environment():
+    """What a user's terminal has before sourcing anything: no ROS or racebot variables. The login shell
+    (`bash -l`) then reads the profile files as a terminal does. ROS_MASTER_URI is this test's master,
+    ROS_HOSTNAME loopback (as tools/run_tests.py sets for the whole suite)."""
+    env = {name: os.environ[name] for name in ('HOME', 'USER', 'LOGNAME', 'LANG', 'TERM') if name in os.environ}
+    env['PATH'] = '/usr/local/bin:/usr/bin:/bin'
+    env['ROS_MASTER_URI'] = os.environ['ROS_MASTER_URI']
+    env['ROS_HOSTNAME'] = 'localhost'
+    return env
+
+
 class Workspace:
     """A catkin workspace in a fresh folder under /tmp: `src/` holds the given packages, `catkin_make`
     builds it on top of whatever workspace the calling environment has sourced (racebot's devel)."""

@@ -29,7 +29,7 @@ from controller_manager_msgs.srv import ListControllers
 from gazebo_msgs.srv import GetModelState
 from std_msgs.msg import Float64
 
-from catkin_overlay import BUILD_TIMEOUT, LaunchWatch, ShellCommand, Workspace
+from catkin_overlay import BUILD_TIMEOUT, LaunchWatch, ShellCommand, Workspace, user_environment
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 REPO = os.path.dirname(os.path.dirname(HERE))
@@ -42,16 +42,6 @@ CONTROLLERS = {'joint_state_controller': 'joint_state_controller/JointStateContr
 STARTUP_TIMEOUT = 180.0  # wall s: world server, spawn and spawner on a busy 2-core machine
 DRIVE_TIMEOUT = 120.0
 
-
-def user_environment():
-    """What a user's terminal has before sourcing anything: no ROS or racebot variables. The login shell
-    (`bash -l`) then reads the profile files as a terminal does. ROS_MASTER_URI is this test's master,
-    ROS_HOSTNAME loopback (as tools/run_tests.py sets for the whole suite)."""
-    env = {name: os.environ[name] for name in ('HOME', 'USER', 'LOGNAME', 'LANG', 'TERM') if name in os.environ}
-    env['PATH'] = '/usr/local/bin:/usr/bin:/bin'
-    env['ROS_MASTER_URI'] = os.environ['ROS_MASTER_URI']
-    env['ROS_HOSTNAME'] = 'localhost'
-    return env
 
 
 class RobotPackageTest(unittest.TestCase):

@@ -21,7 +21,7 @@ import unittest
 import rospy
 import rostest
 
-from catkin_overlay import BUILD_TIMEOUT, Workspace
+from catkin_overlay import BUILD_TIMEOUT, Workspace, user_environment
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 REPO = os.path.dirname(os.path.dirname(HERE))
@@ -38,14 +38,6 @@ REFUSED = {'sim_robot_plugins': 'src/world_plugin.cc: #include <gazebo/common/Pl
 SUGGESTED = re.compile(r'catkin_make -DCATKIN_BLACKLIST_PACKAGES="([^"]*)"')
 COMMAND_TIMEOUT = 60.0  # wall s for rospack and roslaunch on a busy machine
 
-
-def user_environment():
-    """A terminal's environment before sourcing anything (as robot_package_test.py), on this test's master."""
-    env = {name: os.environ[name] for name in ('HOME', 'USER', 'LOGNAME', 'LANG', 'TERM') if name in os.environ}
-    env['PATH'] = '/usr/local/bin:/usr/bin:/bin'
-    env['ROS_MASTER_URI'] = os.environ['ROS_MASTER_URI']
-    env['ROS_HOSTNAME'] = 'localhost'
-    return env
 
 
 class StandinPackagesTest(unittest.TestCase):

@@ -24,8 +24,28 @@
 #     type="spawner">` would start our script instead of the real one. The file also keeps
 #     catkin_make from configuring the package again. Delete it to bring ours back.
 # Set -DRACEBOT_COMPAT_FORCE=ON to build ours even when an underlay has the package.
+#
+# Overlays (upstream_compat/pluginlib, upstream_compat/class_loader) hand on a package Debian has in a later
+# generation and add what ROS 1 code includes; they step aside only for the ROS 1 package itself. They set,
+# before the include,
+#   RACEBOT_STEP_ASIDE_BELOW_VERSION  e.g. 2: an underlay's package counts only when the <version> of its
+#                                     package.xml is below it (Noetic's pluginlib 1.13, class_loader 0.5);
+#                                     Debian 12's pluginlib 5.2.1 and class_loader 2.4.0 do not, and the
+#                                     prefix of the first such package is left in RACEBOT_OVERLAID_PREFIX.
 
 set(RACEBOT_STEP_ASIDE FALSE)
+set(RACEBOT_OVERLAID_PREFIX "")
+
+# In OUT: the <version> of PREFIX/share/<this package>/package.xml, empty when there is none.
+function(racebot_underlay_version out prefix)
+  set(_version "")
+  if(EXISTS "${prefix}/share/${PROJECT_NAME}/package.xml")
+    file(STRINGS "${prefix}/share/${PROJECT_NAME}/package.xml" _line REGEX "<version[^>]*>[^<]+</version>"
+         LIMIT_COUNT 1)
+    string(REGEX REPLACE ".*<version[^>]*>[ \t]*([^< \t]+)[ \t]*</version>.*" "\\1" _version "${_line}")
+  endif()
+  set(${out} "${_version}" PARENT_SCOPE)
+endfunction()
 
 if(RACEBOT_COMPAT_FORCE)
   message(STATUS "${PROJECT_NAME}: RACEBOT_COMPAT_FORCE is set; building ours whatever the underlays have")
@@ -63,6 +83,17 @@ foreach(_racebot_prefix ${_racebot_prefixes})
   if(EXISTS "${_racebot_prefix}/share/${PROJECT_NAME}/package.xml"
      OR EXISTS "${_racebot_prefix}/share/${PROJECT_NAME}/cmake/${PROJECT_NAME}Config.cmake")
     set(_racebot_found "${_racebot_prefix}")
+    if(RACEBOT_STEP_ASIDE_BELOW_VERSION)
+      racebot_underlay_version(_racebot_version "${_racebot_prefix}")
+      if(_racebot_version AND NOT _racebot_version VERSION_LESS RACEBOT_STEP_ASIDE_BELOW_VERSION)
+        message(STATUS "${PROJECT_NAME}: ${_racebot_prefix} has ${PROJECT_NAME} ${_racebot_version}, a later "
+                       "generation than ROS 1's; ours overlays it")
+        if(NOT RACEBOT_OVERLAID_PREFIX)
+          set(RACEBOT_OVERLAID_PREFIX "${_racebot_prefix}")
+        endif()
+        set(_racebot_found "")
+      endif()
+    endif()
   endif()
 endforeach()
 

@@ -1,0 +1,10 @@
+// racebot overlay of class_loader (upstream_compat/class_loader): ROS 1's <class_loader/class_loader_register_macro.h>, which Noetic
+// keeps as a deprecated name of <class_loader/register_macro.hpp> and Debian's class_loader 2.4 no longer has.
+#ifndef RACEBOT_CLASS_LOADER_CLASS_LOADER_REGISTER_MACRO_H_
+#define RACEBOT_CLASS_LOADER_CLASS_LOADER_REGISTER_MACRO_H_
+
+#warning Including header <class_loader/class_loader_register_macro.h> is deprecated, include <class_loader/register_macro.hpp> instead.
+
+#include <class_loader/register_macro.hpp>
+
+#endif  // RACEBOT_CLASS_LOADER_CLASS_LOADER_REGISTER_MACRO_H_
