@@ -6,7 +6,7 @@ VENV := $(ROOT)/.venv
 SYSTEM_PYTHON := /usr/bin/python3
 IN_WS := source $(ROOT)/devel/setup.bash &&
 
-.PHONY: setup debian venv build test unit lint run demo bench bench-quick soak corpus fresh-check clean help
+.PHONY: setup debian venv build test unit lint run demo bench bench-quick soak corpus deps fresh-check clean help
 
 help:
 	@echo "make run    set up, build, start the simulator with the racebot in the room"
@@ -17,6 +17,8 @@ help:
 	@echo "make lint   ruff over the repository (ruff.toml); make test runs it too"
 	@echo "make corpus public ROS 1 robot and world packages run unchanged; the table in out/corpus/ (network,"
 	@echo "            or RACEBOT_CORPUS_DIR=existing clones; ~1 h; docs/CORPUS.md)"
+	@echo "make deps   ARGS='~/my_ws/src amcl': what a workspace or package needs that neither Debian nor racebot"
+	@echo "            has, fetched at its Noetic release and built in an underlay (docs/DEPS.md)"
 	@echo "make fresh-check  'make test' in a brand-new minimal Debian 12 root (root only; ~10 min); CI runs it"
 	@echo "            extra roslaunch arguments: make run ARGS='paused:=true x_pos:=1'"
 	@echo "make clean  remove build/ devel/ (keeps .venv)"
@@ -98,6 +100,15 @@ soak: setup
 # out/corpus/corpus.md and corpus.json. One row: make corpus ARGS='--only husky'. docs/CORPUS.md.
 corpus: setup
 	@$(IN_WS) $(VENV)/bin/python3 tools/corpus/run.py $(ARGS)
+
+# Missing ROS 1 packages from source (tools/deps/, docs/DEPS.md): for each workspace or package folder (or package
+# name) in ARGS, what its package.xml files and launch files need that neither Debian (rosdep, rospack) nor racebot
+# provides, fetched with rosinstall_generator and vcstool at the Noetic release and built with catkin_make_isolated
+# in ~/.cache/racebot/deps/ws on top of racebot's devel space; then `source ~/.cache/racebot/deps/ws/devel_isolated/
+# setup.bash`. Offline: RACEBOT_CORPUS_MIRRORS=ROOT or RACEBOT_CORPUS_DIR=DIR (as make corpus), and the rosdistro from
+# ROOT/ros+rosdistro/repo or --rosdistro PATH. A second run with nothing new takes about a second.
+deps: setup
+	@$(IN_WS) $(VENV)/bin/python3 tools/deps/run.py $(ARGS)
 
 # The README's `make test` on a brand-new minimal Debian 12 (mmdebstrap, chroot) from a clone of HEAD:
 # proves that `make setup` installs everything the suite calls. Needs root; CI runs it.

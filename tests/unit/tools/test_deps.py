@@ -1,0 +1,223 @@
+"""make deps's parts (tools/deps/): what a package needs, where sources come from, the walk from needs to the
+packages built from source (with stand-in providers and rosinstall_generator/vcstool replaced), the build log's
+one-line reasons and the cache keys. rosinstall_generator itself runs once, offline, on deps_fixture's rosdistro."""
+import os
+from pathlib import Path
+
+import pytest
+
+import deps_fixture
+from deps import index, needs, provide, repos, resolve, underlay
+from deps import run as deps_run
+
+REPO = Path(__file__).resolve().parents[3]
+
+
+def write(root, files):
+    deps_fixture.write_files(str(root), files)
+    return str(root)
+
+
+# --- needs ------------------------------------------------------------------------------------------
+
+def test_launch_names_are_node_and_test_packages_and_every_find():
+    text = '''<launch>
+      <arg name="m" default="$(find map_pkg)/maps/a.yaml"/>
+      <include file="$(find nav_pkg)/launch/x.launch"/>
+      <node pkg="amcl" type="amcl" name="amcl"/>
+      <test pkg="rostest_pkg" type="t" test-name="t"/>
+      <node pkg="$(arg driver)" type="d" name="d"/>
+      <param name="p" command="$(find xacro)/xacro $(find robot_desc)/urdf/r.xacro"/>
+    </launch>'''
+    assert needs.launch_names(text) == {'map_pkg', 'nav_pkg', 'amcl', 'rostest_pkg', 'xacro', 'robot_desc'}
+
+
+def test_a_launch_file_that_is_not_xml_still_gives_its_finds():
+    assert needs.launch_names('<launch><include file="$(find a_pkg)/x.launch"></launch') == {'a_pkg'}
+
+
+def test_declared_dependencies_follow_conditions_and_test_flag(tmp_path):
+    write(tmp_path / 'p', {'package.xml': '''<?xml version="1.0"?>
+<package format="3"><name>p</name><version>1.0.0</version><description>d</description>
+<maintainer email="a@example.com">a</maintainer><license>BSD</license>
+<buildtool_depend>catkin</buildtool_depend>
+<depend>roscpp</depend>
+<depend condition="$ROS_VERSION == 2">rclcpp</depend>
+<exec_depend condition="$ROS_PYTHON_VERSION == 3">python3-yaml</exec_depend>
+<test_depend>rostest</test_depend>
+</package>'''})
+    (folder, package), = needs.local_packages(str(tmp_path)).values()
+    assert folder == str(tmp_path / 'p')
+    assert needs.declared(package) == {'catkin', 'roscpp', 'python3-yaml', 'rostest'}
+    assert needs.declared(package, tests=False) == {'catkin', 'roscpp', 'python3-yaml'}
+
+
+def test_needs_of_a_workspace_name_their_needers_and_leave_out_its_own_packages(tmp_path):
+    write(tmp_path, {'a/package.xml': deps_fixture.package_xml('a', ['b', 'std_msgs']),
+                     'a/launch/a.launch': '<launch><node pkg="teleop_twist_keyboard" type="t" name="t"/></launch>',
+                     'b/package.xml': deps_fixture.package_xml('b', ['std_msgs']),
+                     'c/CATKIN_IGNORE': '', 'c/package.xml': deps_fixture.package_xml('c', ['hidden'])})
+    found = needs.needs_of(needs.local_packages(str(tmp_path)))
+    assert found == {'catkin': {'a', 'b'}, 'std_msgs': {'a', 'b'}, 'teleop_twist_keyboard': {'a'}}
+
+
+def test_every_stand_in_that_gives_way_is_a_racebot_stand_in():
+    assert all((REPO / 'upstream_compat' / name / 'package.xml').is_file() for name in needs.GIVE_WAY)
+
+
+# --- where sources come from -------------------------------------------------------------------------
+
+def test_github_urls_map_to_owner_and_name():
+    assert repos.github_repo('https://github.com/ros-planning/navigation.git') == 'ros-planning/navigation'
+    assert repos.github_repo('https://github.com/ros/roslint') == 'ros/roslint'
+    assert repos.github_repo('https://gitlab.com/x/y.git') is None
+
+
+def test_local_copies_are_found_as_make_corpus_finds_them(tmp_path):
+    (tmp_path / 'clones' / 'roslint' / '.git').mkdir(parents=True)
+    mirror = tmp_path / 'mirrors' / 'ros-planning+navigation' / 'repo'
+    mirror.mkdir(parents=True)
+    (mirror / 'HEAD').write_text('ref: refs/heads/noetic-devel\n')
+    clones, mirrors = str(tmp_path / 'clones'), str(tmp_path / 'mirrors')
+    assert repos.local_copy('https://github.com/ros/roslint.git', clones, mirrors) == str(tmp_path / 'clones' /
+                                                                                          'roslint')
+    assert repos.local_copy('https://github.com/ros-planning/navigation.git', clones, mirrors) == str(mirror)
+    assert repos.local_copy('https://github.com/ros/other.git', clones, mirrors) is None
+
+
+def test_vcs_import_output_gives_each_repository_its_first_error():
+    output = ('=== src/a (git) ===\nCloning into \'.\'...\n=== src/b (git) ===\n'
+              'Could not checkout ref \'9.9\': error: pathspec \'9.9\' did not match\nmore\n')
+    assert repos._vcs_errors(output) == {'b': "Could not checkout ref '9.9': error: pathspec '9.9' did not match"}
+
+
+@pytest.fixture(scope='module')
+def world(tmp_path_factory):
+    root = tmp_path_factory.mktemp('deps_world')
+    return dict(deps_fixture.make_world(str(root)), root=str(root))
+
+
+def test_rosinstall_generator_names_release_tags_offline_from_a_local_rosdistro(world, tmp_path):
+    folder = index.materialise(world['rosdistro'], str(tmp_path))
+    assert index.materialise(world['rosdistro'], str(tmp_path)) == folder  # made once
+    env = dict(os.environ, ROSDISTRO_INDEX_URL='file://%s/index-v4.yaml' % folder)
+    data, unreleased, error = repos.generate(['probe_tools', 'probe_unused', 'nowhere'], env)
+    assert (unreleased, error) == ({'nowhere'}, '')
+    assert data == {name: {'type': 'git', 'url': 'https://github.com/racebot-fixture/%s.git' % name, 'version': version}
+                    for name, version in (('probe_tools', '0.2.0'), ('probe_core', '0.1.0'))}
+
+
+def test_a_rosdistro_git_directory_is_materialised_from_its_head(world, tmp_path):
+    deps_fixture.git_repo(world['rosdistro'], {}, 'v1')
+    folder = index.materialise(os.path.join(world['rosdistro'], '.git'), str(tmp_path))
+    assert sorted(os.listdir(folder)) == ['index-v4.yaml', 'noetic', 'noetic-cache.yaml', 'rosdep']
+
+
+def test_a_folder_that_is_no_rosdistro_is_refused_with_a_reason(tmp_path):
+    with pytest.raises(index.RosdistroError, match='neither a rosdistro checkout'):
+        index.materialise(str(tmp_path), str(tmp_path / 'cache'))
+
+
+def test_rosdeps_sources_list_has_debians_rules_first_then_the_local_rosdistros(tmp_path):
+    write(tmp_path, {'rosdep/base.yaml': '{}', 'rosdep/python.yaml': '{}'})
+    lines = index.sources_list(str(tmp_path)).splitlines()[1:]
+    expected = ['yaml file://%s/rosdep/%s' % (tmp_path, name) for name in ('base.yaml', 'python.yaml')]
+    if os.path.isfile(index.DEBIAN_RULES):
+        expected.insert(0, 'yaml file://%s debian' % index.DEBIAN_RULES)
+    assert lines == expected
+
+
+# --- the walk ----------------------------------------------------------------------------------------
+
+class FakeProviders:
+    def __init__(self, kinds):
+        self.kinds = kinds
+
+    def provider(self, name):
+        return provide.Provider(self.kinds.get(name, 'source'))
+
+
+def test_the_walk_fetches_what_nobody_provides_and_follows_the_fetched_package_xml(tmp_path, monkeypatch):
+    """`target` needs std_msgs (installed), twist_mux (a stand-in that gives way: fetched), nav (in a repository
+    that also holds nav_core, which nav needs) and ghost (released nowhere)."""
+    launch = '<launch><node pkg="twist_mux" type="twist_mux" name="m"/><node pkg="ghost" type="g" name="g"/></launch>'
+    target = write(tmp_path / 'target', {'t/package.xml': deps_fixture.package_xml('t', ['std_msgs', 'nav']),
+                                         't/launch/t.launch': launch})
+    released = {'nav': 'navigation', 'nav_core': 'navigation', 'twist_mux': 'twist_mux'}
+    asked = []
+
+    def generate(names, env):
+        asked.append(sorted(names))
+        data = {released[n]: {'type': 'git', 'url': 'https://github.com/o/%s.git' % released[n], 'version': '1.0'}
+                for n in names if n in released}
+        return data, {n for n in names if n not in released}, ''
+
+    def checkout(wanted, src, work, clones=None, mirrors=None):
+        files = {'navigation/nav/package.xml': deps_fixture.package_xml('nav', ['nav_core', 'roscpp']),
+                 'navigation/nav_core/package.xml': deps_fixture.package_xml('nav_core', ['roscpp']),
+                 'twist_mux/package.xml': deps_fixture.package_xml('twist_mux', ['roscpp'])}
+        write(src, {rel: text for rel, text in files.items() if rel.split('/')[0] in wanted})
+        return {}
+
+    monkeypatch.setattr(repos, 'generate', generate)
+    monkeypatch.setattr(repos, 'checkout', checkout)
+    ws = underlay.Workspace(str(tmp_path / 'ws'))
+    providers = FakeProviders({'std_msgs': 'installed', 'roscpp': 'installed', 'catkin': 'installed',
+                               'twist_mux': 'source'})
+    local, names = resolve.targets([target])
+    result, src_packages = resolve.walk(local, names, providers, {'env': {}, 'ws': ws, 'say': lambda line: None})
+    assert asked == [['ghost', 'nav', 'twist_mux']]  # nav_core came with nav's repository: not asked for again
+    assert result.selected == {'nav': 'navigation', 'nav_core': 'navigation', 'twist_mux': 'twist_mux'}
+    assert list(result.unknown) == ['ghost']
+    assert result.needed_by['nav_core'] == ['nav']
+    assert sorted(src_packages) == ['nav', 'nav_core', 'twist_mux']
+
+
+def test_a_stand_in_that_gives_way_is_built_from_source_and_the_others_are_provided(tmp_path):
+    providers = provide.Providers.__new__(provide.Providers)
+    providers.give_way = set(needs.GIVE_WAY)
+    assert providers.provider('twist_mux').kind == 'source'
+
+
+# --- the build: one-line reasons, who is skipped, the keys ---------------------------------------------
+
+def test_the_first_error_of_a_package_build_is_one_line():
+    missing = ('CMake Warning at /usr/share/catkin/cmake/catkinConfig.cmake:82 (find_package):\n'
+               '  Could not find a package configuration file provided by "pluginlib" with any\n')
+    assert underlay.first_error(missing) == 'find_package(pluginlib) found nothing'
+    compiled = ('[ 50%] Building CXX object\n/ws/src/nav/amcl/src/amcl.cpp:31:10: fatal error: '
+                'pluginlib/class_list_macros.h: No such file or directory\n   31 | #include\n')
+    assert underlay.first_error(compiled, '/ws/src/nav/amcl') == \
+        'src/amcl.cpp:31: fatal error: pluginlib/class_list_macros.h: No such file or directory'
+    cmake = 'CMake Error at CMakeLists.txt:5 (message):\n  something is wrong\n\n'
+    assert underlay.first_error(cmake) == 'CMake Error at CMakeLists.txt:5 (message): something is wrong'
+
+
+def test_the_log_section_of_a_package_starts_at_its_processing_line():
+    log = "==> Processing catkin package: 'a'\nok\n==> Processing catkin package: 'b'\nerror: b broke\n"
+    assert underlay.section(log, 'b').splitlines()[0] == "==> Processing catkin package: 'b'"
+
+
+def test_the_packages_needing_a_failed_one_are_skipped_transitively(tmp_path):
+    write(tmp_path, {'%s/package.xml' % name: deps_fixture.package_xml(name, depends)
+                     for name, depends in (('a', []), ('b', ['a']), ('c', ['b']), ('d', []))})
+    packages = needs.local_packages(str(tmp_path))
+    assert underlay.dependents('a', packages) == {'b', 'c'}
+
+
+def test_the_build_key_changes_with_a_version_and_with_the_workspace_below():
+    repos_ = {'navigation': {'url': 'u', 'version': '1.17.3'}}
+    key = underlay.build_key(repos_, ['amcl'], [['/r/devel', ['a']]])
+    assert key == underlay.build_key(dict(repos_), ['amcl'], [['/r/devel', ['a']]])
+    assert key != underlay.build_key({'navigation': {'url': 'u', 'version': '1.17.4'}}, ['amcl'], [['/r/devel', ['a']]])
+    assert key != underlay.build_key(repos_, ['amcl'], [['/r/devel', ['a', 'pluginlib']]])
+
+
+def test_the_resolution_key_changes_when_a_launch_file_names_something_new(tmp_path):
+    target = write(tmp_path, {'t/package.xml': deps_fixture.package_xml('t'),
+                              't/launch/a.launch': '<launch/>'})
+    local = needs.local_packages(target)
+    key = deps_run.resolution_key(local, [], {})
+    assert key == deps_run.resolution_key(local, [], {})
+    (tmp_path / 't' / 'launch' / 'a.launch').write_text('<launch><node pkg="amcl" type="amcl" name="a"/></launch>')
+    assert key != deps_run.resolution_key(local, [], {})

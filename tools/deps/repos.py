@@ -1,0 +1,120 @@
+"""Where the sources come from: rosinstall_generator names each package's repository and Noetic release
+(`--upstream`: the source repository at the tag of the released version), vcstool checks them out. Offline, each
+https://github.com/<owner>/<name>.git is taken from a local copy instead, looked up as make corpus looks
+(tools/corpus/sources.py): a folder of existing clones (--clones, RACEBOT_CORPUS_DIR: DIR/<name>, DIR/<owner>/<name>,
+DIR/<owner>+<name>) or mirrors (--mirrors, RACEBOT_CORPUS_MIRRORS: ROOT/<owner>+<name>/repo, ...); a repository in
+neither is cloned from its URL.
+"""
+import os
+import re
+import shutil
+import subprocess
+import sys
+
+import yaml
+
+from corpus import sources as corpus_sources
+from deps.index import DISTRO
+
+GITHUB = re.compile(r'^https://github\.com/([^/]+)/([^/]+?)(?:\.git)?/?$')
+UNRELEASED = re.compile(r'following unreleased packages/stacks will be ignored: (.*)')
+CHECKOUT_FAILED = 'cannot check out'
+VCS_SECTION = re.compile(r'^=== (\S+) \((\w+)\) ===$')
+
+
+def generate(names, env):
+    """(the .repos data rosinstall_generator gives for `names` ({local name: {type, url, version}}), the names
+    it does not know as Noetic packages, its one-line error or '')."""
+    cmd = ['rosinstall_generator', '--rosdistro', DISTRO, '--upstream', '--format', 'repos'] + sorted(names)
+    done = subprocess.run(cmd, env=env, capture_output=True, text=True)
+    unreleased = set()
+    for line in done.stderr.splitlines():
+        found = UNRELEASED.search(line)
+        if found:
+            unreleased.update(n.strip() for n in found.group(1).split(','))
+    if done.returncode != 0:
+        if 'No packages/stacks left after ignoring unreleased' in done.stderr:
+            return {}, set(names), ''
+        last = [line for line in done.stderr.splitlines() if line.strip()][-1:] or ['exit %d' % done.returncode]
+        return {}, unreleased, 'rosinstall_generator failed: %s' % last[0].strip()
+    data = yaml.safe_load(done.stdout) or {}
+    return dict(data.get('repositories') or {}), unreleased, ''
+
+
+def github_repo(url):
+    """'owner/name' of a GitHub URL, or None."""
+    found = GITHUB.match(url or '')
+    return '%s/%s' % found.groups() if found else None
+
+
+def _is_git(path):
+    return os.path.isdir(os.path.join(path, '.git')) or os.path.isfile(os.path.join(path, 'HEAD'))
+
+
+def local_copy(url, clones=None, mirrors=None):
+    """The path of a local clone or mirror of `url`, or None (then the URL itself is used)."""
+    repo = github_repo(url)
+    if not repo:
+        return None
+    candidates = (corpus_sources.clone_candidates(clones, repo) if clones else []) + \
+        (corpus_sources.mirror_candidates(mirrors, repo) if mirrors else [])
+    return next((path for path in candidates if _is_git(path)), None)
+
+
+def _git(args, cwd):
+    return subprocess.run(['git'] + args, cwd=cwd, stdout=subprocess.PIPE, stderr=subprocess.DEVNULL, text=True)
+
+
+def at_version(path, version):
+    """True when the checkout at `path` has `version` (a tag, branch or commit) checked out."""
+    if not os.path.isdir(os.path.join(path, '.git')):
+        return False
+    head = _git(['rev-parse', 'HEAD'], path).stdout.strip()
+    want = _git(['rev-parse', '--verify', '-q', version + '^{commit}'], path).stdout.strip()
+    return bool(head) and head == want
+
+
+def vcs():
+    """vcstool's `vcs` (installed into .venv by tools/requirements.txt)."""
+    beside = os.path.join(os.path.dirname(sys.executable), 'vcs')
+    return beside if os.path.exists(beside) else (shutil.which('vcs') or 'vcs')
+
+
+def _vcs_errors(output):
+    """{local name: first error line} from `vcs import` output."""
+    errors, current = {}, None
+    for line in output.splitlines():
+        found = VCS_SECTION.match(line.strip())
+        if found:
+            current = os.path.basename(found.group(1))
+            continue
+        text = line.strip()
+        if current and current not in errors and text and \
+                any(word in text.lower() for word in ('error', 'fatal', 'could not', 'failed')):
+            errors[current] = text
+    return errors
+
+
+def checkout(repos, src, work, clones=None, mirrors=None):
+    """Checks out every repository of `repos` ({local name: entry}) in `src` at its version with `vcs import`,
+    each from its local copy when there is one; {local name: one-line error} for those that failed."""
+    wanted = {name: dict(entry, url=local_copy(entry['url'], clones, mirrors) or entry['url'])
+              for name, entry in repos.items() if not at_version(os.path.join(src, name), str(entry['version']))}
+    if not wanted:
+        return {}
+    os.makedirs(src, exist_ok=True)
+    listing = os.path.join(work, 'import.repos')
+    with open(listing, 'w') as f:
+        yaml.safe_dump({'repositories': wanted}, f, default_flow_style=False)
+    done = subprocess.run([vcs(), 'import', '--force', '--input', listing, src], stdout=subprocess.PIPE,
+                          stderr=subprocess.STDOUT, text=True)
+    with open(os.path.join(work, 'vcs-import.log'), 'w') as f:
+        f.write(done.stdout)
+    errors = _vcs_errors(done.stdout)
+    failed = {}
+    for name, entry in wanted.items():
+        if not at_version(os.path.join(src, name), str(entry['version'])):
+            shutil.rmtree(os.path.join(src, name), ignore_errors=True)  # never build another version than the pinned
+            failed[name] = '%s %s at %s from %s: %s' % (CHECKOUT_FAILED,
+                name, entry['version'], entry['url'], errors.get(name, 'see %s' % os.path.join(work, 'vcs-import.log')))
+    return failed

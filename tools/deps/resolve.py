@@ -1,0 +1,106 @@
+"""The walk from what the targets need to the set of packages to build from source.
+
+Each name the targets need goes to its provider (provide.py: racebot, installed, Debian through rosdep). The rest
+are built from source: a name already in the underlay's src/ is taken from there, the others are handed to
+rosinstall_generator in one call per round, vcstool checks out the repositories it names, and the package.xml
+files of the packages taken (build, export and exec dependencies; their tests are not built) give the next round's
+names. A name rosinstall_generator does not know, or whose repository cannot be checked out, is `unknown`, with
+why. The rounds end when no new name comes.
+"""
+import os
+import time
+
+from deps import needs as needs_mod
+from deps import repos as repos_mod
+
+
+class Resolution:
+    """What the walk found: `providers` {name: Provider}, `selected` {package: repository folder in src},
+    `repos` {local name: .repos entry}, `unknown` {name: why}, `needed_by` {name: sorted needers}."""
+
+    def __init__(self):
+        self.providers, self.selected, self.repos, self.unknown, self.needed_by = {}, {}, {}, {}, {}
+
+    def to_json(self):
+        return {'providers': {name: {'kind': p.kind, 'where': p.where, 'packages': p.packages, 'missing': p.missing}
+                              for name, p in self.providers.items()},
+                'selected': self.selected, 'repos': self.repos, 'unknown': self.unknown, 'needed_by': self.needed_by}
+
+
+def targets(args):
+    """({name: (folder, Package)} of the packages under the folders among `args`, [the other args: names])."""
+    local, names = {}, []
+    for arg in args:
+        if os.path.isdir(arg):
+            found = needs_mod.local_packages(os.path.abspath(arg))
+            if not found:
+                raise SystemExit('racebot deps: no package.xml at or below %s' % arg)
+            local.update(found)
+        else:
+            names.append(arg)
+    return local, names
+
+
+def _repo_of(folder, src):
+    return os.path.relpath(folder, src).split(os.sep)[0]
+
+
+def _fetch(result, wanted, ctx):
+    """One round: rosinstall_generator for `wanted` names, vcs import of what is new; the src packages after."""
+    say = ctx.get('say', print)
+    started = time.time()
+    data, unreleased, error = repos_mod.generate(wanted, ctx['env'])
+    say('racebot deps: rosinstall_generator: %s -> %s (%.0f s)' % (
+        ' '.join(sorted(wanted)), ' '.join('%s@%s' % (r, e['version']) for r, e in sorted(data.items())) or '-',
+        time.time() - started))
+    for name in wanted:
+        if error:
+            result.unknown[name] = error
+        elif name in unreleased:
+            result.unknown[name] = 'no rosdep rule for debian:bookworm and no Noetic release in the rosdistro'
+    new = {k: v for k, v in data.items() if result.repos.get(k) != v}
+    result.repos.update(data)
+    started = time.time()
+    failed = repos_mod.checkout(new, ctx['ws'].src, ctx['ws'].root, ctx.get('clones'), ctx.get('mirrors'))
+    if new:
+        say('racebot deps: vcs import of %d repositories (%.0f s)' % (len(new), time.time() - started))
+    packages = needs_mod.local_packages(ctx['ws'].src) if os.path.isdir(ctx['ws'].src) else {}
+    for name in wanted:
+        if name in result.unknown or name in packages:
+            continue
+        repo = next((r for r, e in data.items() if r in failed), None)
+        result.unknown[name] = failed[repo] if repo else \
+            'rosinstall_generator named no repository holding it (it named: %s)' % (', '.join(sorted(data)) or 'none')
+    return packages
+
+
+def walk(local, names, providers, ctx):
+    """Resolution for the target packages `local` and the package names `names`; ctx holds env, ws (the
+    underlay Workspace), clones and mirrors."""
+    result = Resolution()
+    frontier = needs_mod.needs_of(local, tests=True)
+    for name in names:
+        frontier.setdefault(name, set()).add('(command line)')
+    src_packages = needs_mod.local_packages(ctx['ws'].src) if os.path.isdir(ctx['ws'].src) else {}
+    while frontier:
+        wanted = {}
+        for name, who in sorted(frontier.items()):
+            result.needed_by[name] = sorted(set(result.needed_by.get(name, [])) | set(who))
+            if name in result.providers or name in result.unknown or name in wanted:
+                continue
+            provider = providers.provider(name)
+            result.providers[name] = provider
+            if provider.kind == 'source' and name not in src_packages:
+                wanted[name] = who
+        if wanted:
+            src_packages = _fetch(result, wanted, ctx)
+        frontier = {}
+        for name, provider in result.providers.items():
+            if provider.kind != 'source' or name in result.selected or name not in src_packages:
+                continue
+            folder, package = src_packages[name]
+            result.selected[name] = _repo_of(folder, ctx['ws'].src)
+            for dep in needs_mod.declared(package, tests=False):
+                if dep not in local and dep != name:
+                    frontier.setdefault(dep, set()).add(name)
+    return result, src_packages

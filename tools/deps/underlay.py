@@ -1,0 +1,159 @@
+"""The underlay: a catkin workspace in the cache (CACHE/ws) holding the fetched repositories in src/, built with
+`catkin_make_isolated --merge` on top of whatever workspace is sourced (racebot's devel space), so that its
+devel_isolated/setup.bash gives racebot plus the underlay. A package that fails is left out and the build goes on
+without it (and without what needs it); each gets one line saying why. What was built is recorded with its key
+(the repositories and versions, the packages, the workspace below): the same key again builds nothing.
+"""
+import hashlib
+import json
+import os
+import re
+import subprocess
+import time
+
+from deps.needs import declared
+
+FAILED = re.compile(r"<== Failed to process package '([^']+)'")
+STARTED = re.compile(r"==> Processing (?:catkin|plain cmake) package: '([^']+)'")
+NOT_FOUND = re.compile(r'Could not find a (?:package )?configuration file (?:provided by|for package) "([^"]+)"')
+COMPILER = re.compile(r'(?:^|\s)(\S+?):(\d+):(?:\d+:)? ((?:fatal )?error: .*)')
+REASONS = [re.compile(r'(CMake Error at [^:]+:\d+ \(\w+\):.*)'), re.compile(r'(Could NOT find .*)'),
+           re.compile(r'(No module named .*)'), re.compile(r'((?:\w+ )?[Ee]rror: .*)')]
+BUILD_TIMEOUT_S = 3600
+
+
+class Workspace:
+    """The underlay's folders under `root` and the record of its last build."""
+
+    def __init__(self, root):
+        self.root = root
+        self.src = os.path.join(root, 'src')
+        self.devel = os.path.join(root, 'devel_isolated')
+        self.build_space = os.path.join(root, 'build_isolated')
+        self.setup = os.path.join(self.devel, 'setup.bash')
+        self.logs = os.path.join(root, 'logs')
+        self.record_path = os.path.join(root, 'racebot-deps.json')
+
+    def record(self):
+        try:
+            with open(self.record_path) as f:
+                return json.load(f)
+        except (OSError, ValueError):
+            return {}
+
+    def save(self, record):
+        os.makedirs(self.root, exist_ok=True)
+        with open(self.record_path + '.tmp', 'w') as f:
+            json.dump(record, f, indent=1, sort_keys=True)
+        os.replace(self.record_path + '.tmp', self.record_path)
+
+
+def build_key(repos, packages, below):
+    """What a build depends on: each repository's URL and version, the packages built, the workspace below."""
+    text = json.dumps({'repos': {name: [entry.get('url'), str(entry.get('version'))] for name, entry in repos.items()},
+                       'packages': sorted(packages), 'below': below}, sort_keys=True)
+    return hashlib.sha1(text.encode()).hexdigest()
+
+
+def first_error(text, package_folder=None):
+    """The first cause in a package's build output, one line."""
+    lines = text.splitlines()
+    for line in lines:
+        found = NOT_FOUND.search(line)
+        if found:
+            return 'find_package(%s) found nothing' % found.group(1)
+    for line in lines:
+        found = COMPILER.search(line)
+        if found and not found.group(1).endswith(('.txt', '.cmake')):
+            path = found.group(1)
+            if package_folder and path.startswith(package_folder + os.sep):
+                path = os.path.relpath(path, package_folder)
+            return '%s:%s: %s' % (path, found.group(2), found.group(3).strip())
+    for pattern in REASONS:
+        for i, line in enumerate(lines):
+            found = pattern.search(line)
+            if found:
+                detail = found.group(1).strip()
+                if detail.startswith('CMake Error'):
+                    detail += ' ' + ' '.join(x.strip() for x in lines[i + 1:i + 4] if x.strip())
+                return detail[:300]
+    tail = [x.strip() for x in lines if x.strip()][-1:] or ['(no output)']
+    return tail[0][:300]
+
+
+def section(log_text, package):
+    """The part of a catkin_make_isolated log that processed `package`."""
+    start = None
+    lines = log_text.splitlines()
+    for i, line in enumerate(lines):
+        found = STARTED.search(line)
+        if found and found.group(1) == package:
+            start = i
+    return '\n'.join(lines[start:] if start is not None else lines)
+
+
+def dependents(failed, packages):
+    """The packages of `packages` ({name: (folder, Package)}) that need `failed`, directly or not."""
+    found, todo = set(), [failed]
+    while todo:
+        name = todo.pop()
+        for other, (_, package) in packages.items():
+            if other not in found and name in declared(package, tests=False):
+                found.add(other)
+                todo.append(other)
+    return found
+
+
+def python():
+    """The interpreter node scripts get in their shebang: racebot's venv when there, else Debian's."""
+    root = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+    venv = os.path.join(root, '.venv', 'bin', 'python3')
+    return venv if os.path.exists(venv) else '/usr/bin/python3'
+
+
+def _run_cmi(ws, selection, env, log_path, jobs):
+    cmd = ['catkin_make_isolated', '-C', ws.root, '--source', ws.src, '--build', ws.build_space,
+           '--devel', ws.devel, '--merge', '--only-pkg-with-deps'] + sorted(selection) + \
+        ['--cmake-args', '-DPYTHON_EXECUTABLE=%s' % python(), '-DCATKIN_ENABLE_TESTING=OFF',
+         '-DCMAKE_BUILD_TYPE=Release']
+    env = dict(env, ROS_PARALLEL_JOBS='-j%d -l%d' % (jobs, jobs))
+    with open(log_path, 'w') as log:
+        log.write('$ %s\n' % ' '.join(cmd))
+        log.flush()
+        try:
+            code = subprocess.call(cmd, env=env, stdout=log, stderr=subprocess.STDOUT, timeout=BUILD_TIMEOUT_S)
+        except subprocess.TimeoutExpired:
+            code = 'timeout after %d s' % BUILD_TIMEOUT_S
+    with open(log_path, errors='replace') as f:
+        return code, f.read()
+
+
+def build(ws, selection, packages, env, jobs=2, say=print):
+    """Builds `selection` (package names in ws.src; `packages` is {name: (folder, Package)} of ws.src) and returns
+    {name: 'built' | 'failed: why' | 'skipped: needs X, which failed to build'}."""
+    os.makedirs(ws.logs, exist_ok=True)
+    results, remaining, attempt = {}, set(selection), 0
+    while remaining:
+        attempt += 1
+        log_path = os.path.join(ws.logs, 'build-%d.log' % attempt)
+        started = time.time()
+        say('racebot deps: catkin_make_isolated of %d package(s), log %s' % (len(remaining), log_path))
+        code, text = _run_cmi(ws, remaining, env, log_path, jobs)
+        if code == 0:
+            results.update({name: 'built' for name in remaining})
+            say('racebot deps: built in %.0f s' % (time.time() - started))
+            break
+        failed = FAILED.findall(text)
+        culprit = failed[-1] if failed and failed[-1] in remaining else None
+        if culprit is None:
+            why = first_error(text)
+            results.update({name: 'failed: catkin_make_isolated: %s' % why for name in remaining})
+            break
+        folder = packages[culprit][0] if culprit in packages else None
+        results[culprit] = 'failed: %s' % first_error(section(text, culprit), folder)
+        say('racebot deps: %s %s' % (culprit, results[culprit]))
+        remaining.discard(culprit)
+        for other in dependents(culprit, {n: packages[n] for n in remaining if n in packages}):
+            results[other] = 'skipped: needs %s, which failed to build' % culprit
+            remaining.discard(other)
+    return results
