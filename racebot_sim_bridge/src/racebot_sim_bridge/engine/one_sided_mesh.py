@@ -36,6 +36,7 @@ import numpy as np
 import pybullet as pb
 
 from racebot_sim_bridge.description import meshes
+from racebot_sim_bridge.engine.pybullet_client import PybulletClient
 
 MAX_DEPTH = 1.0  # m: the deepest a prism goes into a closed mesh's volume
 OPEN_DEPTH = 0.05  # m: behind a face with nothing of the mesh behind it (an open surface)
@@ -172,7 +173,7 @@ def _cast(tri, origins, ends):
         pb.disconnect(client)
 
 
-def lift_onto_floor(client, body_id: int, floors: Sequence[int]) -> float:
+def lift_onto_floor(client: PybulletClient, body_id: int, floors: Sequence[int]) -> float:
     """Raises a model just spawned (`body_id`) straight up onto the top face of a one-sided floor (`floors`: body
     ids with prisms, Model.one_sided_bodies) that crosses it, as ODE's faces push out the links that cross them;
     returns the lift in m (0 when no top face crosses it deeper than SUNK)."""
