@@ -534,9 +534,67 @@ def check_floor(check, row):
     return numbers
 
 
+def check_map(check, row):
+    """SLAM: drives `route` ([vx, wz, sim seconds] segments on `cmd_topic`), waits for the map, then judges the map
+    on `map_topic` against the world file at the laser's `height` (slam_map.py): the share of occupied cells within
+    `tolerance` m of the world's walls at least `on_walls`, the free area at least `explored` of the area the walls
+    enclose. The map is placed in the world by the robot's pose in both (ground truth, and the map-to-`base_frame`
+    transform)."""
+    import rospkg
+    import tf2_ros
+    from gazebo_msgs.srv import GetModelState
+    from corpus import slam_map
+    getter = service('/gazebo/get_model_state', GetModelState)
+    model = check.get('model', row.get('model'))
+    buffer = tf2_ros.Buffer()
+    tf2_ros.TransformListener(buffer)
+    cmd = Commander(dict(check, vx=0.0, wz=0.0))
+    try:
+        sim_sleep(float(check.get('settle', 2.0)))
+        for vx, wz, seconds in check['route']:
+            cmd.msg.linear.x, cmd.msg.angular.z = float(vx), float(wz)
+            sim_sleep(float(seconds))
+        cmd.msg.linear.x = cmd.msg.angular.z = 0.0
+        sim_sleep(float(check.get('map_wait', 6.0)))  # the SLAM node's next map update, with the robot at rest
+    finally:
+        cmd.stop()
+    grid = message(check['map_topic'], 'nav_msgs/OccupancyGrid')
+    try:
+        seen = buffer.lookup_transform(grid.header.frame_id, check['base_frame'], rospy.Time(0), rospy.Duration(10.0))
+    except tf2_ros.TransformException as err:
+        raise CheckFailed('no transform %s -> %s: %s' % (grid.header.frame_id, check['base_frame'], err))
+    x, y, yaw, _ = model_pose(getter, model)
+    mx, my, myaw = seen.transform.translation.x, seen.transform.translation.y, yaw_of(seen.transform.rotation)
+    turn = yaw - myaw  # world_from_map = world_from_base * inverse(map_from_base)
+    world_from_map = (x - (math.cos(turn) * mx - math.sin(turn) * my), y - (math.sin(turn) * mx + math.cos(turn) * my),
+                      turn)
+    info = grid.info
+    origin = (info.origin.position.x, info.origin.position.y, yaw_of(info.origin.orientation))
+    occupied = slam_map.cells(grid.data, info.width, info.height, info.resolution, origin, world_from_map)
+    free = slam_map.cells(grid.data, info.width, info.height, info.resolution, origin, world_from_map, False)
+    media = exported_paths('gazebo_media_path', 'GAZEBO_RESOURCE_PATH')
+    world = floor.WorldCollisions(resolve_find(check['world']), model_paths(), media, rospkg.RosPack().get_path)
+    walls = slam_map.outline(world, float(check['height']))
+    on_walls, area, enclosed = slam_map.judge(occupied, free, info.resolution, walls, float(check['tolerance']))
+    explored = area / enclosed if enclosed else 0.0
+    numbers = ('%d occupied cells, %.1f %% within %.2f m of the walls at z %.2f (at least %.0f %%); free %.2f m^2 of '
+               '%.2f m^2 the walls enclose, %.1f %% (at least %.0f %%); %dx%d cells of %.3f m' % (
+                   len(occupied), 100 * on_walls, float(check['tolerance']), float(check['height']),
+                   100 * float(check['on_walls']), area, enclosed, 100 * explored, 100 * float(check['explored']),
+                   info.width, info.height, info.resolution))
+    problems = []
+    if on_walls < float(check['on_walls']):
+        problems.append('%.1f %% of the occupied cells on the walls' % (100 * on_walls))
+    if explored < float(check['explored']):
+        problems.append('%.1f %% of the area explored' % (100 * explored))
+    if problems:
+        raise CheckFailed('; '.join(problems), numbers)
+    return numbers
+
+
 KINDS = {'controllers': check_controllers, 'drive': check_drive, 'joint_position': check_joint_position,
          'trajectory': check_trajectory, 'gripper': check_gripper, 'sensors': check_sensors, 'world': check_world,
-         'floor': check_floor}
+         'floor': check_floor, 'map': check_map}
 
 
 def run(row):

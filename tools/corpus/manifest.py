@@ -26,11 +26,13 @@ CHECK_KEYS = {
     'sensors': ('description', 'count'),
     'world': ('world', 'min_models'),
     'floor': ('world', 'tolerance'),
+    'map': ('world', 'cmd_topic', 'route', 'map_topic', 'base_frame', 'height', 'tolerance', 'on_walls', 'explored'),
 }
 # the numbers a kind is judged by: at least one must be in a row
 NUMERIC = {'drive': ('expect_speed', 'tolerance'), 'joint_position': ('target', 'tolerance'),
            'trajectory': ('tolerance',), 'gripper': ('position', 'tolerance'), 'sensors': ('count',),
-           'controllers': (), 'world': ('min_models',), 'floor': ('tolerance',)}
+           'controllers': (), 'world': ('min_models',), 'floor': ('tolerance',),
+           'map': ('on_walls', 'explored')}
 FILE_NAME = re.compile(r'^[A-Za-z0-9_][A-Za-z0-9_.-]*$')
 
 
