@@ -232,6 +232,23 @@ def checkout_row(row, logs, env_base, result):
     return trees
 
 
+def with_deps(ws, env_base, log_path, result):
+    """`make deps` for the row's workspace (a row with `deps: true`: what its packages need that neither Debian
+    nor racebot provides, built from source in the deps underlay, docs/DEPS.md), as its users run it before their
+    build; the environment with the underlay sourced. What it could not provide goes in the row's notes."""
+    print('  make deps %s' % ws, flush=True)
+    with open(log_path, 'w') as log:
+        code = subprocess.call([python(), os.path.join(ROOT, 'tools', 'deps', 'run.py'), os.path.join(ws, 'src')],
+                               env=env_base, stdout=log, stderr=subprocess.STDOUT, timeout=BUILD_TIMEOUT_S * 4)
+    with open(log_path, errors='replace') as f:
+        lines = [line.strip() for line in f if line.strip().split(' ', 1)[0] in ('failed', 'skipped', 'unknown')]
+    if code != 0:
+        result['notes'].append('make deps: %d not provided (%s)' % (len(lines), '; '.join(lines[:4])[:400]))
+    cache = env_base.get('RACEBOT_DEPS_CACHE') or os.path.expanduser(os.path.join('~', '.cache', 'racebot', 'deps'))
+    setup = os.path.join(cache, 'ws', 'devel_isolated', 'setup.bash')
+    return shell_env(setup, env_base) if os.path.exists(setup) else env_base
+
+
 def row_env(row, ws, env_base, logs, result):
     """(environment, master port) the row's commands run in: its devel space's, or its sources' after a failed
     build, with the row's own variables, a private master and no display."""
@@ -347,6 +364,8 @@ def run_row(row, out, env_base):
         return result
     ws = os.path.join(sources.cache_dir(env_base), 'ws', row['name'])
     make_workspace(row, trees, ws)
+    if row.get('deps'):
+        env_base = with_deps(ws, env_base, os.path.join(logs, 'deps.log'), result)
     print('  building %s' % ws, flush=True)
     result['build'] = build(row, ws, env_base, os.path.join(logs, 'build.log'))
     env, port = row_env(row, ws, env_base, logs, result)
