@@ -148,14 +148,12 @@ def build(row, ws, env, log_path):
     # A configure from scratch (the objects are kept): the workspace's build folder is kept between runs, and
     # CMake's cache keeps where find_package found each package then (pluginlib_DIR), even with --force-cmake;
     # racebot's devel space changes under it (its pluginlib overlay came after racecar's first build, which went on
-    # compiling against Debian's pluginlib)
+    # compiling against Debian's pluginlib). --force-cmake: with a Makefile there, catkin_make would otherwise only
+    # run `make cmake_check_build_system`, which configures without its devel and install spaces.
     cache = os.path.join(ws, 'build', 'CMakeCache.txt')
     if os.path.exists(cache):
         os.remove(cache)
-    cmd = ['catkin_make', '-C', ws, '-DPYTHON_EXECUTABLE=%s' % python(),
-           # catkin_make names its devel and install spaces only when it creates the build folder
-           '-DCATKIN_DEVEL_PREFIX=%s' % os.path.join(ws, 'devel'),
-           '-DCMAKE_INSTALL_PREFIX=%s' % os.path.join(ws, 'install'),
+    cmd = ['catkin_make', '--force-cmake', '-C', ws, '-DPYTHON_EXECUTABLE=%s' % python(),
            '-DCATKIN_BLACKLIST_PACKAGES=%s' % blacklist, '-DCATKIN_WHITELIST_PACKAGES=']
     with open(log_path, 'w') as log:
         log.write('$ %s\n' % ' '.join(shlex.quote(c) for c in cmd))
