@@ -32,6 +32,10 @@
 #                                     package.xml is below it (Noetic's pluginlib 1.13, class_loader 0.5);
 #                                     Debian 12's pluginlib 5.2.1 and class_loader 2.4.0 do not, and the
 #                                     prefix of the first such package is left in RACEBOT_OVERLAID_PREFIX.
+#   RACEBOT_OVERLAY_DEBIAN            TRUE: Debian's own ROS 1 package (in /usr) is overlaid (its prefix left in
+#                                     RACEBOT_OVERLAID_PREFIX), any other underlay's (Noetic's /opt/ros/noetic)
+#                                     makes ours step aside: for a package Debian has in ROS 1's generation
+#                                     but built otherwise (upstream_compat/rosbag_storage)
 
 set(RACEBOT_STEP_ASIDE FALSE)
 set(RACEBOT_OVERLAID_PREFIX "")
@@ -83,7 +87,15 @@ foreach(_racebot_prefix ${_racebot_prefixes})
   if(EXISTS "${_racebot_prefix}/share/${PROJECT_NAME}/package.xml"
      OR EXISTS "${_racebot_prefix}/share/${PROJECT_NAME}/cmake/${PROJECT_NAME}Config.cmake")
     set(_racebot_found "${_racebot_prefix}")
-    if(RACEBOT_STEP_ASIDE_BELOW_VERSION)
+    if(RACEBOT_OVERLAY_DEBIAN AND _racebot_real STREQUAL "/usr")
+      # Debian's own ROS 1 package (it installs to /usr; Noetic's live in /opt/ros/noetic): overlaid, not stepped
+      # aside for
+      message(STATUS "${PROJECT_NAME}: ${_racebot_prefix} has Debian's ${PROJECT_NAME}; ours overlays it")
+      if(NOT RACEBOT_OVERLAID_PREFIX)
+        set(RACEBOT_OVERLAID_PREFIX "${_racebot_prefix}")
+      endif()
+      set(_racebot_found "")
+    elseif(RACEBOT_STEP_ASIDE_BELOW_VERSION)
       racebot_underlay_version(_racebot_version "${_racebot_prefix}")
       if(_racebot_version AND NOT _racebot_version VERSION_LESS RACEBOT_STEP_ASIDE_BELOW_VERSION)
         message(STATUS "${PROJECT_NAME}: ${_racebot_prefix} has ${PROJECT_NAME} ${_racebot_version}, a later "

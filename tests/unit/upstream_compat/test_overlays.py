@@ -111,3 +111,40 @@ def test_without_it_boost_1_74_refuses_a_bare_placeholder(tmp_path):
     done = compile_bare_placeholder(tmp_path, [])
     assert done.returncode != 0 and "'_1' was not declared" in done.stdout.replace('\u2018', "'").replace(
         '\u2019', "'"), done.stdout
+
+
+def overlay_debian(tmp_path, prefix):
+    """(RACEBOT_STEP_ASIDE, RACEBOT_OVERLAID_PREFIX, output) for a project rosbag_storage with RACEBOT_OVERLAY_DEBIAN
+    and `prefix` as its only underlay."""
+    code, output, values = configure(tmp_path, 'rosbag_storage', textwrap.dedent('''
+        set(RACEBOT_OVERLAY_DEBIAN TRUE)
+        include(%s)
+        message(STATUS "probe aside=${RACEBOT_STEP_ASIDE}")
+        message(STATUS "probe overlaid=${RACEBOT_OVERLAID_PREFIX}")
+    ''' % STEP_ASIDE), prefix=prefix)
+    assert code == 0, output
+    return values['aside'], values['overlaid'], output
+
+
+def test_the_rosbag_storage_overlay_overlays_debians_and_steps_aside_for_noetics(tmp_path):
+    aside, overlaid, output = overlay_debian(tmp_path / 'debian', '/usr')  # Debian's: /usr/share/rosbag_storage
+    assert (aside, overlaid) == ('FALSE', '/usr'), output
+    noetic = tmp_path / 'opt_ros_noetic'
+    (noetic / 'share' / 'rosbag_storage').mkdir(parents=True)
+    (noetic / 'share' / 'rosbag_storage' / 'package.xml').write_text(
+        '<package format="2">\n  <name>rosbag_storage</name>\n  <version>1.15.15</version>\n</package>\n')
+    aside, _, output = overlay_debian(tmp_path / 'noetic', noetic)
+    assert aside == 'TRUE', output
+
+
+def test_a_package_naming_rosbag_storage_gets_the_boost_libraries_noetics_exports(tmp_path):
+    """slam_gmapping's slam_gmapping_replay uses boost::program_options and names only rosbag_storage: Noetic's
+    config exports Boost's date_time, filesystem, program_options and regex, Debian's boost_filesystem alone."""
+    code, output, values = configure(tmp_path, 'probe_bag', textwrap.dedent('''
+        find_package(catkin REQUIRED COMPONENTS rosbag_storage)
+        message(STATUS "probe libraries=${catkin_LIBRARIES}")
+    '''), prefix=DEVEL, languages='CXX')
+    assert code == 0, output
+    libraries = values['libraries'].split(';')
+    assert '-lrosbag_storage' in libraries, output
+    assert any('boost_program_options' in library for library in libraries), output
