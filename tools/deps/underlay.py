@@ -112,8 +112,15 @@ def python():
 
 
 def _run_cmi(ws, selection, env, log_path, jobs):
+    # configured from scratch: what the packages find below them has changed when they are built again (a build
+    # folder's CMake cache keeps rosbag_storage_DIR at Debian's after racebot's overlay of it lands), and
+    # --force-cmake, since with a Makefile there catkin_make_isolated would only re-check, without its arguments
+    for name in selection:
+        cache = os.path.join(ws.build_space, name, 'CMakeCache.txt')
+        if os.path.exists(cache):
+            os.remove(cache)
     cmd = ['catkin_make_isolated', '-C', ws.root, '--source', ws.src, '--build', ws.build_space,
-           '--devel', ws.devel, '--merge', '--only-pkg-with-deps'] + sorted(selection) + \
+           '--devel', ws.devel, '--merge', '--force-cmake', '--only-pkg-with-deps'] + sorted(selection) + \
         ['--cmake-args', '-DPYTHON_EXECUTABLE=%s' % python(), '-DCATKIN_ENABLE_TESTING=OFF',
          '-DCMAKE_BUILD_TYPE=Release']
     env = dict(env, ROS_PARALLEL_JOBS='-j%d -l%d' % (jobs, jobs))
