@@ -91,7 +91,12 @@ function(racebot_hand_on)
   # without the cache entry, so that packages configured later find this overlay's config, not Debian's.
   # (A cache entry left by an earlier configure, where a later package found this overlay, would be taken as is.)
   unset(${PROJECT_NAME}_DIR CACHE)
-  find_package(${PROJECT_NAME} CONFIG REQUIRED QUIET NO_DEFAULT_PATH PATHS "${RACEBOT_OVERLAID_PREFIX}")
+  find_package(${PROJECT_NAME} CONFIG QUIET NO_DEFAULT_PATH PATHS "${RACEBOT_OVERLAID_PREFIX}")
+  if(NOT ${PROJECT_NAME}_FOUND)
+    message(FATAL_ERROR "${PROJECT_NAME}: racebot's overlay hands on the ${PROJECT_NAME} in ${RACEBOT_OVERLAID_PREFIX}, "
+      "but its CMake config is not installed there (only its runtime package is?): install its -dev package "
+      "(`make setup` does: tools/debian-packages.txt)")
+  endif()
   set(_directory "${${PROJECT_NAME}_DIR}")
   unset(${PROJECT_NAME}_DIR CACHE)
   # Its libraries and its imported targets' (an ament config's LIBRARIES may leave out what its target links:
