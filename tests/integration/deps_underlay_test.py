@@ -12,6 +12,7 @@ saying why; the rosdep key of the local rosdistro resolves to its Debian package
 nothing (no new build log) and says so, in seconds.
 """
 import os
+import re
 import shutil
 import subprocess
 import sys
@@ -87,8 +88,11 @@ class DepsUnderlayTest(unittest.TestCase):
         self.assertEqual(self.first.returncode, 1, self.first.stdout)
         failed = self.lines(self.first, 'failed')
         self.assertEqual(len(failed), 1, self.first.stdout)
-        self.assertRegex(failed[0],
-                         r'^failed +probe_broken \(probe_broken\): src/hello.cpp:3: error: .*undeclared_name')
+        want = r'^failed +probe_broken \(probe_broken\): src/hello.cpp:3: error: .*undeclared_name'
+        if not re.search(want, failed[0]):
+            logs = os.path.join(self.cache, 'ws', 'logs')
+            with open(os.path.join(logs, sorted(os.listdir(logs))[0]), errors='replace') as f:
+                self.fail('%r is not the compiler\'s error; the build log:\n%s' % (failed[0], f.read()[-6000:]))
         self.assertEqual(self.lines(self.first, 'skipped'),
                          ['skipped  probe_needs_broken (probe_broken): needs probe_broken, which failed to build'])
         self.assertEqual(self.lines(self.first, 'unknown'),

@@ -55,9 +55,12 @@ def build_key(repos, packages, below):
     return hashlib.sha1(text.encode()).hexdigest()
 
 
+ANSI = re.compile(r'\x1b\[[0-9;?]*[A-Za-z]|\x1b\][^\x07]*\x07')  # colours and window titles (catkin, gcc on a tty)
+
+
 def first_error(text, package_folder=None):
     """The first cause in a package's build output, one line."""
-    lines = text.splitlines()
+    lines = ANSI.sub('', text).splitlines()
     for line in lines:
         found = NOT_FOUND.search(line)
         if found:
@@ -84,7 +87,7 @@ def first_error(text, package_folder=None):
 def section(log_text, package):
     """The part of a catkin_make_isolated log that processed `package`."""
     start = None
-    lines = log_text.splitlines()
+    lines = ANSI.sub('', log_text).splitlines()
     for i, line in enumerate(lines):
         found = STARTED.search(line)
         if found and found.group(1) == package:
@@ -157,7 +160,11 @@ def build(ws, selection, packages, env, jobs=2, say=print):
             results.update({name: 'failed: catkin_make_isolated: %s' % why for name in remaining})
             break
         folder = packages[culprit][0] if culprit in packages else None
-        results[culprit] = 'failed: %s' % first_error(section(text, culprit), folder)
+        why = first_error(section(text, culprit), folder)
+        if why.startswith('Command failed') and folder:  # the section's cause not found: its own files' first error
+            own = [line for line in ANSI.sub('', text).splitlines() if folder + os.sep in line]
+            why = first_error('\n'.join(own), folder) if own else why
+        results[culprit] = 'failed: %s' % why
         say('racebot deps: %s %s' % (culprit, results[culprit]))
         remaining.discard(culprit)
         for other in dependents(culprit, {n: packages[n] for n in remaining if n in packages}):
