@@ -25,6 +25,17 @@ def user_environment():
     return env
 
 
+def in_user_shell(setup, command, timeout):
+    """(exit code, output) of `command` in a user's login shell (user_environment) that sourced `setup`; the exit
+    code is 'timed out after N s' when it did not end in `timeout` wall s."""
+    try:
+        done = subprocess.run(['bash', '-lc', 'source %s && %s' % (setup, command)], env=user_environment(),
+                              stdout=subprocess.PIPE, stderr=subprocess.STDOUT, timeout=timeout)
+    except subprocess.TimeoutExpired as timed_out:
+        return 'timed out after %.0f s' % timeout, (timed_out.output or b'').decode(errors='replace')
+    return done.returncode, done.stdout.decode(errors='replace')
+
+
 class Workspace:
     """A catkin workspace in a fresh folder under /tmp: `src/` holds the given packages, `catkin_make`
     builds it on top of whatever workspace the calling environment has sourced (racebot's devel)."""
@@ -34,6 +45,11 @@ class Workspace:
         self.src = os.path.join(self.root, 'src')
         os.mkdir(self.src)
         self.setup = os.path.join(self.root, 'devel', 'setup.bash')
+
+    def copy_packages(self, folder):
+        """Copies every package folder in `folder` into src/ (a fixture workspace's packages)."""
+        for package in sorted(os.listdir(folder)):
+            shutil.copytree(os.path.join(folder, package), os.path.join(self.src, package))
 
     def link(self, package_dir):
         """Puts an existing package folder into src/ as a link (catkin follows it)."""

@@ -12,8 +12,6 @@ its devel space: the loader finds both plugins through rospack's exports and cre
 manager loads the nodelet, whose callback relays a message.
 """
 import os
-import shutil
-import subprocess
 import sys
 import tempfile
 import time
@@ -23,7 +21,7 @@ import rospy
 import rostest
 from std_msgs.msg import String
 
-from catkin_overlay import BUILD_TIMEOUT, ShellCommand, Workspace, user_environment
+from catkin_overlay import BUILD_TIMEOUT, ShellCommand, Workspace, in_user_shell, user_environment
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 REPO = os.path.dirname(os.path.dirname(HERE))
@@ -36,16 +34,6 @@ AREAS = {'fixture_shape_plugins/Square': SIDE * SIDE,
          'fixture_shape_plugins/Triangle': SIDE * SIDE * 3 ** 0.5 / 4}
 
 
-def in_shell(setup, command, timeout):
-    """(exit code, output) of `command` in a login shell that sourced `setup`."""
-    try:
-        done = subprocess.run(['bash', '-lc', 'source %s && %s' % (setup, command)], env=user_environment(),
-                              stdout=subprocess.PIPE, stderr=subprocess.STDOUT, timeout=timeout)
-    except subprocess.TimeoutExpired as timed_out:
-        return 'timed out after %.0f s' % timeout, (timed_out.output or b'').decode(errors='replace')
-    return done.returncode, done.stdout.decode(errors='replace')
-
-
 class Ros1CppTest(unittest.TestCase):
     workspace = None
 
@@ -53,9 +41,8 @@ class Ros1CppTest(unittest.TestCase):
     def setUpClass(cls):
         rospy.init_node('ros1_cpp_test')
         cls.workspace = Workspace('racebot-ros1-cpp-ws-')
-        for package in sorted(os.listdir(FIXTURE)):
-            shutil.copytree(os.path.join(FIXTURE, package), os.path.join(cls.workspace.src, package))
-        cls.built, cls.build_output = in_shell(RACEBOT_SETUP, 'catkin_make -C %s' % cls.workspace.root,
+        cls.workspace.copy_packages(FIXTURE)
+        cls.built, cls.build_output = in_user_shell(RACEBOT_SETUP, 'catkin_make -C %s' % cls.workspace.root,
                                                BUILD_TIMEOUT)
 
     @classmethod
@@ -74,7 +61,7 @@ class Ros1CppTest(unittest.TestCase):
 
     def test_2_the_loader_finds_and_creates_the_plugins_through_package_exports(self):
         self.assert_built()
-        code, output = in_shell(self.workspace.setup, 'rosrun fixture_shapes shape_loader', COMMAND_TIMEOUT)
+        code, output = in_user_shell(self.workspace.setup, 'rosrun fixture_shapes shape_loader', COMMAND_TIMEOUT)
         self.assertEqual(code, 0, output)
         found = {}
         for line in output.splitlines():

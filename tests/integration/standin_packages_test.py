@@ -13,15 +13,13 @@ launch file's `$(find joint_state_controller)/joint_state_controller.yaml` loads
 """
 import os
 import re
-import shutil
-import subprocess
 import sys
 import unittest
 
 import rospy
 import rostest
 
-from catkin_overlay import BUILD_TIMEOUT, Workspace, user_environment
+from catkin_overlay import BUILD_TIMEOUT, Workspace, in_user_shell
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 REPO = os.path.dirname(os.path.dirname(HERE))
@@ -47,8 +45,7 @@ class StandinPackagesTest(unittest.TestCase):
     def setUpClass(cls):
         rospy.init_node('standin_packages_test')
         cls.workspace = Workspace('racebot-standin-ws-')
-        for package in sorted(os.listdir(FIXTURE)):
-            shutil.copytree(os.path.join(FIXTURE, package), os.path.join(cls.workspace.src, package))
+        cls.workspace.copy_packages(FIXTURE)
         # catkin_make; while it stops with racebot's advice, the catkin_make line the advice gives
         cls.refusals = []  # (output, the CATKIN_BLACKLIST_PACKAGES it suggests)
         arguments = ''
@@ -68,13 +65,7 @@ class StandinPackagesTest(unittest.TestCase):
 
     @classmethod
     def in_racebot_shell(cls, command, timeout, setup=RACEBOT_SETUP):
-        """(exit code, output) of `command` in a login shell that sourced `setup`."""
-        try:
-            done = subprocess.run(['bash', '-lc', 'source %s && %s' % (setup, command)], env=user_environment(),
-                                  stdout=subprocess.PIPE, stderr=subprocess.STDOUT, timeout=timeout)
-        except subprocess.TimeoutExpired as timed_out:
-            return 'timed out after %.0f s' % timeout, (timed_out.output or b'').decode(errors='replace')
-        return done.returncode, done.stdout.decode(errors='replace')
+        return in_user_shell(setup, command, timeout)
 
     def in_workspace_shell(self, command):
         return self.in_racebot_shell(command, COMMAND_TIMEOUT, setup=self.workspace.setup)
