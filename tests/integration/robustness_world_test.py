@@ -28,8 +28,9 @@ CONTROLLERS = ['left_rear_wheel_velocity_controller', 'right_rear_wheel_velocity
                'left_front_wheel_velocity_controller', 'right_front_wheel_velocity_controller',
                'left_steering_hinge_position_controller', 'right_steering_hinge_position_controller',
                'joint_state_controller']
-# The spawner's --timeout: short, so that the test sees it wait past it, and long enough for the car
-# to be spawned once the simulator's clock runs (then the spawner's wait is a normal timeout again).
+# The spawner's --timeout: short, so that the test sees it wait past it. The simulator starts paused and
+# the car's spawn unpauses it, so the car's services are there when the clock starts (then the spawner's
+# wait is a normal timeout again, and a slow spawn_model under load cannot use it up).
 SPAWNER_TIMEOUT = 10.0
 
 GOOD_BOX = '''<model name="good_box"><static>true</static><pose>3 0 0.5 0 0 0</pose><link name="link">
@@ -96,12 +97,14 @@ class RobustnessWorldTest(unittest.TestCase):
             return set()
 
     def start_simulator(self, world_file):
-        """The world server and the car in it, as empty_world.launch + spawn_model start them."""
-        server = self.start('racebot_sim_bridge', 'world_server', world_file, '__name:=gazebo')
+        """The world server and the car in it, as empty_world.launch paused:=true + spawn_model -unpause
+        start them: the clock starts with the car's controller manager there, so the spawner's short
+        --timeout counts from a spawned car, not from however long spawn_model takes to start under load."""
+        server = self.start('racebot_sim_bridge', 'world_server', '-u', world_file, '__name:=gazebo')
         self.sim.clock = None
         self.sim.wait_ready()
         spawn = rosrun('gazebo_ros', 'spawn_model', '-urdf', '-model', 'racebot', '-param',
-                       '/robot_description', '-timeout', '60')
+                       '/robot_description', '-timeout', '60', '-unpause')
         self.assertEqual(spawn.wait_exit(), 0, spawn.text)
         return server
 

@@ -229,6 +229,9 @@ def sensor_table(sens):
     for label, topic, declared, _ in SENSOR_ROWS:
         rows_.append(('%s (declared %g Hz), wall Hz' % (label, declared),) + tuple(
             _fmt(sens[k]['topics'].get(topic, {}).get('wall_hz'), '%.1f') for k in paths))
+    rows_.append(('first message on every topic after subscribing (plain, first), wall s',) + tuple(
+        '%s / %s' % (_fmt((sens[k].get('plain') or {}).get('first_message_s'), '%.1f'),
+                     _fmt(sens[k].get('first_message_s'), '%.1f')) for k in paths))
     rows_.append(('the same through a plain subscriber (as rostopic hz), RTF',) + tuple(
         _fmt((sens[k].get('plain') or {}).get('rtf'), '%.3f') for k in paths))
     for label, topic, declared, _ in SENSOR_ROWS:

@@ -232,3 +232,18 @@ def test_the_sensor_table_and_the_kept_figures_carry_the_plain_subscribers_rates
     figures = kept_figures.key_figures({'sensors': sens})
     assert figures['sensors.plain_hz./rrbot/camera1/image_raw']['median'] == 27.6
     assert figures['sensors.hz./rrbot/camera1/image_raw']['median'] == 30.0
+
+
+def test_the_sensor_table_says_how_long_the_first_messages_took():
+    run = _sensor_run(1.0, 30.0, plain_camera_hz=29.0)
+    run['first_message_s'], run['plain']['first_message_s'] = 0.4, 6.25
+    row = [line for line in report.sensor_table({'new': run}).splitlines() if line.startswith('| first message')][0]
+    assert row.split('|')[2].strip() == '6.2 / 0.4'  # the plain subscriber came first: it met the worker's start
+
+
+def test_a_window_opens_once_every_topic_has_spoken_and_a_silent_one_does_not_stop_the_bench(monkeypatch):
+    from bench import scenarios
+    assert scenarios.wait_first_messages({'/scan': 3, '/imu': 1}) < 1.0
+    monkeypatch.setattr(scenarios, 'FIRST_MESSAGE_TIMEOUT_S', 0.2)
+    waited = scenarios.wait_first_messages({'/scan': 3, '/camera': 0})
+    assert 0.2 <= waited < 1.0  # measured as it is: 0 Hz is then the finding
