@@ -1,6 +1,7 @@
 """What a workspace or a package needs: the dependencies its package.xml files declare (read by catkin_pkg, with
 REP 149 conditions evaluated for ROS 1 on Python 3) and the packages its launch files name (`<node pkg=...>`,
-`<test pkg=...>`, `$(find pkg)` anywhere). Pure: reads files, runs nothing.
+`<test pkg=...>`, `$(find pkg)` anywhere, and the package of a pluginlib lookup name given as a `<param>` or `<arg>`
+value). Pure: reads files, runs nothing.
 """
 import os
 import re
@@ -12,6 +13,9 @@ from catkin_pkg.packages import find_packages
 CONDITIONS = {'ROS_VERSION': '1', 'ROS_PYTHON_VERSION': '3', 'ROS_DISTRO': 'noetic'}
 FIND = re.compile(r'\$\(find\s+([A-Za-z][A-Za-z0-9_]*)\)')
 PKG_NAME = re.compile(r'^[A-Za-z][A-Za-z0-9_]*$')
+# a pluginlib lookup name, 'package/ClassName' (move_base's base_local_planner:=dwa_local_planner/DWAPlannerROS):
+# the plugin's package is needed although no <node> names it
+PLUGIN_LOOKUP = re.compile(r'^([a-z][a-z0-9_]*)/[A-Z][A-Za-z0-9_]*$')
 LAUNCH_SUFFIXES = ('.launch', '.launch.xml')
 SKIPPED_DIRS = {'.git', 'build', 'devel', 'build_isolated', 'devel_isolated', 'install', 'node_modules'}
 
@@ -54,16 +58,24 @@ def launch_files(folder):
 
 
 def launch_names(text):
-    """The package names a launch file's text uses: `pkg` of <node> and <test> (when not an `$(arg ...)`), and
-    every `$(find pkg)`. A file that is not well-formed XML still gives its `$(find pkg)`s."""
-    names = set(FIND.findall(text))
+    """The package names a launch file's text uses: `pkg` of <node> and <test> (when not an `$(arg ...)`), every
+    `$(find pkg)`, and the package of a `<param value>` or `<arg value|default>` that is a pluginlib lookup name.
+    Comments name nothing; a file that is not well-formed XML still gives every `$(find pkg)` of its text."""
     try:
         root = ElementTree.fromstring(text)
     except ElementTree.ParseError:
-        return names
+        return set(FIND.findall(text))
+    names = set()  # from attributes and text only: a commented-out <include> needs nothing
     for element in root.iter():
+        for value in list(element.attrib.values()) + [element.text or '', element.tail or '']:
+            names.update(FIND.findall(value))
         if element.tag in ('node', 'test') and PKG_NAME.match(element.get('pkg', '')):
             names.add(element.get('pkg'))
+        if element.tag in ('param', 'arg'):
+            for value in (element.get('value'), element.get('default')):
+                plugin = PLUGIN_LOOKUP.match((value or '').strip())
+                if plugin:
+                    names.add(plugin.group(1))
     return names
 
 

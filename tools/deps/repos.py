@@ -1,5 +1,7 @@
 """Where the sources come from: rosinstall_generator names each package's repository and Noetic release
-(`--upstream`: the source repository at the tag of the released version), vcstool checks them out. Offline, each
+(`--upstream`: the source repository at the tag of the released version; where a copy of it lacks that tag, the
+release repository's tag of the same version, as rosinstall_generator names it without --upstream), vcstool
+checks them out. Offline, each
 https://github.com/<owner>/<name>.git is taken from a local copy instead, looked up as make corpus looks
 (tools/corpus/sources.py): a folder of existing clones (--clones, RACEBOT_CORPUS_DIR: DIR/<name>, DIR/<owner>/<name>,
 DIR/<owner>+<name>) or mirrors (--mirrors, RACEBOT_CORPUS_MIRRORS: ROOT/<owner>+<name>/repo, ...); a repository in
@@ -22,10 +24,13 @@ CHECKOUT_FAILED = 'cannot check out'
 VCS_SECTION = re.compile(r'^=== (\S+) \((\w+)\) ===$')
 
 
-def generate(names, env):
+def generate(names, env, upstream=True):
     """(the .repos data rosinstall_generator gives for `names` ({local name: {type, url, version}}), the names
-    it does not know as Noetic packages, its one-line error or '')."""
-    cmd = ['rosinstall_generator', '--rosdistro', DISTRO, '--upstream', '--format', 'repos'] + sorted(names)
+    it does not know as Noetic packages, its one-line error or ''). `upstream`: each source repository at the tag
+    of its release; else each package's release repository at its release tag (`release/noetic/<pkg>/<version>`,
+    the sources the Noetic binaries were built from), one entry per package."""
+    cmd = ['rosinstall_generator', '--rosdistro', DISTRO] + (['--upstream'] if upstream else []) + \
+        ['--format', 'repos'] + sorted(names)
     done = subprocess.run(cmd, env=env, capture_output=True, text=True)
     unreleased = set()
     for line in done.stderr.splitlines():
@@ -39,6 +44,29 @@ def generate(names, env):
         return {}, unreleased, 'rosinstall_generator failed: %s' % last[0].strip()
     data = yaml.safe_load(done.stdout) or {}
     return dict(data.get('repositories') or {}), unreleased, ''
+
+
+def release_entries(data):
+    """rosinstall_generator's release entries ({'navigation/amcl': {url: .../navigation-release.git, version:
+    release/noetic/amcl/1.17.3-1}}) under local names of their own, '<release repository>/<package>'
+    ('navigation-release/amcl'), so that they never share a folder with a checkout of the source repository."""
+    named = {}
+    for key, entry in data.items():
+        repo = github_repo(entry.get('url')) or key.split('/')[0]
+        package = str(entry.get('version', '')).split('/')[2:3] or [key.split('/')[-1]]
+        named['%s/%s' % (repo.split('/')[-1], package[0])] = entry
+    return named
+
+
+def repositories_of(names, env):
+    """{name: the rosdistro's repository releasing it} for the `names` the Noetic distribution file releases."""
+    import rosdistro
+    url = env.get('ROSDISTRO_INDEX_URL') or rosdistro.get_index_url()
+    try:
+        dist = rosdistro.get_distribution_file(rosdistro.get_index(url), DISTRO)
+    except Exception:  # an index that cannot be read: the reasons fall back to the round's repositories
+        return {}
+    return {n: dist.release_packages[n].repository_name for n in names if n in dist.release_packages}
 
 
 def github_repo(url):

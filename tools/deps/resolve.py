@@ -41,12 +41,40 @@ def targets(args):
     return local, names
 
 
-def _repo_of(folder, src):
-    return os.path.relpath(folder, src).split(os.sep)[0]
+def _repo_of(folder, src, keys=()):
+    """The local name of the checkout holding `folder`: the longest of `keys` it lies in, else its first folder."""
+    rel = os.path.relpath(folder, src).replace(os.sep, '/')
+    inside = [k for k in keys if rel == k or rel.startswith(k + '/')]
+    return max(inside, key=len) if inside else rel.split('/')[0]
+
+
+def _checkout(result, data, ctx):
+    """Checks out the entries of `data` that are new to `result`; a failure's reason is kept in ctx['failed']
+    ({local name: why}), where later rounds that meet the same repository find it."""
+    new = {k: v for k, v in data.items() if result.repos.get(k) != v}
+    result.repos.update(data)
+    started = time.time()
+    failed = repos_mod.checkout(new, ctx['ws'].src, ctx['ws'].root, ctx.get('clones'), ctx.get('mirrors'))
+    if new:
+        ctx.get('say', print)('racebot deps: vcs import of %d repositories (%.0f s)' % (
+            len(new), time.time() - started))
+    ctx.setdefault('failed', {}).update(failed)
+
+
+def _from_release_repositories(result, names, ctx):
+    """The names whose source repository could not be checked out at its release tag (a copy that lacks it), from
+    their release repositories' tags of the same release -> {name: its release repository's local name}."""
+    data, _, error = repos_mod.generate(names, ctx['env'], upstream=False)
+    data = {} if error else repos_mod.release_entries(data)
+    ctx.get('say', print)('racebot deps: rosinstall_generator (release repositories): %s -> %s' % (
+        ' '.join(sorted(names)), ' '.join('%s@%s' % (r, e['version']) for r, e in sorted(data.items())) or '-'))
+    _checkout(result, data, ctx)
+    return {local.split('/')[-1]: local for local in data}
 
 
 def _fetch(result, wanted, ctx):
-    """One round: rosinstall_generator for `wanted` names, vcs import of what is new; the src packages after."""
+    """One round: rosinstall_generator for `wanted` names, vcs import of what is new (the release repositories for
+    names whose source repository's tag is not at hand); the src packages after."""
     say = ctx.get('say', print)
     started = time.time()
     data, unreleased, error = repos_mod.generate(wanted, ctx['env'])
@@ -58,18 +86,24 @@ def _fetch(result, wanted, ctx):
             result.unknown[name] = error
         elif name in unreleased:
             result.unknown[name] = 'no rosdep rule for debian:bookworm and no Noetic release in the rosdistro'
-    new = {k: v for k, v in data.items() if result.repos.get(k) != v}
-    result.repos.update(data)
-    started = time.time()
-    failed = repos_mod.checkout(new, ctx['ws'].src, ctx['ws'].root, ctx.get('clones'), ctx.get('mirrors'))
-    if new:
-        say('racebot deps: vcs import of %d repositories (%.0f s)' % (len(new), time.time() - started))
+    _checkout(result, data, ctx)
+    failed = ctx['failed']
     packages = needs_mod.local_packages(ctx['ws'].src) if os.path.isdir(ctx['ws'].src) else {}
+    missing = sorted(n for n in wanted if n not in result.unknown and n not in packages)
+    holders, released = {}, {}
+    if missing and any(repo in failed for repo in data):
+        holders = repos_mod.repositories_of(missing, ctx['env'])
+        released = _from_release_repositories(result, missing, ctx)
+        packages = needs_mod.local_packages(ctx['ws'].src) if os.path.isdir(ctx['ws'].src) else {}
     for name in wanted:
         if name in result.unknown or name in packages:
             continue
-        repo = next((r for r, e in data.items() if r in failed), None)
-        result.unknown[name] = failed[repo] if repo else \
+        # its own repository's failure (all of the round's when the rosdistro cannot say which holds it)
+        reasons = [failed[holders[name]]] if holders.get(name) in failed else \
+            [why for repo, why in sorted(failed.items()) if repo in data and not holders]
+        if released.get(name) in failed:
+            reasons.append('release repository: ' + failed[released[name]])
+        result.unknown[name] = '; '.join(reasons) if reasons else \
             'rosinstall_generator named no repository holding it (it named: %s)' % (', '.join(sorted(data)) or 'none')
     return packages
 
@@ -99,7 +133,7 @@ def walk(local, names, providers, ctx):
             if provider.kind != 'source' or name in result.selected or name not in src_packages:
                 continue
             folder, package = src_packages[name]
-            result.selected[name] = _repo_of(folder, ctx['ws'].src)
+            result.selected[name] = _repo_of(folder, ctx['ws'].src, result.repos)
             for dep in needs_mod.declared(package, tests=False):
                 if dep not in local and dep != name:
                     frontier.setdefault(dep, set()).add(name)

@@ -20,7 +20,7 @@ def write(root, files):
 
 # --- needs ------------------------------------------------------------------------------------------
 
-def test_launch_names_are_node_and_test_packages_and_every_find():
+def test_launch_names_are_node_and_test_packages_and_every_find_outside_comments():
     text = '''<launch>
       <arg name="m" default="$(find map_pkg)/maps/a.yaml"/>
       <include file="$(find nav_pkg)/launch/x.launch"/>
@@ -28,8 +28,24 @@ def test_launch_names_are_node_and_test_packages_and_every_find():
       <test pkg="rostest_pkg" type="t" test-name="t"/>
       <node pkg="$(arg driver)" type="d" name="d"/>
       <param name="p" command="$(find xacro)/xacro $(find robot_desc)/urdf/r.xacro"/>
+      <rosparam subst_value="true">file: $(find yaml_pkg)/a.yaml</rosparam>
+      <!-- <include file="$(find multimaster_launch)/launch/multimaster_robot.launch"/> -->
     </launch>'''
-    assert needs.launch_names(text) == {'map_pkg', 'nav_pkg', 'amcl', 'rostest_pkg', 'xacro', 'robot_desc'}
+    assert needs.launch_names(text) == {'map_pkg', 'nav_pkg', 'amcl', 'rostest_pkg', 'xacro', 'robot_desc', 'yaml_pkg'}
+
+
+def test_a_plugin_lookup_name_given_as_a_param_or_arg_value_names_its_package():
+    """turtlebot3_navigation's move_base.launch names dwa_local_planner only so; topics, frames and file paths,
+    lower case after the slash, are not plugins."""
+    text = '''<launch>
+      <arg name="global" default="navfn/NavfnROS"/>
+      <param name="base_local_planner" value="dwa_local_planner/DWAPlannerROS"/>
+      <param name="base_global_planner" value="$(arg global)"/>
+      <param name="odom_topic" value="husky_velocity_controller/odom"/>
+      <arg name="map" value="maps/Map.yaml"/>
+      <param name="frame" value="base_link"/>
+    </launch>'''
+    assert needs.launch_names(text) == {'dwa_local_planner', 'navfn'}
 
 
 def test_a_launch_file_that_is_not_xml_still_gives_its_finds():
@@ -171,6 +187,56 @@ def test_the_walk_fetches_what_nobody_provides_and_follows_the_fetched_package_x
     assert list(result.unknown) == ['ghost']
     assert result.needed_by['nav_core'] == ['nav']
     assert sorted(src_packages) == ['nav', 'nav_core', 'twist_mux']
+
+
+def test_a_source_tag_missing_from_its_copy_is_taken_from_the_release_repository_and_failures_stay_apart(
+        tmp_path, monkeypatch):
+    """`loc`'s source copy lacks its release tag (a stale mirror): its release repository's tag of the same
+    release is checked out instead. `cam`'s and `joy`'s source repositories fail for reasons of their own, and
+    their release repositories too: each name's reason is its own repository's, not the round's first."""
+    target = write(tmp_path / 'target', {'t/package.xml': deps_fixture.package_xml('t', ['loc', 'cam', 'joy'])})
+    holders = {'loc': 'robot_localization', 'cam': 'cv_camera', 'joy': 'joystick_drivers'}
+    asked = []
+
+    def generate(names, env, upstream=True):
+        asked.append((sorted(names), upstream))
+        if upstream:
+            return {holders[n]: {'type': 'git', 'url': 'https://github.com/o/%s.git' % holders[n], 'version': '2.7.7'}
+                    for n in names}, set(), ''
+        return {'%s/%s' % (holders[n], n) if n == 'joy' else n: {
+            'type': 'git', 'url': 'https://github.com/o/%s-release.git' % holders[n],
+            'version': 'release/noetic/%s/2.7.7-1' % n} for n in names}, set(), ''
+
+    def checkout(wanted, src, work, clones=None, mirrors=None):
+        if 'robot_localization-release/loc' in wanted:
+            write(src, {'robot_localization-release/loc/package.xml': deps_fixture.package_xml('loc', ['roscpp'])})
+        return {name: 'cannot check out %s: %s' % (name, name.split('/')[0]) for name in wanted
+                if name != 'robot_localization-release/loc'}
+
+    monkeypatch.setattr(repos, 'generate', generate)
+    monkeypatch.setattr(repos, 'checkout', checkout)
+    monkeypatch.setattr(repos, 'repositories_of', lambda names, env: {n: holders[n] for n in names})
+    ws = underlay.Workspace(str(tmp_path / 'ws'))
+    local, names = resolve.targets([target])
+    providers = FakeProviders({'roscpp': 'installed', 'catkin': 'installed'})
+    result, src_packages = resolve.walk(local, names, providers, {'env': {}, 'ws': ws, 'say': lambda line: None})
+    assert asked == [(['cam', 'joy', 'loc'], True), (['cam', 'joy', 'loc'], False)]
+    assert result.selected == {'loc': 'robot_localization-release/loc'}
+    assert result.repos['robot_localization-release/loc']['version'] == 'release/noetic/loc/2.7.7-1'
+    assert result.unknown == {
+        'cam': 'cannot check out cv_camera: cv_camera; release repository: cannot check out '
+               'cv_camera-release/cam: cv_camera-release',
+        'joy': 'cannot check out joystick_drivers: joystick_drivers; release repository: cannot check out '
+               'joystick_drivers-release/joy: joystick_drivers-release'}
+
+
+def test_release_entries_get_a_folder_of_their_own_named_after_the_release_repository():
+    data = {'navigation/amcl': {'type': 'git', 'url': 'https://github.com/ros-gbp/navigation-release.git',
+                                'version': 'release/noetic/amcl/1.17.3-1'},
+            'robot_localization': {'type': 'git', 'url': 'https://github.com/cra-ros-pkg/robot_localization-release.git',
+                                   'version': 'release/noetic/robot_localization/2.7.7-1'}}
+    assert sorted(repos.release_entries(data)) == ['navigation-release/amcl',
+                                                   'robot_localization-release/robot_localization']
 
 
 def test_a_stand_in_that_gives_way_is_built_from_source_and_the_others_are_provided(tmp_path):
