@@ -33,6 +33,7 @@ ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)
 CHECKS = os.path.join(os.path.dirname(os.path.abspath(__file__)), 'checks.py')
 BUILD_TIMEOUT_S = 1800
 CHECKS_TIMEOUT_S = 600
+UNDERLAY_LINE = 'racebot deps: underlay: source '
 
 
 def free_port():
@@ -239,12 +240,13 @@ def with_deps(ws, env_base, log_path, result):
         code = subprocess.call([python(), os.path.join(ROOT, 'tools', 'deps', 'run.py'), os.path.join(ws, 'src')],
                                env=env_base, stdout=log, stderr=subprocess.STDOUT, timeout=BUILD_TIMEOUT_S * 4)
     with open(log_path, errors='replace') as f:
-        lines = [line.strip() for line in f if line.strip().split(' ', 1)[0] in ('failed', 'skipped', 'unknown')]
+        text = f.read().splitlines()
+    lines = [line.strip() for line in text if line.strip().split(' ', 1)[0] in ('failed', 'skipped', 'unknown')]
     if code != 0:
         result['notes'].append('make deps: %d not provided (%s)' % (len(lines), '; '.join(lines[:4])[:400]))
-    cache = env_base.get('RACEBOT_DEPS_CACHE') or os.path.expanduser(os.path.join('~', '.cache', 'racebot', 'deps'))
-    setup = os.path.join(cache, 'ws', 'devel_isolated', 'setup.bash')
-    return shell_env(setup, env_base) if os.path.exists(setup) else env_base
+    # make deps's report ends with the underlay to source: 'racebot deps: underlay: source PATH'
+    setup = next((line.split(UNDERLAY_LINE, 1)[1].strip() for line in reversed(text) if UNDERLAY_LINE in line), None)
+    return shell_env(setup, env_base) if setup and os.path.exists(setup) else env_base
 
 
 def row_env(row, ws, env_base, logs, result):
