@@ -13,7 +13,6 @@ import math
 import os
 import subprocess
 import sys
-import threading
 import time
 import traceback
 import xml.etree.ElementTree as ET
@@ -21,58 +20,12 @@ import xml.etree.ElementTree as ET
 sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 
 import rospy  # noqa: E402
-from roslib.message import get_message_class  # noqa: E402
 
 from corpus import floor, sensors  # noqa: E402
+from corpus.ros_io import (MESSAGE_TIMEOUT_S, WALL_MARGIN_S, CheckFailed, Commander, Latest, message,  # noqa: E402
+                           model_pose, service, sim_sleep, wrap, yaw_of)
 
-WALL_MARGIN_S = 60.0     # sim-time waits may take this much wall time beyond their length (RTF < 1)
-MESSAGE_TIMEOUT_S = 20.0
 PATH_TOLERANCE_VIOLATED = -4  # control_msgs/FollowJointTrajectoryResult
-
-
-class CheckFailed(Exception):
-    """A check's verdict: the message is its first reason; `numbers`, what was measured all the same."""
-
-    def __init__(self, reason, numbers=''):
-        super().__init__(reason)
-        self.numbers = numbers
-
-
-def sim_sleep(seconds):
-    """Sleeps `seconds` of sim time; fails when the clock does not get there in wall time."""
-    end = rospy.get_rostime() + rospy.Duration(seconds)
-    deadline = time.time() + seconds * 4 + WALL_MARGIN_S
-    while rospy.get_rostime() < end:
-        if time.time() > deadline or rospy.is_shutdown():
-            raise CheckFailed('sim time stalled: %.1f s of sim time did not pass in %.0f s' % (
-                seconds, seconds * 4 + WALL_MARGIN_S))
-        time.sleep(0.02)
-
-
-def message(topic, type_name, timeout=MESSAGE_TIMEOUT_S):
-    cls = get_message_class(type_name)
-    if cls is None:
-        raise CheckFailed('message type %s unknown here' % type_name)
-    try:
-        return rospy.wait_for_message(topic, cls, timeout=timeout)
-    except rospy.ROSException:
-        raise CheckFailed('no %s on %s in %.0f s' % (type_name, topic, timeout))
-
-
-def service(name, srv_type, timeout=30.0):
-    try:
-        rospy.wait_for_service(name, timeout=timeout)
-    except rospy.ROSException:
-        raise CheckFailed('service %s not offered in %.0f s' % (name, timeout))
-    return rospy.ServiceProxy(name, srv_type)
-
-
-def yaw_of(q):
-    return math.atan2(2.0 * (q.w * q.z + q.x * q.y), 1.0 - 2.0 * (q.y * q.y + q.z * q.z))
-
-
-def wrap(angle):
-    return math.atan2(math.sin(angle), math.cos(angle))
 
 
 def joint_positions(topic):
@@ -125,63 +78,6 @@ def check_controllers(check, row):
     if bad:
         raise CheckFailed(numbers + '; ' + ', '.join(bad))
     return numbers + ' (%s)' % ', '.join(want)
-
-
-class Commander:
-    """Publishes one command at 20 Hz (wall) until stopped, then a zero command."""
-
-    def __init__(self, check):
-        kind = check.get('msg', 'twist')
-        if kind == 'ackermann':
-            from ackermann_msgs.msg import AckermannDriveStamped
-            self.pub = rospy.Publisher(check['cmd_topic'], AckermannDriveStamped, queue_size=1)
-            self.msg, self.zero = AckermannDriveStamped(), AckermannDriveStamped()
-            self.msg.drive.speed = check.get('speed', 0.0)
-            self.msg.drive.steering_angle = check.get('steer', 0.0)
-            self.zero.drive.steering_angle = check.get('steer', 0.0)
-        else:
-            from geometry_msgs.msg import Twist
-            self.pub = rospy.Publisher(check['cmd_topic'], Twist, queue_size=1)
-            self.msg, self.zero = Twist(), Twist()
-            self.msg.linear.x, self.msg.linear.y = check.get('vx', 0.0), check.get('vy', 0.0)
-            self.msg.angular.z = check.get('wz', 0.0)
-        self.running = True
-        self.thread = threading.Thread(target=self._loop, daemon=True)
-        self.thread.start()
-
-    def _loop(self):
-        while self.running and not rospy.is_shutdown():
-            if hasattr(self.msg, 'header'):
-                self.msg.header.stamp = rospy.get_rostime()
-            self.pub.publish(self.msg)
-            time.sleep(0.05)
-
-    def stop(self):
-        self.running = False
-        self.thread.join()
-        for _ in range(3):
-            self.pub.publish(self.zero)
-            time.sleep(0.05)
-
-
-class Latest:
-    """The newest message of a topic."""
-
-    def __init__(self, topic, type_name):
-        self.msg = None
-        self.sub = rospy.Subscriber(topic, get_message_class(type_name), self._cb, queue_size=1)
-
-    def _cb(self, msg):
-        self.msg = msg
-
-
-def model_pose(getter, model):
-    reply = getter(model_name=model, relative_entity_name='')
-    if not reply.success:
-        raise CheckFailed('get_model_state(%s): %s' % (model, reply.status_message))
-    p = reply.pose
-    stamp = reply.header.stamp.to_sec() or rospy.get_rostime().to_sec()
-    return p.position.x, p.position.y, yaw_of(p.orientation), stamp
 
 
 def check_drive(check, row):
@@ -592,9 +488,110 @@ def check_map(check, row):
     return numbers
 
 
+def _map_in_world(check, grid):
+    """(map frame's pose in the world, the map as map_registration.Grid, numbers): the map on `map_topic` placed
+    on the world file's walls cut at the laser's `height` (map_registration.py)."""
+    import rospkg
+    from corpus import map_registration, slam_map
+    info = grid.info
+    served = map_registration.Grid(grid.data, info.width, info.height, info.resolution,
+                                   (info.origin.position.x, info.origin.position.y, yaw_of(info.origin.orientation)))
+    media = exported_paths('gazebo_media_path', 'GAZEBO_RESOURCE_PATH')
+    world = floor.WorldCollisions(resolve_find(check['world']), model_paths(), media, rospkg.RosPack().get_path)
+    walls = slam_map.outline(world, float(check['height']))
+    try:
+        found = map_registration.register(map_registration.occupied(served), walls, float(check.get('map_tolerance',
+                                                                                                    0.1)))
+    except map_registration.NoMatch as err:
+        raise CheckFailed('the map is nowhere in %s: %s' % (os.path.basename(check['world']), err))
+    other = found.runner_up
+    numbers = ('map frame at (%.3f, %.3f, %.1f deg) in the world: %.1f %% of its %d occupied cells within %.2f m of '
+               'the walls at z %.3f, mean %.3f m%s' % (
+                   found.x, found.y, math.degrees(found.yaw), 100 * found.on_walls, found.cells, found.tolerance,
+                   float(check['height']), found.mean_distance,
+                   ' (next best placement: %.1f %% at %.0f deg)' % (100 * other.on_walls, math.degrees(other.yaw))
+                   if other else ''))
+    return found[:3], served, numbers
+
+
+def check_navigation(check, row):
+    """Navigation in a map of the package's own (map_server, amcl, move_base), as the tutorial's user does it:
+    1. places the map on `map_topic` in the world (_map_in_world) to carry the ground truth into the map frame;
+    2. the initial pose (nav_steps.initial_pose): a 2D Pose Estimate at the ground truth, or amcl's launch default;
+    3. drives `route` (amcl updates only after update_min_d / update_min_a of motion), then /amcl_pose within
+       `localisation_tolerance` m in x-y of the ground truth at its stamp;
+    4. sends each of `goals` ([x, y, yaw], map frame; in free cells at least `min_clearance` m from the map's walls)
+       to the `move_base` action, which must succeed within `goal_timeout` sim s; then amcl's pose (TF map ->
+       `base_frame`: amcl's last estimate carried on by the odometry, the pose move_base itself judges) within
+       move_base's own goal tolerances (DWAPlannerROS's on the parameter server, else the row's, said), and the
+       ground truth within xy tolerance + localisation tolerance (amcl's own error on top of move_base's)."""
+    import actionlib
+    import tf2_ros
+    from gazebo_msgs.srv import GetModelState
+    from corpus import map_registration, nav_steps, navigation
+    problems = navigation.input_problems(check)
+    if problems:
+        raise CheckFailed('; '.join(problems))
+    try:
+        from move_base_msgs.msg import MoveBaseAction
+    except ImportError as err:
+        raise CheckFailed('move_base_msgs cannot be imported (%s): navigation_msgs comes from make deps' % err)
+    getter = service('/gazebo/get_model_state', GetModelState)
+    model, tolerance = check.get('model', row.get('model')), float(check['localisation_tolerance'])
+    grid = message(check.get('map_topic', '/map'), 'nav_msgs/OccupancyGrid', 60.0)  # map_server: a latched map
+    frame = grid.header.frame_id or 'map'
+    place, served, numbers = _map_in_world(check, grid)
+    goals = [tuple(float(v) for v in g) for g in check['goals']]
+    problems, clearances = navigation.goal_problems(served, goals, float(check.get('min_clearance', 0.0)))
+    if problems:
+        raise CheckFailed('; '.join(problems), numbers)
+    buffer = tf2_ros.Buffer()
+    tf2_ros.TransformListener(buffer)
+    amcl = Latest(check.get('amcl_topic', '/amcl_pose'), 'geometry_msgs/PoseWithCovarianceStamped')
+    to_map = map_registration.inverse(place)
+    spawned = map_registration.compose(to_map, model_pose(getter, model)[:3])
+    numbers += '; ' + nav_steps.initial_pose(check, spawned, frame)
+    start = rospy.get_rostime().to_sec()
+    history = nav_steps.drive_sampled(check, getter, model, to_map)
+    seen = amcl.msg
+    if seen is None or seen.header.stamp.to_sec() < start:
+        raise CheckFailed('no %s since the initial pose: amcl did not update while the robot moved' % (
+            check.get('amcl_topic', '/amcl_pose')), numbers)
+    pose, stamp = seen.pose.pose, seen.header.stamp.to_sec()
+    truth = navigation.nearest_in_time(history, stamp)
+    problems, said = navigation.judge_localisation((pose.position.x, pose.position.y, yaw_of(pose.orientation)),
+                                                   truth, tolerance)
+    numbers += '; localised: %s (amcl at %.1f s sim, the ground truth %.2f s from it)' % (said, stamp,
+                                                                                          abs(truth[3] - stamp))
+    if problems:
+        raise CheckFailed('; '.join(problems), numbers)
+    xy_tol, yaw_tol, source = navigation.goal_tolerances(
+        rospy.get_param('/move_base/DWAPlannerROS/xy_goal_tolerance', None),
+        rospy.get_param('/move_base/DWAPlannerROS/yaw_goal_tolerance', None), check)
+    numbers += '; goal tolerances %.3f m, %.3f rad from %s' % (xy_tol, yaw_tol, source)
+    client = actionlib.SimpleActionClient(check.get('action', 'move_base'), MoveBaseAction)
+    if not client.wait_for_server(rospy.Duration(60.0)):
+        raise CheckFailed('action server %s not up in 60 s' % check.get('action', 'move_base'), numbers)
+    for i, (goal, clearance) in enumerate(zip(goals, clearances), 1):
+        state, seconds, text = nav_steps.reach(client, goal, frame, float(check['goal_timeout']))
+        numbers += '; goal %d (%.2f, %.2f, %.2f; %.2f m from the walls): %s in %.1f s' % (
+            i, goal[0], goal[1], goal[2], clearance, state, seconds)
+        if state != 'SUCCEEDED':
+            raise CheckFailed('goal %d: move_base %s after %.1f s of sim time (%s)' % (i, state, seconds, text),
+                              numbers)
+        sim_sleep(0.5)
+        localised = nav_steps.tf_pose(buffer, frame, check.get('base_frame', 'base_footprint'))
+        truth = map_registration.compose(to_map, model_pose(getter, model)[:3])
+        problems, said = navigation.judge_goal(goal, localised, truth, xy_tol, yaw_tol, tolerance)
+        numbers += ', ' + said
+        if problems:
+            raise CheckFailed('goal %d: %s' % (i, '; '.join(problems)), numbers)
+    return numbers
+
+
 KINDS = {'controllers': check_controllers, 'drive': check_drive, 'joint_position': check_joint_position,
          'trajectory': check_trajectory, 'gripper': check_gripper, 'sensors': check_sensors, 'world': check_world,
-         'floor': check_floor, 'map': check_map}
+         'floor': check_floor, 'map': check_map, 'navigation': check_navigation}
 
 
 def run(row):

@@ -10,6 +10,8 @@ import re
 
 import yaml
 
+from corpus import navigation
+
 HERE = os.path.dirname(os.path.abspath(__file__))
 MANIFEST = os.path.join(HERE, 'manifest.yaml')
 COMMIT = re.compile(r'^[0-9a-f]{40}$')
@@ -27,12 +29,13 @@ CHECK_KEYS = {
     'world': ('world', 'min_models'),
     'floor': ('world', 'tolerance'),
     'map': ('world', 'cmd_topic', 'route', 'map_topic', 'base_frame', 'height', 'tolerance', 'on_walls', 'explored'),
+    'navigation': navigation.KEYS,
 }
 # the numbers a kind is judged by: at least one must be in a row
 NUMERIC = {'drive': ('expect_speed', 'tolerance'), 'joint_position': ('target', 'tolerance'),
            'trajectory': ('tolerance',), 'gripper': ('position', 'tolerance'), 'sensors': ('count',),
            'controllers': (), 'world': ('min_models',), 'floor': ('tolerance',),
-           'map': ('on_walls', 'explored')}
+           'map': ('on_walls', 'explored'), 'navigation': ('localisation_tolerance', 'xy_goal_tolerance')}
 FILE_NAME = re.compile(r'^[A-Za-z0-9_][A-Za-z0-9_.-]*$')
 
 
@@ -115,6 +118,8 @@ def _check_errors(check):
         return ['check %r has no known kind (%s)' % (check, ', '.join(sorted(CHECK_KEYS)))], 0
     kind = check['kind']
     problems = ['%s check without %s' % (kind, key) for key in CHECK_KEYS[kind] + ('from',) if key not in check]
+    if kind == 'navigation':  # its fields' shapes: the check refuses the same
+        problems += [p for p in navigation.input_problems(check) if ' without ' not in p]
     numbers = [check.get(key) for key in NUMERIC.get(kind, ())]
     if kind == 'trajectory' and isinstance(check.get('target'), dict):
         numbers += list(check['target'].values())
