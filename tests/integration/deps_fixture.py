@@ -10,7 +10,8 @@ make_world(root) writes, under `root`:
   target/my_robot                       a package that needs them: probe_core and the rosdep key in its package.xml,
                                         probe_tools and no_such_pkg in its launch file, probe_needs_broken too
 The repositories: probe_core (a C++ executable and a header; beside it probe_unused, which does not compile and
-nothing needs), probe_tools (a Python script; needs probe_core), probe_broken (probe_broken does not compile;
+nothing needs), probe_tools (a Python script; needs probe_core; its mirror lacks the release's tag, which its
+release repository's mirror, racebot-fixture+probe_tools-release, has), probe_broken (probe_broken does not compile;
 probe_needs_broken needs it).
 """
 import os
@@ -131,11 +132,20 @@ version: 4
 '''
 
 
+# A source repository whose mirror is older than its release (robot_localization's mirror stops at 2.7.5, the
+# release is 2.7.7): its tag is missing, and the release repository's copy has the release's tag.
+STALE = {'probe_tools': '0.1.9'}
+
+
 def make_world(root):
     """{'mirrors', 'rosdistro', 'target'}: the folders written under `root` (see the module's docstring)."""
     mirrors = os.path.join(root, 'mirrors')
     for name, (version, packages) in REPOS.items():
-        git_repo(os.path.join(mirrors, '%s+%s' % (OWNER, name), 'repo'), packages, version)
+        git_repo(os.path.join(mirrors, '%s+%s' % (OWNER, name), 'repo'), packages, STALE.get(name, version))
+        if name in STALE:  # bloom's release repository: the package at the root of its release tag (one package)
+            (folder, files), = packages.items()
+            git_repo(os.path.join(mirrors, '%s+%s-release' % (OWNER, name), 'repo'), {'.': files},
+                     'release/noetic/%s/%s-1' % (name if folder == '.' else folder, version))
     rosdistro = os.path.join(root, 'rosdistro')
     write_files(rosdistro, {'index-v4.yaml': INDEX, 'noetic/distribution.yaml': distribution_yaml(REPOS),
                             'rosdep/base.yaml': '%s:\n  debian: [%s]\n' % (SYSDEP_KEY, SYSDEP_DEBIAN)})

@@ -5,7 +5,8 @@ deps_fixture.py writes git repositories of our own laid out as mirrors, a rosdis
 releases them (their URLs are on github.com, which must never be reached: the repositories do not exist there) and
 a target package, my_robot, whose package.xml and launch file need them. tools/deps/run.py runs as `make deps`
 runs it, with a cache of its own. Checked: the packages nobody provides are built in the underlay at their release
-tags (probe_core through package.xml and `$(find ...)`, probe_tools through `<node pkg=...>`, probe_core's
+tags (probe_core through package.xml and `$(find ...)`, probe_tools through `<node pkg=...>` and from its
+release repository, its source mirror lacking the release's tag, probe_core's
 neighbour probe_unused, which does not compile, left alone); the underlay's setup.bash gives them and racebot
 together; a package that does not compile, the package that needs it and a name released nowhere each get one line
 saying why; the rosdep key of the local rosdistro resolves to its Debian package. Then the second run: it builds
@@ -66,9 +67,12 @@ class DepsUnderlayTest(unittest.TestCase):
                               timeout=60)
 
     def test_what_nobody_provides_is_built_at_its_release(self):
+        # probe_tools's mirror lacks its release tag 0.2.0: it comes from its release repository's tag of 0.2.0
         self.assertEqual(sorted(self.lines(self.first, 'built')),
-                         ['built    probe_core (probe_core)', 'built    probe_tools (probe_tools)'], self.first.stdout)
-        self.assertIn('from source: probe_broken 1.0.0, probe_core 0.1.0, probe_tools 0.2.0', self.first.stdout)
+                         ['built    probe_core (probe_core)',
+                          'built    probe_tools (probe_tools-release/probe_tools)'], self.first.stdout)
+        self.assertIn('from source: probe_broken 1.0.0, probe_core 0.1.0, probe_tools-release/probe_tools '
+                      'release/noetic/probe_tools/0.2.0-1', self.first.stdout)
         tag = subprocess.run(['git', 'describe', '--tags', '--exact-match'], cwd=os.path.join(
             self.cache, 'ws', 'src', 'probe_core'), stdout=subprocess.PIPE, text=True).stdout.strip()
         self.assertEqual(tag, '0.1.0')
