@@ -17,7 +17,7 @@ import pytest
 REPO = Path(__file__).resolve().parents[3]
 STEP_ASIDE = REPO / 'upstream_compat' / 'cmake' / 'step_aside.cmake'
 DEVEL = REPO / 'devel'
-PLACEHOLDERS = REPO / 'upstream_compat' / 'class_loader' / 'include' / 'boost_global_placeholders'
+PLACEHOLDERS = REPO / 'upstream_compat' / 'roscpp' / 'include' / 'boost_global_placeholders'
 
 
 def configure(tmp_path, name, cmake, prefix, languages='NONE'):
@@ -84,6 +84,19 @@ def test_a_nodelet_package_gets_both_overlays_and_debians_libraries(tmp_path):
     libraries = values['libraries'].split(';')
     for library in ('-lclass_loader', '-lroslib', '-ltinyxml2'):
         assert library in libraries, output
+
+
+def test_a_plain_roscpp_package_gets_the_placeholders_and_debians_roscpp(tmp_path):
+    """A node that finds only roscpp (interactive_marker_twist_server's marker_server binds with a bare _1)."""
+    code, output, values = configure(tmp_path, 'probe_node', textwrap.dedent('''
+        find_package(catkin REQUIRED COMPONENTS roscpp)
+        message(STATUS "probe include=${catkin_INCLUDE_DIRS}")
+        message(STATUS "probe libraries=${catkin_LIBRARIES}")
+    '''), prefix=DEVEL, languages='CXX')
+    assert code == 0, output
+    assert str(PLACEHOLDERS) in values['include'].split(';'), output
+    for library in ('-lroscpp', '-lrosconsole', '-lxmlrpcpp', '-lrostime'):
+        assert library in values['libraries'].split(';'), output
 
 
 BARE_PLACEHOLDER = textwrap.dedent('''
