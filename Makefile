@@ -12,7 +12,8 @@ help:
 	@echo "make run    set up, build, start the simulator with the racebot in the room"
 	@echo "make test   set up, build, run every test; ends with 'N passed, N failed'"
 	@echo "make setup  install what is missing (Debian packages, .venv) and build into build/ devel/"
-	@echo "make demo   headless: drive a scripted route, print it, draw it (out/demo/demo_path.png)"
+	@echo "make demo   headless: drive a scripted route, print it, draw it (out/demo/demo_path.png); where gmapping"
+	@echo "            is built (make deps ARGS=gmapping) it maps the room too (out/demo/demo_map.png)"
 	@echo "make unit   only the unit tests (no ROS master)"
 	@echo "make lint   ruff over the repository (ruff.toml); make test runs it too"
 	@echo "make corpus public ROS 1 robot and world packages run unchanged; the table in out/corpus/ (network,"
@@ -74,8 +75,9 @@ run: setup
 	  echo "  rostopic pub -r 10 /ackermann_cmd_mux/output ackermann_msgs/AckermannDriveStamped '{drive: {speed: 0.5, steering_angle: 0.45}}'";)
 	@$(IN_WS) roslaunch racebot_gazebo racebot.launch $(HEADLESS_ARGS) $(ARGS)
 
-# Headless: a scripted route through the room (~20 s of sim time), then the distance, the final pose
-# and out/demo/demo_path.png (the path over the room's walls).
+# Headless: a scripted route through the room (~13 s of sim time), then the distance, the final pose
+# and out/demo/demo_path.png (the path over the room's walls). Where make deps built gmapping, it maps the
+# room too (racebot_gazebo's gmapping.launch): the map's size, its cells on the walls, out/demo/demo_map.png.
 demo: setup
 	@$(IN_WS) $(VENV)/bin/python3 tools/demo.py
 

@@ -6,6 +6,7 @@ legends) and a writer that saves it as a PNG and returns the path.
 import math
 
 import matplotlib
+import numpy as np
 matplotlib.use('Agg')  # before anything imports pyplot: no display, ever
 from matplotlib.backends.backend_agg import FigureCanvasAgg  # noqa: E402
 from matplotlib.figure import Figure  # noqa: E402
@@ -150,6 +151,66 @@ def room_path_figure(shapes, path):
 
 def room_path(path_png, shapes, path):
     return save(room_path_figure(shapes, path), path_png)
+
+
+MAP_COLOURS = {'unknown': (0.82, 0.82, 0.82), 'free': (1.0, 1.0, 1.0), 'occupied': (0.0, 0.0, 0.0)}
+
+
+def occupancy_image(data, width, height, occupied=65):
+    """An OccupancyGrid's row-major values as a height x width x 4 RGBA array, opaque (row 0 the grid's first row,
+    at its origin): unknown (-1) light grey, free (0 up to `occupied`) white, occupied (`occupied` or more) black.
+    (RGBA: an RGB image drawn rotated fills the corners around it with black.)"""
+    grid = np.asarray(data, dtype=np.int16).reshape(height, width)
+    image = np.ones((height, width, 4))
+    image[:, :, :3] = MAP_COLOURS['free']
+    image[grid < 0, :3] = MAP_COLOURS['unknown']
+    image[grid >= occupied, :3] = MAP_COLOURS['occupied']
+    return image
+
+
+def room_map_figure(grid, walls, path, title='racebot demo: the map gmapping made, and the path'):
+    """grid: {'data' (row-major values), 'width', 'height', 'resolution', 'origin': (x, y, yaw) of the grid's
+    corner in the world}; walls: (x, y) points of the world's walls at the laser's height; path: [(t, x, y, yaw),
+    ...]. The map under the walls and the path, in world coordinates."""
+    from matplotlib.patches import Patch
+    from matplotlib.transforms import Affine2D
+    fig = new_figure(9.0, 7.2)
+    ax = fig.add_subplot(1, 1, 1)
+    w, h, res = grid['width'], grid['height'], grid['resolution']
+    x0, y0, yaw = grid['origin']
+    image = ax.imshow(occupancy_image(grid['data'], w, h), origin='lower', extent=(0, w * res, 0, h * res),
+                      interpolation='nearest', zorder=0)
+    image.set_transform(Affine2D().rotate(yaw).translate(x0, y0) + ax.transData)
+    if len(walls):
+        ax.plot([p[0] for p in walls], [p[1] for p in walls], ',', color='tab:orange', alpha=0.6, zorder=1)
+    ax.plot([p[1] for p in path], [p[2] for p in path], color='tab:blue', linewidth=2, zorder=2)
+    ax.plot([path[0][1]], [path[0][2]], 'o', color='tab:green', zorder=3)
+    ax.plot([path[-1][1]], [path[-1][2]], 'o', color='tab:red', zorder=3)
+    c, s = math.cos(yaw), math.sin(yaw)
+    corners = [(x0 + c * u - s * v, y0 + s * u + c * v) for u in (0, w * res) for v in (0, h * res)]
+    xs = [p[0] for p in corners] + [p[1] for p in path] + [p[0] for p in walls]
+    ys = [p[1] for p in corners] + [p[2] for p in path] + [p[1] for p in walls]
+    ax.set_xlim(min(xs) - 0.2, max(xs) + 0.2)
+    ax.set_ylim(min(ys) - 0.2, max(ys) + 0.2)
+    ax.set_aspect('equal', adjustable='datalim')
+    handles = [Patch(facecolor=MAP_COLOURS['occupied'], label='map: occupied'),
+               Patch(facecolor=MAP_COLOURS['free'], edgecolor='0.5', label='map: free'),
+               Patch(facecolor=MAP_COLOURS['unknown'], label='map: unknown'),
+               ax.plot([], [], color='tab:orange', label="the world's walls at the laser's height")[0],
+               ax.plot([], [], color='tab:blue', linewidth=2, label='path')[0],
+               ax.plot([], [], 'o', color='tab:green', label='start')[0],
+               ax.plot([], [], 'o', color='tab:red', label='end')[0]]
+    ax.set_title(title)
+    ax.set_xlabel('x (m)')
+    ax.set_ylabel('y (m)')
+    ax.grid(True, alpha=0.3)
+    ax.legend(handles=handles, loc='lower right', fontsize='small')  # room_mini: outside the room there
+    fig.tight_layout()
+    return fig
+
+
+def room_map(map_png, grid, walls, path, title=None):
+    return save(room_map_figure(grid, walls, path, **({'title': title} if title else {})), map_png)
 
 
 # -- fleet -----------------------------------------------------------------------------------------

@@ -1,7 +1,7 @@
 """The bench's and the demo's figures (tools/bench/plot.py): matplotlib with the Agg backend, no
 display; each figure has the axes labels, units and legend a reader expects, and is written as a
 PNG of the expected size."""
-
+import math
 
 from bench import plot, report
 
@@ -82,3 +82,29 @@ def test_room_path(tmp_path):
     assert (ax.get_xlabel(), ax.get_ylabel()) == ('x (m)', 'y (m)')
     assert legend_texts(ax) == ['walls, objects', 'path', 'start', 'end']
     assert png_size(plot.room_path(str(tmp_path / 'd.png'), shapes, path)) == (900, 720)
+
+
+def test_occupancy_image_colours_unknown_free_and_occupied():
+    image = plot.occupancy_image([-1, 0, 64, 65, 100, 0], 3, 2)
+    assert image.shape == (2, 3, 4)
+    assert (image[:, :, 3] == 1).all()
+    assert tuple(image[0, 0, :3]) == plot.MAP_COLOURS['unknown']
+    assert tuple(image[0, 1, :3]) == tuple(image[0, 2, :3]) == tuple(image[1, 2, :3]) == plot.MAP_COLOURS['free']
+    assert tuple(image[1, 0, :3]) == tuple(image[1, 1, :3]) == plot.MAP_COLOURS['occupied']
+
+
+def test_room_map(tmp_path):
+    grid = {'data': [-1, 0, 100, 0] * 25, 'width': 10, 'height': 10, 'resolution': 0.05,
+            'origin': (-0.25, -0.25, 0.3)}
+    walls = [(0.5, y / 10) for y in range(-5, 6)]
+    path = [(0.0, 0.0, 0.0, 0.0), (1.0, 0.3, 0.1, 0.2)]
+    fig = plot.room_map_figure(grid, walls, path)
+    ax = fig.axes[0]
+    assert (ax.get_xlabel(), ax.get_ylabel()) == ('x (m)', 'y (m)')
+    assert legend_texts(ax) == ['map: occupied', 'map: free', 'map: unknown', "the world's walls at the laser's height",
+                                'path', 'start', 'end']
+    # the map, rotated 0.3 rad about its corner, is inside the view, and so are the walls and the path
+    assert ax.get_xlim()[0] <= -0.25 - 0.5 * math.sin(0.3) and ax.get_xlim()[1] >= 0.5
+    assert ax.get_ylim()[0] <= -0.25 and ax.get_ylim()[1] >= 0.5
+    assert len(ax.get_images()) == 1
+    assert png_size(plot.room_map(str(tmp_path / 'm.png'), grid, walls, path, 'a title')) == (900, 720)
