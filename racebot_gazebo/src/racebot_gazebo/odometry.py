@@ -105,21 +105,24 @@ class SimTimeTicks:
     """When a node that publishes at `rate` Hz of sim time from a faster stream (gazebo_odometry from
     /gazebo/link_states) publishes: a message is due every 1/rate s of sim time, counted from the due time, not
     from the arrival, so a loaded machine that delivers the stream late still gets rate messages per sim second
-    (the ticks it missed are published with the next messages that arrive, one each). Only a gap of more than
-    `resync` s (a stalled node) or time going back (a world reset) starts the schedule again from now. Times are
-    seconds."""
+    (the ticks it missed are published with the next messages that arrive, one each, each at a later time than
+    the last: two messages stamped alike are one transform twice, which tf listeners report as TF_REPEATED_DATA).
+    Only a gap of more than `resync` s (a stalled node) or time going back (a world reset) starts the schedule
+    again from now. Times are seconds."""
 
     def __init__(self, rate, resync=1.0):
         self.period = 1.0 / rate if rate > 0 else 0.0
         self.resync = resync
         self.next = None  # sim time the next message is due
+        self.last = None  # sim time of the last message
 
     def due(self, now):
         """True when a message is due at sim time `now` (and counts it)."""
         if self.next is not None and now + 2 * self.period < self.next:
             self.next = None  # time went back: a reset
-        if self.next is not None and now < self.next:
-            return False
+        if now == self.last or (self.next is not None and now < self.next):
+            return False  # the same time as the last message (two arrivals within one clock tick): not again
+        self.last = now
         behind = self.next is None or now - self.next > max(self.resync, self.period)
         self.next = (now if behind else self.next) + self.period
         return True

@@ -92,3 +92,14 @@ def test_ground_truth_ticks_start_again_after_a_stall_or_a_reset():
     assert ticks.due(0.2) and not ticks.due(0.21)   # time went back (a world reset)
     every = SimTimeTicks(0.0)
     assert _published(every, [0.0, 0.001, 0.002]) == [0.0, 0.001, 0.002]
+
+
+def test_ground_truth_ticks_never_stamp_two_messages_alike():
+    """Under load two link_states arrive within one clock tick while ticks are owed: one message per time, so tf
+    never sees one transform twice (TF_REPEATED_DATA); the owed tick goes with the next later time."""
+    from racebot_gazebo.odometry import SimTimeTicks
+    ticks = SimTimeTicks(20.0)
+    assert ticks.due(0.0)
+    arrivals = [0.2, 0.2, 0.2, 0.201, 0.201, 0.202]  # three ticks owed (0.05 ... 0.15), the clock at 0.2 twice
+    stamps = _published(ticks, arrivals)
+    assert stamps == [0.2, 0.201, 0.202]
