@@ -244,9 +244,14 @@ def with_deps(ws, env_base, log_path, result):
     lines = [line.strip() for line in text if line.strip().split(' ', 1)[0] in ('failed', 'skipped', 'unknown')]
     if code != 0:
         result['notes'].append('make deps: %d not provided (%s)' % (len(lines), '; '.join(lines[:4])[:400]))
-    # make deps's report ends with the underlay to source: 'racebot deps: underlay: source PATH'
-    setup = next((line.split(UNDERLAY_LINE, 1)[1].strip() for line in reversed(text) if UNDERLAY_LINE in line), None)
+    setup = underlay_of(text)
     return shell_env(setup, env_base) if setup and os.path.exists(setup) else env_base
+
+
+def underlay_of(report_lines):
+    """The setup.bash make deps's report names last ('racebot deps: underlay: source PATH'), or None."""
+    return next((line.split(UNDERLAY_LINE, 1)[1].strip() for line in reversed(report_lines) if UNDERLAY_LINE in line),
+                None)
 
 
 def row_env(row, ws, env_base, logs, result):

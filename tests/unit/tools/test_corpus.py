@@ -440,3 +440,10 @@ def test_pose_matrix_turns_as_sdf_does():
     m = floor.pose_matrix('1 2 3 0 0 1.5707963267948966')
     assert m[:3, 3].tolist() == [1, 2, 3]
     assert (m[:3, :3] @ [1, 0, 0]) == pytest.approx([0, 1, 0])
+
+
+def test_a_deps_row_runs_in_the_underlay_make_deps_names():
+    report = ['racebot deps: from source: joy 1.15.1', '  built    joy (joystick_drivers)',
+              'racebot deps: underlay: source /cache/deps/ws/devel_isolated/setup.bash', 'racebot deps: done in 1.0 s']
+    assert corpus_run.underlay_of(report) == '/cache/deps/ws/devel_isolated/setup.bash'
+    assert corpus_run.underlay_of(['racebot deps: no package.xml at or below x']) is None
