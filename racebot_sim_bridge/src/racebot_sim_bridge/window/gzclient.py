@@ -160,7 +160,18 @@ class Gzclient:
         sock = self.wait_for_server()
         if sock is None:
             return 0
+        # The hello goes from here, for the window, as soon as its process exists: the window opens PyBullet's GUI
+        # (seconds of software OpenGL on a busy machine) before it reads anything, and the world server drops a
+        # connection that has not said who it is within viewer.HELLO_TIMEOUT. Nothing else is written on this
+        # side: the window's first message, 'shown', answers the server's first update, which follows the hello.
+        ours = Connection(os.dup(sock.fileno()))
         window, _ = child_process.start(WINDOW_MODULE, args=[rospy.get_name()], connection=sock)
+        try:
+            ours.send(('hello', window.pid, rospy.get_name()))
+        except OSError:
+            pass  # the server went: the window finds out and says so
+        finally:
+            ours.close()
         rospy.loginfo('attached to the world server %s: its window is process %d (niced %+d)' % (
             self.namespace, window.pid, NICENESS))
         try:

@@ -15,9 +15,9 @@ thread per window: the physics never waits for a window, and a slow window shows
 never old ones. A window that goes
 away (closed, killed, its X server gone) is forgotten, said once; the simulation goes on.
 
-Protocol (multiprocessing.connection messages): window -> server ('hello', pid, node name), then
-('shown',) after each update; server -> window ('sync', bodies, names, snapshot, follow) and, when
-the server shuts down, ('stop', why).
+Protocol (multiprocessing.connection messages): window -> server ('hello', pid, node name) (gzclient sends it
+for the window's process as it starts it, before the window opens its GUI), then ('shown',) after each update;
+server -> window ('sync', bodies, names, snapshot, follow) and, when the server shuts down, ('stop', why).
 """
 import os
 import select

@@ -114,8 +114,7 @@ def window_main(fd, node_name):
         except PhysicsError as err:
             sys.stderr.write('gzclient: the window could not open: %s\n' % err)
             return EXIT_NO_WINDOW
-        conn.send(('hello', os.getpid(), node_name))
-        return serve(conn, window)
+        return serve(conn, window)  # gzclient said hello for this process when it started it
     except (EOFError, OSError):
         return EXIT_LOST
     except Exception:  # noqa: BLE001 (said, and told apart from a closed window's exit code 1)
