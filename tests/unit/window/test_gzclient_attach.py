@@ -180,6 +180,23 @@ def test_a_connection_that_is_not_a_window_is_dropped(world, windows):
     silent.close()
 
 
+def test_a_window_slower_to_open_than_the_hello_timeout_stays_attached(world, windows):
+    """gzclient says hello for its window as it starts the window's process; the window opens its GUI (seconds of
+    software OpenGL on a busy machine) before it reads a thing, and must not be dropped for it."""
+    import os
+    from multiprocessing.connection import Connection
+    from racebot_sim_bridge.window import gzclient
+    sock = gzclient.connect_socket(windows.address)
+    ours = Connection(os.dup(sock.fileno()))
+    window = Connection(sock.detach())  # the window process's side
+    gzclient.say_hello(ours, 4242, '/gazebo_gui')
+    sync_until(windows, lambda: windows.count == 1, 'the window to count as attached')
+    windows.sync(now=time.monotonic() + viewer.HELLO_TIMEOUT + 5.0)  # the window still opening, reading nothing
+    assert windows.count == 1 and not any('did not say hello' in text for _, text in windows.log_lines)
+    assert next_update(windows, window)[0] == 'sync'
+    window.close()
+
+
 def test_close_tells_each_window_why_and_removes_the_socket(world):
     windows = viewer.AttachedWindows(world, FakeLog())
     conn = attach(windows)

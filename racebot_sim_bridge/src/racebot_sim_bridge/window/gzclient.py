@@ -94,6 +94,17 @@ def connect(address):
     return Connection(sock.detach()) if sock is not None else None
 
 
+def say_hello(conn, pid, node_name):
+    """Says who the window is, for the window process `pid`, on `conn` (this process's copy of the window's
+    connection), and closes that copy."""
+    try:
+        conn.send(('hello', pid, node_name))
+    except OSError:
+        pass  # the server went: the window finds out and says so
+    finally:
+        conn.close()
+
+
 def _libx11():
     try:
         return ctypes.CDLL(ctypes.util.find_library('X11') or 'libX11.so.6')
@@ -166,12 +177,7 @@ class Gzclient:
         # side: the window's first message, 'shown', answers the server's first update, which follows the hello.
         ours = Connection(os.dup(sock.fileno()))
         window, _ = child_process.start(WINDOW_MODULE, args=[rospy.get_name()], connection=sock)
-        try:
-            ours.send(('hello', window.pid, rospy.get_name()))
-        except OSError:
-            pass  # the server went: the window finds out and says so
-        finally:
-            ours.close()
+        say_hello(ours, window.pid, rospy.get_name())
         rospy.loginfo('attached to the world server %s: its window is process %d (niced %+d)' % (
             self.namespace, window.pid, NICENESS))
         try:
