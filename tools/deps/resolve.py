@@ -41,6 +41,11 @@ def targets(args):
     return local, names
 
 
+def src_packages_of(ws):
+    """{package: (folder, Package)} of the underlay's src/ (none before its first checkout)."""
+    return needs_mod.local_packages(ws.src) if os.path.isdir(ws.src) else {}
+
+
 def _repo_of(folder, src, keys=()):
     """The local name of the checkout holding `folder`: the longest of `keys` it lies in, else its first folder."""
     rel = os.path.relpath(folder, src).replace(os.sep, '/')
@@ -88,13 +93,13 @@ def _fetch(result, wanted, ctx):
             result.unknown[name] = 'no rosdep rule for debian:bookworm and no Noetic release in the rosdistro'
     _checkout(result, data, ctx)
     failed = ctx['failed']
-    packages = needs_mod.local_packages(ctx['ws'].src) if os.path.isdir(ctx['ws'].src) else {}
+    packages = src_packages_of(ctx['ws'])
     missing = sorted(n for n in wanted if n not in result.unknown and n not in packages)
     holders, released = {}, {}
     if missing and any(repo in failed for repo in data):
         holders = repos_mod.repositories_of(missing, ctx['env'])
         released = _from_release_repositories(result, missing, ctx)
-        packages = needs_mod.local_packages(ctx['ws'].src) if os.path.isdir(ctx['ws'].src) else {}
+        packages = src_packages_of(ctx['ws'])
     for name in wanted:
         if name in result.unknown or name in packages:
             continue
@@ -115,7 +120,7 @@ def walk(local, names, providers, ctx):
     frontier = needs_mod.needs_of(local, tests=True)
     for name in names:
         frontier.setdefault(name, set()).add('(command line)')
-    src_packages = needs_mod.local_packages(ctx['ws'].src) if os.path.isdir(ctx['ws'].src) else {}
+    src_packages = src_packages_of(ctx['ws'])
     while frontier:
         wanted = {}
         for name, who in sorted(frontier.items()):

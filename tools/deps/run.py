@@ -144,7 +144,7 @@ def _resolve(args, ws, env, local, names, record, say):
     key = resolution_key(local, names, env)
     result = None if args.rebuild else cached_resolution(record, key, ws)
     if result is not None:
-        src_packages = needs.local_packages(ws.src) if os.path.isdir(ws.src) else {}
+        src_packages = resolve.src_packages_of(ws)
         return result, src_packages, True
     providers = provide.Providers(ROOT, env['ROS_HOME'], needs.GIVE_WAY)
     ctx = {'env': env, 'ws': ws, 'clones': args.clones, 'mirrors': args.mirrors, 'say': say}
