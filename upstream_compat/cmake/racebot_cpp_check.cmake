@@ -68,6 +68,29 @@ function(racebot_cpp_includes out)
   set(${out} "" PARENT_SCOPE)
 endfunction()
 
+# In OUT: the first line of the configured package's C/C++ files that includes a header under `folder` which is
+# not a file under `root` (`#include <gazebo/sensors/RaySensor.hh>` with no root/gazebo/sensors/RaySensor.hh), as
+# "file: line"; empty when every such header is there. For a stand-in that has some of upstream's headers.
+function(racebot_cpp_unprovided out folder root)
+  racebot_cpp_includes(_ignored "${folder}")  # reads the package's files once
+  get_property(_found GLOBAL PROPERTY "RACEBOT_CPP_INCLUDES:${CMAKE_CURRENT_SOURCE_DIR}")
+  foreach(_entry ${_found})
+    string(FIND "${_entry}" "|" _bar)
+    string(SUBSTRING "${_entry}" 0 ${_bar} _folder)
+    if(NOT _folder STREQUAL folder)
+      continue()
+    endif()
+    string(REGEX REPLACE ".*#[ \t]*include[ \t]*[<\"]([^>\"]*)[>\"].*" "\\1" _header "${_entry}")
+    if(NOT EXISTS "${root}/${_header}")
+      math(EXPR _bar "${_bar} + 1")
+      string(SUBSTRING "${_entry}" ${_bar} -1 _where)
+      set(${out} "${_where}" PARENT_SCOPE)
+      return()
+    endif()
+  endforeach()
+  set(${out} "" PARENT_SCOPE)
+endfunction()
+
 # The message for a package whose code includes the headers of `standin` at `where` (a racebot_cpp_includes
 # result): what is wrong, why, and the catkin_make line that leaves the package out.
 function(racebot_cpp_message out standin where)

@@ -2,9 +2,10 @@
 
 upstream_compat/gazebo_dev writes devel/lib/cmake/gazebo/gazebo-config.cmake (no Gazebo is installed here).
 Plain CMake projects, configured with the devel space on CMAKE_PREFIX_PATH as a sourced workspace has it, show
-what a package gets: Gazebo 11's variables for plain code; for code that includes Gazebo's headers, an error
-with REQUIRED and gazebo_FOUND false without it, the message naming the package and the catkin_make line that
-leaves it out; and a compile error with the same advice for an include the scan cannot see. The catkin config
+what a package gets: Gazebo 11's variables, handing on racebot's Gazebo plugin API (its headers, libgazebo, Debian's
+ignition-math6 and sdformat); for code that includes a Gazebo header the API does not have, an error with REQUIRED
+and gazebo_FOUND false without it, the message naming the package, the file and the catkin_make line that leaves it
+out; and a compile error with the same advice for an include the scan cannot see. The catkin config
 of a name stand-in refuses code including its headers the same way. Needs `make build`, cmake and g++; no
 master. The projects declare no language (no compiler check), so each configure takes a fraction of a second.
 """
@@ -41,7 +42,11 @@ def project(tmp_path, cmake, sources=None, name='probe_pkg'):
     return done.returncode, done.stdout, values
 
 
-PLUGIN = {'src/plugin.cc': '#include <ros/ros.h>\n  #  include "gazebo/physics/physics.hh"\n'}
+# a model plugin's includes, all in racebot's Gazebo plugin API
+PLUGIN = {'src/plugin.cc': ('#include <ros/ros.h>\n  #  include "gazebo/physics/physics.hh"\n'
+                            '#include <gazebo/gazebo.hh>\n')}
+# a sensor plugin's: gazebo/sensors/RaySensor.hh is not in it
+SENSOR_PLUGIN = {'src/plugin.cc': '#include <gazebo/gazebo.hh>\n  #  include "gazebo/sensors/RaySensor.hh"\n'}
 
 
 def flat(text):
@@ -54,9 +59,21 @@ def test_plain_code_gets_gazebo_11s_variables(tmp_path):
     assert code == 0, out
     assert values['gazebo_FOUND'] in ('1', 'TRUE'), out
     assert values['GAZEBO_VERSION'].startswith('11.') and values['GAZEBO_MAJOR_VERSION'] == '11'
-    assert values['GAZEBO_LIBRARIES'] == values['GAZEBO_LIBRARY_DIRS'] == ''
     assert values['GAZEBO_CXX_FLAGS'] == '-std=c++17'
-    assert Path(values['GAZEBO_INCLUDE_DIRS'], 'gazebo', 'gazebo.hh').is_file()
+    libraries = values['GAZEBO_LIBRARIES'].split(';')
+    assert libraries[0] == str(DEVEL / 'lib' / 'libgazebo.so') and Path(libraries[0]).is_file(), libraries
+    assert 'ignition-math6::ignition-math6' in libraries and 'sdformat12::sdformat12' in libraries
+    assert values['GAZEBO_LIBRARY_DIRS'] == str(DEVEL / 'lib')
+    includes = values['GAZEBO_INCLUDE_DIRS'].split(';')
+    assert Path(includes[0], 'gazebo', 'gazebo.hh').is_file() and Path(includes[0], 'gazebo', 'physics').is_dir()
+    assert any(Path(folder, 'sdf', 'sdf.hh').is_file() for folder in includes), includes
+    assert any(Path(folder, 'ignition', 'math', 'Pose3.hh').is_file() for folder in includes), includes
+
+
+def test_a_model_plugin_gets_racebots_gazebo_plugin_api(tmp_path):
+    code, out, values = project(tmp_path, 'find_package(gazebo REQUIRED)\n' + REPORT, PLUGIN, name='my_plugins')
+    assert code == 0, out
+    assert values['gazebo_FOUND'] in ('1', 'TRUE'), out
 
 
 def test_a_newer_gazebo_than_11_is_not_found(tmp_path):
@@ -64,18 +81,19 @@ def test_a_newer_gazebo_than_11_is_not_found(tmp_path):
     assert code == 0 and values['gazebo_FOUND'] in ('0', 'FALSE'), out
 
 
-def test_a_gazebo_plugin_is_refused_naming_the_package(tmp_path):
-    code, out, _ = project(tmp_path, 'find_package(gazebo REQUIRED)\n', PLUGIN, name='my_gazebo_plugins')
+def test_a_plugin_including_a_header_the_api_lacks_is_refused_naming_the_package(tmp_path):
+    code, out, _ = project(tmp_path, 'find_package(gazebo REQUIRED)\n', SENSOR_PLUGIN, name='my_gazebo_plugins')
     assert code != 0, out
     out = flat(out)
-    assert ("racebot: package 'my_gazebo_plugins' compiles C++ against gazebo "
-            '(src/plugin.cc: # include "gazebo/physics/physics.hh")') in out
+    assert ("racebot: package 'my_gazebo_plugins' includes a Gazebo header that racebot's Gazebo plugin API does "
+            'not have (src/plugin.cc: # include "gazebo/sensors/RaySensor.hh")') in out
+    assert 'docs/SUPPORTED.md' in out
     assert 'catkin_make -DCATKIN_BLACKLIST_PACKAGES="my_gazebo_plugins"' in out
 
 
 def test_without_required_a_plugin_package_gets_gazebo_not_found(tmp_path):
     """As `find_package(gazebo QUIET) if(gazebo_FOUND) <plugin> endif()` packages expect without Gazebo."""
-    code, out, values = project(tmp_path, 'find_package(gazebo)\n' + REPORT, PLUGIN)
+    code, out, values = project(tmp_path, 'find_package(gazebo)\n' + REPORT, SENSOR_PLUGIN)
     assert code == 0, out
     assert values['gazebo_FOUND'] in ('0', 'FALSE'), out
     assert 'CATKIN_BLACKLIST_PACKAGES' in out  # not QUIET: the reason is shown
@@ -86,8 +104,9 @@ def test_an_include_the_scan_misses_fails_the_compile_with_the_advice(tmp_path):
     code, out, values = project(tmp_path, 'find_package(gazebo REQUIRED)\n' + REPORT, name='elsewhere_pkg')
     assert code == 0, out
     outside = tmp_path / 'shared.cpp'  # outside the package's folder, as a source another package lends
-    outside.write_text('#include <gazebo/gazebo.hh>\nint main() { return 0; }\n')
-    done = subprocess.run(['g++', '-fsyntax-only', '-I', values['GAZEBO_INCLUDE_DIRS'], str(outside)],
+    outside.write_text('#include <gazebo/sensors/sensors.hh>\nint main() { return 0; }\n')
+    includes = [arg for folder in values['GAZEBO_INCLUDE_DIRS'].split(';') for arg in ('-I', folder)]
+    done = subprocess.run(['g++', '-fsyntax-only'] + includes + [str(outside)],
                           stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, timeout=60)
     assert done.returncode != 0
     assert 'racebot: package elsewhere_pkg includes' in done.stdout, done.stdout

@@ -44,13 +44,35 @@ if(RACEBOT_STEP_ASIDE OR _racebot_real_gazebo)
   return()
 endif()
 
+# The plugin API's library, libgazebo (Gazebo's own name for its core library), on Debian's ignition-math6 and
+# sdformat (12: Gazebo 11 builds on 9, whose ElementPtr API a plugin uses is the same).
+find_package(ignition-math6 REQUIRED)
+find_package(sdformat12 REQUIRED)
+set(CMAKE_CXX_STANDARD 17)
+set(CMAKE_CXX_STANDARD_REQUIRED ON)
+file(GLOB _racebot_gazebo_sources ${CMAKE_CURRENT_LIST_DIR}/../src/*.cc)
+add_library(gazebo SHARED ${_racebot_gazebo_sources})
+target_include_directories(gazebo PUBLIC ${CMAKE_CURRENT_LIST_DIR}/../include)
+target_link_libraries(gazebo PUBLIC ignition-math6::ignition-math6 ${SDFormat_LIBRARIES})
+set_target_properties(gazebo PROPERTIES LIBRARY_OUTPUT_DIRECTORY ${CATKIN_DEVEL_PREFIX}/lib)
+install(TARGETS gazebo LIBRARY DESTINATION lib)
+install(DIRECTORY ${CMAKE_CURRENT_LIST_DIR}/../include/gazebo DESTINATION include)
+
+# where they were found, for the config: a package that enables no language (project(x NONE)) has no library
+# architecture for find_package to search lib/x86_64-linux-gnu/cmake with
+set(RACEBOT_IGNITION_MATH_DIR "${ignition-math6_DIR}")
+set(RACEBOT_SDFORMAT_DIR "${sdformat12_DIR}")
 set(RACEBOT_GAZEBO_VERSION 11.14.0)
+get_filename_component(RACEBOT_GAZEBO_INCLUDE "${CMAKE_CURRENT_LIST_DIR}/../include" REALPATH)
+set(RACEBOT_GAZEBO_LIBRARY "${CATKIN_DEVEL_PREFIX}/lib/libgazebo.so")
 get_filename_component(RACEBOT_CPP_CHECK "${CMAKE_CURRENT_LIST_DIR}/../../cmake/racebot_cpp_check.cmake" REALPATH)
 configure_file(${CMAKE_CURRENT_LIST_DIR}/gazebo-config.cmake.in ${_racebot_gazebo_dir}/gazebo-config.cmake @ONLY)
 configure_file(${CMAKE_CURRENT_LIST_DIR}/gazebo-config-version.cmake.in
   ${_racebot_gazebo_dir}/gazebo-config-version.cmake @ONLY)
 # The installed config finds racebot_cpp_check.cmake beside itself.
 set(RACEBOT_CPP_CHECK "\${CMAKE_CURRENT_LIST_DIR}/racebot_cpp_check.cmake")
+set(RACEBOT_GAZEBO_INCLUDE "\${CMAKE_CURRENT_LIST_DIR}/../../../include")
+set(RACEBOT_GAZEBO_LIBRARY "\${CMAKE_CURRENT_LIST_DIR}/../../libgazebo.so")
 configure_file(${CMAKE_CURRENT_LIST_DIR}/gazebo-config.cmake.in
   ${CMAKE_CURRENT_BINARY_DIR}/installspace/gazebo-config.cmake @ONLY)
 install(FILES

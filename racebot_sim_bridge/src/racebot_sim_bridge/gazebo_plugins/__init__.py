@@ -10,6 +10,9 @@ filename="libgazebo_ros_diff_drive.so"; gazebo_ros_laser.py also answers libgaze
                          stages in ../sensors/
                          (every library by name: REGISTRY in registry.py, and docs/SUPPORTED.md)
   robot hardware         gazebo_ros_control: ../gazebo_ros_control/, hooked into the simulator at spawn
+  compiled plugins       a library racebot has no class for, built against racebot's Gazebo 11 plugin API
+                         (upstream_compat/gazebo_dev): found and loaded by compiled_plugins.py through the gazebo_host
+                         module (src/cpp/gazebo_host.cpp, built into the devel space's copy of this folder)
   shared                 odometry_output.py, link_motion.py, update_timing.py, hector_reconfigure.py,
                          gazebo_ros_utils.py, gazebo_pid.py, polled_camera_types.py
 
@@ -19,3 +22,6 @@ and where a plugin's topics go (plugin_namespace.py); the one way a filename bec
 is the description's (../description/plugin_library.py). A worked example with its test:
 docs/WRITE_A_PLUGIN_OR_CONTROLLER.md.
 """
+from pkgutil import extend_path
+
+__path__ = [p for p in extend_path([], __name__) if p not in __path__] + list(__path__)

@@ -7,10 +7,12 @@ robot works without it; a plugin refused for its parameters (PluginError) gets a
 reason. Nothing a plugin raises reaches the world server: a plugin whose update fails is stopped with
 an error, the world goes on. At each update a plugin is called only outside its quiet span (ModelPlugin.quiet_span:
 its update clock says nothing is due), and what upstream does at every update whatever the rate (the diff drive's
-encoder) is its every_update, called first.
+encoder) is its every_update, called first. A plugin library racebot has no class for is looked for as a compiled
+plugin (compiled_plugins.py), built against racebot's Gazebo plugin API, and loaded when found.
 """
 from racebot_sim_bridge.engine.sim_time import to_ns
 from racebot_sim_bridge.gazebo_ros_api.plugin_kind import PluginKind
+from racebot_sim_bridge.gazebo_plugins.compiled_plugins import CompiledPlugins
 from racebot_sim_bridge.gazebo_plugins.model_plugin import ModelPlugin, PluginError
 from racebot_sim_bridge.gazebo_plugins.registry import REGISTRY
 
@@ -30,6 +32,7 @@ class PluginManager:
         self.sim = sim
         self.registry = registry
         self.reconfigure = reconfigure
+        self.compiled = CompiledPlugins(rospy, sim)
         self.plugins = {}  # robot name -> [ModelPlugin]
         self._active = []
         # the plugins whose class has a before_physics / after_step of its own: only they are called at each
@@ -61,8 +64,8 @@ class PluginManager:
             cls = self.registry.find(spec.filename, PluginKind.MODEL)
             if cls is None:
                 warning = self.registry.not_simulated(robot.name, spec)
-                if warning:
-                    self.rospy.logwarn(warning)
+                if warning and self.compiled.load(robot, spec) is None:
+                    self.rospy.logwarn('%s (%s)' % (warning, self.compiled.missing(spec.filename)))
                 continue
             try:
                 plugin = cls(self, robot, spec)
@@ -79,11 +82,13 @@ class PluginManager:
     def on_delete(self, robot):
         for plugin in self.plugins.pop(robot.name, []):
             plugin.close()
+        self.compiled.on_delete(robot)
         self._refresh()
 
     def on_reset(self):
         for plugin in self._active:
             plugin.reset()
+        self.compiled.on_reset()
         self._spans = [None] * len(self._before)  # their clocks restarted: ask them all again
         self._quiet = (0, 0)
 
@@ -121,6 +126,7 @@ class PluginManager:
             for plugin in group:
                 plugin.close()
         self.plugins = {}
+        self.compiled.close()
         self._refresh()
 
     def _stop(self, plugin, err):

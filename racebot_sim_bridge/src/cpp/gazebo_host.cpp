@@ -1,0 +1,375 @@
+// gazebo_host: racebot's host of compiled Gazebo plugins, the one seam where its Python simulator and C++ meet.
+//
+// A plugin library built against racebot's Gazebo 11 plugin API (upstream_compat/gazebo_dev) is loaded here as
+// Gazebo loads one (dlopen, RegisterPlugin, GetType, Load with the model and its <plugin> element, Init), and
+// racebot's world server fires Gazebo's events through it at each world update. Every physics call a plugin makes
+// (gazebo::physics::Joint::SetVelocity, Link::WorldPose, ...) comes back here, to PyEngine, which calls the Python
+// adapter (racebot_sim_bridge.gazebo_plugins.compiled_plugins.EngineAdapter) under the interpreter lock the
+// world update holds. Built by racebot_sim_bridge/CMakeLists.txt into the devel space's gazebo_plugins folder.
+#include <dlfcn.h>
+
+#include <map>
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <tuple>
+#include <vector>
+
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <gazebo/common/Events.hh>
+#include <gazebo/common/Plugin.hh>
+#include <gazebo/physics/physics.hh>
+#include <gazebo/racebot/Engine.hh>
+
+namespace py = pybind11;
+using ignition::math::Pose3d;
+using ignition::math::Vector3d;
+
+namespace
+{
+Vector3d ToVector(const py::handle &_value)
+{
+  auto t = _value.cast<std::tuple<double, double, double>>();
+  return Vector3d(std::get<0>(t), std::get<1>(t), std::get<2>(t));
+}
+
+py::tuple FromVector(const Vector3d &_v) { return py::make_tuple(_v.X(), _v.Y(), _v.Z()); }
+
+// (x, y, z, qx, qy, qz, qw), as PyBullet orders a quaternion
+Pose3d ToPose(const py::handle &_value)
+{
+  auto t = _value.cast<std::tuple<double, double, double, double, double, double, double>>();
+  return Pose3d(std::get<0>(t), std::get<1>(t), std::get<2>(t),
+                std::get<6>(t), std::get<3>(t), std::get<4>(t), std::get<5>(t));
+}
+
+py::tuple FromPose(const Pose3d &_p)
+{
+  return py::make_tuple(_p.Pos().X(), _p.Pos().Y(), _p.Pos().Z(),
+                        _p.Rot().X(), _p.Rot().Y(), _p.Rot().Z(), _p.Rot().W());
+}
+
+// The Engine behind gazebo::physics: each call one method of the Python adapter, looked up once.
+class PyEngine : public gazebo::racebot::Engine
+{
+public:
+  explicit PyEngine(py::object _adapter) : adapter(std::move(_adapter))
+  {
+    for (const char *name : {"sim_time", "real_time", "step_size", "gravity", "joint_position", "joint_velocity",
+                             "joint_force", "joint_set_velocity", "joint_set_force", "joint_set_position",
+                             "joint_set_motor", "link_world_pose", "link_world_cog_pose", "link_world_linear_vel",
+                             "link_world_cog_linear_vel", "link_world_angular_vel", "link_add_force",
+                             "link_add_torque", "link_mass", "model_set_world_pose", "model_set_linear_vel",
+                             "model_set_angular_vel", "model_world_pose"})
+      this->methods[name] = this->adapter.attr(name);
+  }
+
+  double SimTime() override { return this->Call("sim_time").cast<double>(); }
+  double RealTime() override { return this->Call("real_time").cast<double>(); }
+  double StepSize() override { return this->Call("step_size").cast<double>(); }
+  Vector3d Gravity() override { return ToVector(this->Call("gravity")); }
+
+  double JointPosition(int _j) override { return this->Call("joint_position", _j).cast<double>(); }
+  double JointVelocity(int _j) override { return this->Call("joint_velocity", _j).cast<double>(); }
+  double JointForce(int _j) override { return this->Call("joint_force", _j).cast<double>(); }
+  void JointSetVelocity(int _j, double _v) override { this->Call("joint_set_velocity", _j, _v); }
+  void JointSetForce(int _j, double _f) override { this->Call("joint_set_force", _j, _f); }
+  void JointSetPosition(int _j, double _p) override { this->Call("joint_set_position", _j, _p); }
+  void JointSetMotor(int _j, double _v, double _f) override { this->Call("joint_set_motor", _j, _v, _f); }
+
+  Pose3d LinkWorldPose(int _l) override { return ToPose(this->Call("link_world_pose", _l)); }
+  Pose3d LinkWorldCoGPose(int _l) override { return ToPose(this->Call("link_world_cog_pose", _l)); }
+  Vector3d LinkWorldLinearVel(int _l) override { return ToVector(this->Call("link_world_linear_vel", _l)); }
+  Vector3d LinkWorldCoGLinearVel(int _l) override { return ToVector(this->Call("link_world_cog_linear_vel", _l)); }
+  Vector3d LinkWorldAngularVel(int _l) override { return ToVector(this->Call("link_world_angular_vel", _l)); }
+  void LinkAddForce(int _l, const Vector3d &_f) override { this->Call("link_add_force", _l, FromVector(_f)); }
+  void LinkAddTorque(int _l, const Vector3d &_t) override { this->Call("link_add_torque", _l, FromVector(_t)); }
+  double LinkMass(int _l) override { return this->Call("link_mass", _l).cast<double>(); }
+
+  void ModelSetWorldPose(int _m, const Pose3d &_p) override { this->Call("model_set_world_pose", _m, FromPose(_p)); }
+  void ModelSetLinearVel(int _m, const Vector3d &_v) override { this->Call("model_set_linear_vel", _m, FromVector(_v)); }
+  void ModelSetAngularVel(int _m, const Vector3d &_v) override
+  {
+    this->Call("model_set_angular_vel", _m, FromVector(_v));
+  }
+  Pose3d ModelWorldPose(int _m) override { return ToPose(this->Call("model_world_pose", _m)); }
+
+private:
+  template<typename... Args>
+  py::object Call(const char *_name, Args &&... _args)
+  {
+    // A Python error becomes py::error_already_set, a std::exception: the event reports it against the plugin.
+    return this->methods.at(_name)(std::forward<Args>(_args)...);
+  }
+
+  py::object adapter;
+  std::map<std::string, py::object> methods;
+};
+
+// One loaded plugin: what it is, for the messages, and the object itself.
+struct Loaded
+{
+  std::string label;
+  gazebo::PluginType type;
+  boost::shared_ptr<gazebo::ModelPlugin> model;
+  boost::shared_ptr<gazebo::WorldPlugin> world;
+};
+
+class Host
+{
+public:
+  Host(py::object _adapter, const std::string &_worldName)
+    : engine(new PyEngine(std::move(_adapter))), world(new gazebo::physics::World(_worldName))
+  {
+    // the newest host is the one gazebo::physics calls (a world server has one; a test makes one per world)
+    gazebo::racebot::SetEngine(this->engine.get());
+    gazebo::physics::set_world(this->world);
+    Active() = this;
+    this->info.worldName = _worldName;
+  }
+
+  ~Host()
+  {
+    this->Close();
+    if (Active() == this)
+    {
+      gazebo::physics::set_world(gazebo::physics::WorldPtr());
+      gazebo::racebot::SetEngine(nullptr);
+      Active() = nullptr;
+    }
+  }
+
+  // links: [(name, handle)], the canonical link first; joints: [(name, handle, parent link, child link, lower,
+  // upper, effort limit, velocity limit)]
+  void AddModel(const std::string &_name, int _handle, bool _static,
+                const std::vector<std::tuple<std::string, int>> &_links,
+                const std::vector<std::tuple<std::string, int, std::string, std::string, double, double, double,
+                                             double>> &_joints)
+  {
+    auto model = boost::make_shared<gazebo::physics::Model>(this->world, _name, _handle, _static);
+    std::map<std::string, gazebo::physics::LinkPtr> links;
+    for (const auto &l : _links)
+    {
+      auto link = boost::make_shared<gazebo::physics::Link>(model, std::get<0>(l), std::get<1>(l));
+      links[std::get<0>(l)] = link;
+      model->AddLink(link);
+    }
+    for (const auto &j : _joints)
+    {
+      gazebo::physics::JointLimits limits;
+      limits.lower = std::get<4>(j);
+      limits.upper = std::get<5>(j);
+      limits.effort = std::get<6>(j);
+      limits.velocity = std::get<7>(j);
+      auto parent = links.count(std::get<2>(j)) ? links[std::get<2>(j)] : gazebo::physics::LinkPtr();
+      auto child = links.count(std::get<3>(j)) ? links[std::get<3>(j)] : gazebo::physics::LinkPtr();
+      model->AddJoint(boost::make_shared<gazebo::physics::Joint>(model, std::get<0>(j), std::get<1>(j), parent,
+                                                                 child, limits));
+    }
+    this->world->AddModel(model);
+  }
+
+  void RemoveModel(const std::string &_name) { this->world->RemoveModel(_name); }
+
+  // Loads the plugin library at `_path` (the <plugin filename> as written: `_filename`) as a plugin of `_kind`
+  // ("model": of model `_model`; "world"), with the <plugin> element `_xml`; returns its id. RuntimeError with
+  // the reason when the library cannot be loaded, is not a plugin of that kind, or its Load or Init throws.
+  int Load(const std::string &_kind, const std::string &_path, const std::string &_filename,
+           const std::string &_name, const std::string &_model, const std::string &_xml)
+  {
+    const std::string label = "plugin '" + _name + "' (" + _filename + ")";
+    // RTLD_NOW where Gazebo has RTLD_LAZY: a symbol racebot's API lacks is an error now, naming it, not a crash
+    // at the plugin's first call
+    void *handle = dlopen(_path.c_str(), RTLD_NOW | RTLD_GLOBAL);
+    if (handle == nullptr)
+      throw std::runtime_error(label + ": the library cannot be loaded: " + dlerror());
+    void *symbol = dlsym(handle, "RegisterPlugin");
+    if (symbol == nullptr)
+      throw std::runtime_error(label + ": " + _path + " is not a Gazebo plugin: it has no RegisterPlugin (what "
+                               "GZ_REGISTER_MODEL_PLUGIN and its kin define)");
+    sdf::ElementPtr sdf = this->PluginElement(label, _xml);
+    const int id = ++this->lastId;
+    Loaded loaded;
+    loaded.label = label;
+    gazebo::event::detail::OwnerScope scope(id);
+    try
+    {
+      // RegisterPlugin returns the kind its macro names; every kind keeps its type at the same place
+      auto *plugin = reinterpret_cast<gazebo::ModelPlugin *(*)()>(symbol)();
+      if (plugin == nullptr)
+        throw std::runtime_error("RegisterPlugin returned no plugin");
+      loaded.type = plugin->GetType();
+      const gazebo::PluginType wanted = _kind == "world" ? gazebo::WORLD_PLUGIN : gazebo::MODEL_PLUGIN;
+      if (loaded.type != wanted)
+      {
+        delete plugin;  // its destructor is virtual: the right one runs whatever kind it is
+        throw std::runtime_error(std::string("is not a ") + (_kind == "world" ? "world" : "model") +
+                                 " plugin (its GZ_REGISTER_*_PLUGIN names another kind), as Gazebo says: "
+                                 "\"detected an incorrect plugin type\"");
+      }
+      if (loaded.type == gazebo::MODEL_PLUGIN)
+      {
+        loaded.model.reset(plugin);
+        loaded.model->SetNames(_filename, _name);
+        gazebo::physics::ModelPtr model = this->world->ModelByName(_model);
+        if (!model)
+          throw std::runtime_error("model '" + _model + "' is not in the world");
+        loaded.model->Load(model, sdf);
+        loaded.model->Init();
+      }
+      else
+      {
+        loaded.world.reset(reinterpret_cast<gazebo::WorldPlugin *>(plugin));
+        loaded.world->SetNames(_filename, _name);
+        loaded.world->Load(this->world, sdf);
+        loaded.world->Init();
+      }
+    }
+    catch (const std::exception &_e)
+    {
+      gazebo::event::DisconnectOwnerEverywhere(id);
+      throw std::runtime_error(label + ": " + _e.what());
+    }
+    this->plugins[id] = loaded;
+    return id;
+  }
+
+  // Gazebo's World::Update around the physics step: worldUpdateBegin then beforePhysicsUpdate (before), and
+  // worldUpdateEnd (after). Failures: [(id, label, message)] of plugins whose callback threw, unloaded.
+  std::vector<std::tuple<int, std::string, std::string>> UpdateBegin(double _simTime, double _realTime,
+                                                                     uint64_t _iterations)
+  {
+    this->info.simTime = gazebo::common::Time(_simTime);
+    this->info.realTime = gazebo::common::Time(_realTime);
+    this->world->SetIterations(_iterations);
+    gazebo::event::Events::worldUpdateBegin(this->info);
+    gazebo::event::Events::beforePhysicsUpdate(this->info);
+    return this->Failures();
+  }
+
+  std::vector<std::tuple<int, std::string, std::string>> UpdateEnd()
+  {
+    gazebo::event::Events::worldUpdateEnd();
+    return this->Failures();
+  }
+
+  // reset_world / reset_simulation: each plugin's Reset, then the worldReset event
+  std::vector<std::tuple<int, std::string, std::string>> Reset()
+  {
+    for (auto &entry : this->plugins)
+    {
+      gazebo::event::detail::OwnerScope scope(entry.first);
+      try
+      {
+        if (entry.second.model)
+          entry.second.model->Reset();
+        if (entry.second.world)
+          entry.second.world->Reset();
+      }
+      catch (const std::exception &_e)
+      {
+        gazebo::event::detail::ReportFailure(entry.first, std::string("in Reset: ") + _e.what());
+      }
+    }
+    gazebo::event::Events::worldReset();
+    return this->Failures();
+  }
+
+  void Unload(int _id)
+  {
+    gazebo::event::DisconnectOwnerEverywhere(_id);
+    auto found = this->plugins.find(_id);
+    if (found == this->plugins.end())
+      return;
+    gazebo::event::detail::OwnerScope scope(_id);
+    Loaded loaded = found->second;
+    this->plugins.erase(found);
+    try
+    {
+      loaded.model.reset();  // the plugin's destructor (its connections go with it)
+      loaded.world.reset();
+    }
+    catch (...)
+    {
+    }
+  }
+
+  std::vector<int> Ids() const
+  {
+    std::vector<int> ids;
+    for (const auto &entry : this->plugins)
+      ids.push_back(entry.first);
+    return ids;
+  }
+
+  void Close()
+  {
+    if (!this->plugins.empty())
+      gazebo::event::Events::stop();
+    for (int id : this->Ids())
+      this->Unload(id);
+    gazebo::event::detail::TakeFailures();
+  }
+
+private:
+  static Host *&Active()
+  {
+    static Host *active = nullptr;
+    return active;
+  }
+
+  sdf::ElementPtr PluginElement(const std::string &_label, const std::string &_xml)
+  {
+    sdf::ElementPtr element(new sdf::Element);
+    if (!sdf::initFile("plugin.sdf", element))
+      throw std::runtime_error(_label + ": sdformat has no description of <plugin> (is libsdformat installed?)");
+    sdf::Errors errors;
+    if (!sdf::readString("<sdf version='1.6'>" + _xml + "</sdf>", element, errors))
+    {
+      std::string text = _label + ": sdformat cannot read its <plugin> element";
+      for (const auto &error : errors)
+        text += "; " + error.Message();
+      throw std::runtime_error(text);
+    }
+    return element;
+  }
+
+  std::vector<std::tuple<int, std::string, std::string>> Failures()
+  {
+    std::vector<std::tuple<int, std::string, std::string>> result;
+    for (const auto &failure : gazebo::event::detail::TakeFailures())
+    {
+      auto found = this->plugins.find(failure.first);
+      const std::string label = found == this->plugins.end() ? "a plugin" : found->second.label;
+      result.emplace_back(failure.first, label, failure.second);
+      this->Unload(failure.first);
+    }
+    return result;
+  }
+
+  std::unique_ptr<PyEngine> engine;
+  gazebo::physics::WorldPtr world;
+  gazebo::common::UpdateInfo info;
+  std::map<int, Loaded> plugins;
+  int lastId = 0;
+};
+}  // namespace
+
+PYBIND11_MODULE(gazebo_host, m)
+{
+  m.doc() = "racebot's host of compiled Gazebo plugins (racebot_sim_bridge/src/cpp/gazebo_host.cpp)";
+  py::class_<Host>(m, "Host")
+    .def(py::init<py::object, const std::string &>(), py::arg("adapter"), py::arg("world_name"))
+    .def("add_model", &Host::AddModel)
+    .def("remove_model", &Host::RemoveModel)
+    .def("load", &Host::Load, py::arg("kind"), py::arg("path"), py::arg("filename"), py::arg("name"),
+         py::arg("model"), py::arg("xml"))
+    .def("update_begin", &Host::UpdateBegin)
+    .def("update_end", &Host::UpdateEnd)
+    .def("reset", &Host::Reset)
+    .def("unload", &Host::Unload)
+    .def("ids", &Host::Ids)
+    .def("close", &Host::Close);
+}

@@ -1,0 +1,290 @@
+"""Compiled Gazebo plugins: a `<plugin filename>` racebot has no Python class for, loaded from its library.
+
+A robot package's own model plugin, built with its own `find_package(gazebo)` against racebot's Gazebo 11 plugin API
+(upstream_compat/gazebo_dev: the headers, libgazebo, the gazebo config), is found as Gazebo finds a plugin
+(find_library: GAZEBO_PLUGIN_PATH, then the dynamic linker's LD_LIBRARY_PATH, where a sourced devel space puts
+its lib/) and loaded through the gazebo_host module (src/cpp/gazebo_host.cpp): Gazebo's RegisterPlugin, its type
+check, Load with the model and the <plugin> element, Init. The world update fires Gazebo's events in its order
+(worldUpdateBegin and beforePhysicsUpdate before the physics step, worldUpdateEnd after); reset_world calls each
+plugin's Reset and worldReset. Every physics call a plugin makes comes back to EngineAdapter, on the engine's
+objects. A plugin whose library cannot be loaded, is of another kind, or throws in Load, Init, Reset or an event
+callback is reported with its library and the reason, unloaded, and the world goes on.
+"""
+import os
+import time
+import xml.etree.ElementTree as ET
+
+from racebot_sim_bridge.supported_table import WHERE as SUPPORTED_TABLE
+
+
+def find_library(filename, environ=None):
+    """The path Gazebo would dlopen for a <plugin filename>: an absolute path as is; else the first
+    GAZEBO_PLUGIN_PATH folder that has the file (gazebo::common::SystemPaths' plugin paths), else the first
+    LD_LIBRARY_PATH folder that has it (where dlopen itself looks). None when there is none."""
+    environ = os.environ if environ is None else environ
+    if os.path.isabs(filename):
+        return filename if os.path.isfile(filename) else None
+    for variable in ('GAZEBO_PLUGIN_PATH', 'LD_LIBRARY_PATH'):
+        for folder in environ.get(variable, '').split(':'):
+            path = os.path.join(folder, filename)
+            if folder and os.path.isfile(path):
+                return path
+    return None
+
+
+def plugin_xml(spec):
+    """The <plugin> element as sdformat reads it from the URDF: as written, with the values sdformat's fixed-joint
+    reduction rewrote (spec.params holds them: <bodyName> of a lumped link names the link it went into)."""
+    element = spec.element
+    if element is None:
+        element = ET.Element('plugin', {'name': spec.name, 'filename': spec.filename})
+        for tag, text in spec.params.items():
+            ET.SubElement(element, tag).text = text
+        return ET.tostring(element, encoding='unicode')
+    copy = ET.fromstring(ET.tostring(element, encoding='unicode'))
+    seen = set()
+    for child in copy:
+        if child.tag in spec.params and child.tag not in seen:
+            seen.add(child.tag)
+            if (child.text or '') != spec.params[child.tag] and len(child) == 0:
+                child.text = spec.params[child.tag]
+    return ET.tostring(copy, encoding='unicode')
+
+
+class EngineAdapter:
+    """What gazebo::physics asks of the engine, by the host's handles: models, links and joints are numbered
+    here as they are added (gazebo_host keeps the numbers in its Model, Link and Joint objects)."""
+
+    def __init__(self, sim):
+        self.sim = sim
+        self.started = time.monotonic()
+        self.models = []  # handle -> engine Model
+        self.links = []   # handle -> engine Link
+        self.joints = []  # handle -> engine Joint
+        self.efforts = {}  # joint handle -> effort summed for the coming step (Joint::SetForce adds, as ODE)
+        # During a world update, the time it steps to: Gazebo adds the step to its sim time before World::Update,
+        # so World::SimTime() in an event callback is UpdateInfo::simTime. None between updates (sim.time then).
+        self.update_time = None
+
+    def add_model(self, body):
+        """Numbers an engine Model's links (its root first) and joints; returns gazebo_host.add_model's
+        arguments after the name."""
+        handle = len(self.models)
+        self.models.append(body)
+        by_index = {index: name for name, index in body.link_index.items()}
+        links = []
+        for name in sorted(body.links, key=lambda n: body.links[n].index if n in body.link_index else 1 << 30):
+            links.append((name, len(self.links)))
+            self.links.append(body.links[name])
+        joints = []
+        for name, joint in body.joints.items():
+            parent_index = body.client.getJointInfo(body.id, joint.index)[16]
+            effort = joint.max_effort if joint.max_effort > 0 else -1.0
+            velocity = joint.max_velocity if joint.max_velocity > 0 else -1.0
+            joints.append((name, len(self.joints), by_index.get(parent_index, ''), joint.child_link,
+                           joint.lower, joint.upper, effort, velocity))
+            self.joints.append(joint)
+        return handle, body.static, links, joints
+
+    # -- world ------------------------------------------------------------------------------------------
+    def sim_time(self):
+        return self.sim.time if self.update_time is None else self.update_time
+
+    def real_time(self):
+        return time.monotonic() - self.started
+
+    def step_size(self):
+        return self.sim.step_size
+
+    def gravity(self):
+        return tuple(self.sim.world.gravity)
+
+    # -- joints ----------------------------------------------------------------------------------------
+    def joint_position(self, j):
+        return self.joints[j].state().position
+
+    def joint_velocity(self, j):
+        return self.joints[j].state().velocity
+
+    def joint_force(self, j):
+        return self.efforts.get(j, 0.0)
+
+    def joint_set_velocity(self, j, velocity):
+        joint = self.joints[j]
+        joint.set_position(joint.state().position, velocity)
+
+    def joint_set_force(self, j, effort):
+        total = self.efforts.get(j, 0.0) + effort
+        self.efforts[j] = total
+        joint = self.joints[j]
+        joint.model.apply_efforts([joint.index], [total])
+
+    def joint_set_position(self, j, position):
+        self.joints[j].set_position(position, 0.0)
+
+    def joint_set_motor(self, j, velocity, fmax):
+        self.joints[j].drive_velocity(velocity, fmax)
+
+    def clear_efforts(self):
+        self.efforts.clear()
+
+    # -- links -----------------------------------------------------------------------------------------
+    def _com(self, link):
+        """(CoM position, inertial frame orientation) in the world."""
+        client = link.model.client
+        if link.index >= 0:
+            s = client.getLinkState(link.body_id, link.index, computeForwardKinematics=1)
+            return tuple(s[0]), tuple(s[1])
+        pos, orn = client.getBasePositionAndOrientation(link.body_id)
+        return tuple(pos), tuple(orn)
+
+    def link_world_pose(self, k):
+        pose, _ = self.links[k].state()
+        return tuple(pose.position) + tuple(pose.orientation)
+
+    def link_world_cog_pose(self, k):
+        pos, orn = self._com(self.links[k])
+        return pos + orn
+
+    def link_world_cog_linear_vel(self, k):
+        return tuple(self.links[k].state()[1].linear)
+
+    def link_world_linear_vel(self, k):
+        """Of the link frame's origin: the CoM's velocity plus w x (origin - CoM)."""
+        link = self.links[k]
+        pose, twist = link.state()
+        com, _ = self._com(link)
+        w, v = twist.angular, twist.linear
+        r = [pose.position[i] - com[i] for i in range(3)]
+        return (v[0] + w[1] * r[2] - w[2] * r[1], v[1] + w[2] * r[0] - w[0] * r[2], v[2] + w[0] * r[1] - w[1] * r[0])
+
+    def link_world_angular_vel(self, k):
+        return tuple(self.links[k].state()[1].angular)
+
+    def link_add_force(self, k, force):
+        self.links[k].apply_wrench(tuple(force), (0.0, 0.0, 0.0))
+
+    def link_add_torque(self, k, torque):
+        self.links[k].apply_wrench((0.0, 0.0, 0.0), tuple(torque))
+
+    def link_mass(self, k):
+        return self.links[k].dynamics().mass
+
+    # -- models ----------------------------------------------------------------------------------------
+    def model_world_pose(self, m):
+        pose = self.models[m].frame_pose()
+        return tuple(pose.position) + tuple(pose.orientation)
+
+    def model_set_world_pose(self, m, pose):
+        body = self.models[m]
+        com = body.com_pose_for_frame(tuple(pose[:3]), tuple(pose[3:]))
+        twist = body.twist()
+        body.set_pose(com.position, com.orientation, twist.linear, twist.angular)
+
+    def model_set_linear_vel(self, m, velocity):
+        body = self.models[m]
+        body.set_velocity(tuple(velocity), body.twist().angular)
+
+    def model_set_angular_vel(self, m, velocity):
+        body = self.models[m]
+        body.set_velocity(body.twist().linear, tuple(velocity))
+
+
+class CompiledPlugins:
+    """The compiled model plugins of every spawned robot, one gazebo_host.Host for them all (made at the first
+    one). `rospy` logs; `sim` the Simulator, whose lock every call here runs under."""
+
+    def __init__(self, rospy, sim):
+        self.rospy = rospy
+        self.sim = sim
+        self.host = None
+        self.adapter = None
+        self.unavailable = None  # why the host cannot be made, once known
+        self.plugins = {}  # id -> (robot name, label)
+        self.models = set()  # robot names the host knows
+
+    def missing(self, filename):
+        """Why a library racebot has no class for was not loaded: the end of the registry's warning."""
+        return ('no library %s was found on GAZEBO_PLUGIN_PATH or LD_LIBRARY_PATH (a plugin you build: source its '
+                "workspace's devel/setup.bash before roslaunch)" % filename)
+
+    def load(self, robot, spec):
+        """Loads `spec` (a urdf_model.GazeboPlugin) for `robot` when its library is found: True when it runs,
+        False when it failed (an error says why), None when there is no such library."""
+        path = find_library(spec.filename)
+        if path is None:
+            return None
+        label = "%s: plugin '%s' (%s)" % (robot.name, spec.name, spec.filename)
+        if not self._ensure_host():
+            self.rospy.logerr('%s: %s. The robot works without it' % (label, self.unavailable))
+            return False
+        if robot.name not in self.models:
+            self.host.add_model(robot.name, *self.adapter.add_model(robot.body))
+            self.models.add(robot.name)
+        try:
+            plugin_id = self.host.load('model', path, spec.filename, spec.name, robot.name, plugin_xml(spec))
+        except RuntimeError as err:
+            self.rospy.logerr('%s: not loaded: %s. The robot works without it; see %s'
+                              % (robot.name, err, SUPPORTED_TABLE))
+            return False
+        self.plugins[plugin_id] = (robot.name, label)
+        self.rospy.loginfo('%s: loaded from %s' % (label, path))
+        self._refresh()
+        return True
+
+    def on_delete(self, robot):
+        for plugin_id, (name, _) in list(self.plugins.items()):
+            if name == robot.name:
+                self.host.unload(plugin_id)
+                del self.plugins[plugin_id]
+        if robot.name in self.models:
+            self.host.remove_model(robot.name)
+            self.models.discard(robot.name)
+        self._refresh()
+
+    def on_reset(self):
+        if self.plugins:
+            self._report(self.host.reset())
+
+    def before_physics(self, time_next):
+        self.adapter.update_time = time_next
+        self._report(self.host.update_begin(time_next, self.adapter.real_time(), self.sim.steps + 1))
+
+    def after_step(self, time_now):
+        self.adapter.clear_efforts()
+        self._report(self.host.update_end())
+        self.adapter.update_time = None
+
+    def close(self):
+        if self.host is not None:
+            self.host.close()
+        self.plugins = {}
+        self._refresh()
+
+    def _report(self, failures):
+        for plugin_id, label, message in failures:
+            name, full = self.plugins.pop(plugin_id, (None, label))
+            self.rospy.logerr('%s: unloaded after an exception in its callback: %s. The world goes on without it'
+                              % (full, message))
+        if failures:
+            self._refresh()
+
+    def _ensure_host(self):
+        if self.host is not None:
+            return True
+        if self.unavailable is not None:
+            return False
+        try:
+            from racebot_sim_bridge.gazebo_plugins import gazebo_host
+        except ImportError as err:
+            self.unavailable = ("racebot's plugin host (gazebo_host) is not built (%s): run 'make build' in "
+                                "racebot's folder" % err)
+            return False
+        self.adapter = EngineAdapter(self.sim)
+        self.host = gazebo_host.Host(self.adapter, self.sim.spec.name)
+        return True
+
+    def _refresh(self):
+        wanted = bool(self.plugins)
+        self.sim.set_step_hook('before_physics', self.before_physics, wanted)
+        self.sim.set_step_hook('after_step', self.after_step, wanted)

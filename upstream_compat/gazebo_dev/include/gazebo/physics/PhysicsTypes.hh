@@ -1,0 +1,34 @@
+// racebot's Gazebo 11 plugin API (upstream_compat/gazebo_dev): the physics classes' pointer types, boost's as in
+// Gazebo 11.
+#ifndef GAZEBO_PHYSICS_PHYSICSTYPES_HH_
+#define GAZEBO_PHYSICS_PHYSICSTYPES_HH_
+
+#include <vector>
+
+#include <boost/shared_ptr.hpp>
+#include <boost/weak_ptr.hpp>
+#include <boost/make_shared.hpp>
+
+namespace gazebo
+{
+namespace physics
+{
+class World;
+class Model;
+class Link;
+class Joint;
+class PhysicsEngine;
+
+typedef boost::shared_ptr<World> WorldPtr;
+typedef boost::shared_ptr<Model> ModelPtr;
+typedef boost::shared_ptr<Link> LinkPtr;
+typedef boost::shared_ptr<Joint> JointPtr;
+typedef boost::shared_ptr<PhysicsEngine> PhysicsEnginePtr;
+
+typedef std::vector<ModelPtr> Model_V;
+typedef std::vector<LinkPtr> Link_V;
+typedef std::vector<JointPtr> Joint_V;
+}  // namespace physics
+}  // namespace gazebo
+
+#endif
