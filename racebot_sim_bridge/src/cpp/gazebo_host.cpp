@@ -4,8 +4,12 @@
 // Gazebo loads one (dlopen, RegisterPlugin, GetType, Load with the model and its <plugin> element, Init), and
 // racebot's world server fires Gazebo's events through it at each world update. Every physics call a plugin makes
 // (gazebo::physics::Joint::SetVelocity, Link::WorldPose, ...) comes back here, to PyEngine, which calls the Python
-// adapter (racebot_sim_bridge.gazebo_plugins.compiled_plugins.EngineAdapter) under the interpreter lock the
-// world update holds. Built by racebot_sim_bridge/CMakeLists.txt into the devel space's gazebo_plugins folder.
+// adapter (racebot_sim_bridge.gazebo_plugins.compiled_plugins.EngineAdapter), taking the interpreter lock for that
+// call only: the world update releases it while plugin code runs, so a plugin's own ROS threads (its callbacks
+// on roscpp's spinner, which may call the physics too) never wait on a lock the update holds while it waits on
+// theirs. roscpp runs in the world server as gazebo_ros's system plugin starts it (start_roscpp: ros::init with no
+// SIGINT handler, an AsyncSpinner on the global queue), under a node name of its own beside the rospy node.
+// Built by racebot_sim_bridge/CMakeLists.txt into the devel space's gazebo_plugins folder.
 #include <dlfcn.h>
 
 #include <map>
@@ -17,6 +21,7 @@
 
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
+#include <ros/ros.h>
 
 #include <gazebo/common/Events.hh>
 #include <gazebo/common/Plugin.hh>
@@ -29,28 +34,6 @@ using ignition::math::Vector3d;
 
 namespace
 {
-Vector3d ToVector(const py::handle &_value)
-{
-  auto t = _value.cast<std::tuple<double, double, double>>();
-  return Vector3d(std::get<0>(t), std::get<1>(t), std::get<2>(t));
-}
-
-py::tuple FromVector(const Vector3d &_v) { return py::make_tuple(_v.X(), _v.Y(), _v.Z()); }
-
-// (x, y, z, qx, qy, qz, qw), as PyBullet orders a quaternion
-Pose3d ToPose(const py::handle &_value)
-{
-  auto t = _value.cast<std::tuple<double, double, double, double, double, double, double>>();
-  return Pose3d(std::get<0>(t), std::get<1>(t), std::get<2>(t),
-                std::get<6>(t), std::get<3>(t), std::get<4>(t), std::get<5>(t));
-}
-
-py::tuple FromPose(const Pose3d &_p)
-{
-  return py::make_tuple(_p.Pos().X(), _p.Pos().Y(), _p.Pos().Z(),
-                        _p.Rot().X(), _p.Rot().Y(), _p.Rot().Z(), _p.Rot().W());
-}
-
 // The Engine behind gazebo::physics: each call one method of the Python adapter, looked up once.
 class PyEngine : public gazebo::racebot::Engine
 {
@@ -66,43 +49,72 @@ public:
       this->methods[name] = this->adapter.attr(name);
   }
 
-  double SimTime() override { return this->Call("sim_time").cast<double>(); }
-  double RealTime() override { return this->Call("real_time").cast<double>(); }
-  double StepSize() override { return this->Call("step_size").cast<double>(); }
-  Vector3d Gravity() override { return ToVector(this->Call("gravity")); }
+  double SimTime() override { return this->Get<double>("sim_time"); }
+  double RealTime() override { return this->Get<double>("real_time"); }
+  double StepSize() override { return this->Get<double>("step_size"); }
+  Vector3d Gravity() override { return V(this->Get<Vec>("gravity")); }
 
-  double JointPosition(int _j) override { return this->Call("joint_position", _j).cast<double>(); }
-  double JointVelocity(int _j) override { return this->Call("joint_velocity", _j).cast<double>(); }
-  double JointForce(int _j) override { return this->Call("joint_force", _j).cast<double>(); }
+  double JointPosition(int _j) override { return this->Get<double>("joint_position", _j); }
+  double JointVelocity(int _j) override { return this->Get<double>("joint_velocity", _j); }
+  double JointForce(int _j) override { return this->Get<double>("joint_force", _j); }
   void JointSetVelocity(int _j, double _v) override { this->Call("joint_set_velocity", _j, _v); }
   void JointSetForce(int _j, double _f) override { this->Call("joint_set_force", _j, _f); }
   void JointSetPosition(int _j, double _p) override { this->Call("joint_set_position", _j, _p); }
   void JointSetMotor(int _j, double _v, double _f) override { this->Call("joint_set_motor", _j, _v, _f); }
 
-  Pose3d LinkWorldPose(int _l) override { return ToPose(this->Call("link_world_pose", _l)); }
-  Pose3d LinkWorldCoGPose(int _l) override { return ToPose(this->Call("link_world_cog_pose", _l)); }
-  Vector3d LinkWorldLinearVel(int _l) override { return ToVector(this->Call("link_world_linear_vel", _l)); }
-  Vector3d LinkWorldCoGLinearVel(int _l) override { return ToVector(this->Call("link_world_cog_linear_vel", _l)); }
-  Vector3d LinkWorldAngularVel(int _l) override { return ToVector(this->Call("link_world_angular_vel", _l)); }
-  void LinkAddForce(int _l, const Vector3d &_f) override { this->Call("link_add_force", _l, FromVector(_f)); }
-  void LinkAddTorque(int _l, const Vector3d &_t) override { this->Call("link_add_torque", _l, FromVector(_t)); }
-  double LinkMass(int _l) override { return this->Call("link_mass", _l).cast<double>(); }
+  Pose3d LinkWorldPose(int _l) override { return P(this->Get<PoseT>("link_world_pose", _l)); }
+  Pose3d LinkWorldCoGPose(int _l) override { return P(this->Get<PoseT>("link_world_cog_pose", _l)); }
+  Vector3d LinkWorldLinearVel(int _l) override { return V(this->Get<Vec>("link_world_linear_vel", _l)); }
+  Vector3d LinkWorldCoGLinearVel(int _l) override { return V(this->Get<Vec>("link_world_cog_linear_vel", _l)); }
+  Vector3d LinkWorldAngularVel(int _l) override { return V(this->Get<Vec>("link_world_angular_vel", _l)); }
+  void LinkAddForce(int _l, const Vector3d &_f) override { this->Call("link_add_force", _l, Vec(_f.X(), _f.Y(), _f.Z())); }
+  void LinkAddTorque(int _l, const Vector3d &_t) override
+  {
+    this->Call("link_add_torque", _l, Vec(_t.X(), _t.Y(), _t.Z()));
+  }
+  double LinkMass(int _l) override { return this->Get<double>("link_mass", _l); }
 
-  void ModelSetWorldPose(int _m, const Pose3d &_p) override { this->Call("model_set_world_pose", _m, FromPose(_p)); }
-  void ModelSetLinearVel(int _m, const Vector3d &_v) override { this->Call("model_set_linear_vel", _m, FromVector(_v)); }
+  void ModelSetWorldPose(int _m, const Pose3d &_p) override
+  {
+    this->Call("model_set_world_pose", _m, PoseT(_p.Pos().X(), _p.Pos().Y(), _p.Pos().Z(), _p.Rot().X(),
+                                                 _p.Rot().Y(), _p.Rot().Z(), _p.Rot().W()));
+  }
+  void ModelSetLinearVel(int _m, const Vector3d &_v) override
+  {
+    this->Call("model_set_linear_vel", _m, Vec(_v.X(), _v.Y(), _v.Z()));
+  }
   void ModelSetAngularVel(int _m, const Vector3d &_v) override
   {
-    this->Call("model_set_angular_vel", _m, FromVector(_v));
+    this->Call("model_set_angular_vel", _m, Vec(_v.X(), _v.Y(), _v.Z()));
   }
-  Pose3d ModelWorldPose(int _m) override { return ToPose(this->Call("model_world_pose", _m)); }
+  Pose3d ModelWorldPose(int _m) override { return P(this->Get<PoseT>("model_world_pose", _m)); }
 
 private:
-  template<typename... Args>
-  py::object Call(const char *_name, Args &&... _args)
+  // A Python error becomes py::error_already_set, a std::exception: the event reports it against the plugin.
+  // The value comes back as a C++ value, converted under the lock (a py::object outliving it would not be).
+  template<typename R, typename... Args>
+  R Get(const char *_name, Args &&... _args)
   {
-    // A Python error becomes py::error_already_set, a std::exception: the event reports it against the plugin.
-    return this->methods.at(_name)(std::forward<Args>(_args)...);
+    py::gil_scoped_acquire lock;
+    return this->methods.at(_name)(std::forward<Args>(_args)...).template cast<R>();
   }
+
+  template<typename... Args>
+  void Call(const char *_name, Args &&... _args)
+  {
+    py::gil_scoped_acquire lock;
+    this->methods.at(_name)(std::forward<Args>(_args)...);
+  }
+
+  using Vec = std::tuple<double, double, double>;
+  using PoseT = std::tuple<double, double, double, double, double, double, double>;
+  static Vector3d V(const Vec &_v) { return Vector3d(std::get<0>(_v), std::get<1>(_v), std::get<2>(_v)); }
+  static Pose3d P(const PoseT &_p)  // (x, y, z, qx, qy, qz, qw), PyBullet's order
+  {
+    return Pose3d(std::get<0>(_p), std::get<1>(_p), std::get<2>(_p),
+                  std::get<6>(_p), std::get<3>(_p), std::get<4>(_p), std::get<5>(_p));
+  }
+
 
   py::object adapter;
   std::map<std::string, py::object> methods;
@@ -355,6 +367,35 @@ private:
   std::map<int, Loaded> plugins;
   int lastId = 0;
 };
+std::unique_ptr<ros::AsyncSpinner> spinner;
+std::unique_ptr<ros::NodeHandle> rosNode;
+
+// roscpp in this process, as gazebo_ros_api_plugin starts it in gzserver: ros::init (no SIGINT handler: the
+// world server has its own), the node started, an AsyncSpinner serving the global callback queue. `_name`: the
+// node's name, `_remappings` the command line's (name:=value, __ns included). False when it was running already.
+bool StartRoscpp(const std::string &_name, const std::map<std::string, std::string> &_remappings)
+{
+  if (ros::isInitialized())
+    return false;
+  ros::init(_remappings, _name, ros::init_options::NoSigintHandler);
+  rosNode.reset(new ros::NodeHandle());
+  spinner.reset(new ros::AsyncSpinner(0));
+  spinner->start();
+  return true;
+}
+
+void StopRoscpp()
+{
+  if (spinner)
+    spinner->stop();
+  spinner.reset();
+  rosNode.reset();
+  if (ros::isStarted())
+  {
+    ros::shutdown();
+    ros::waitForShutdown();
+  }
+}
 }  // namespace
 
 PYBIND11_MODULE(gazebo_host, m)
@@ -364,12 +405,16 @@ PYBIND11_MODULE(gazebo_host, m)
     .def(py::init<py::object, const std::string &>(), py::arg("adapter"), py::arg("world_name"))
     .def("add_model", &Host::AddModel)
     .def("remove_model", &Host::RemoveModel)
+    // plugin code runs without the interpreter lock (PyEngine takes it for each call into the engine)
     .def("load", &Host::Load, py::arg("kind"), py::arg("path"), py::arg("filename"), py::arg("name"),
-         py::arg("model"), py::arg("xml"))
-    .def("update_begin", &Host::UpdateBegin)
-    .def("update_end", &Host::UpdateEnd)
-    .def("reset", &Host::Reset)
-    .def("unload", &Host::Unload)
+         py::arg("model"), py::arg("xml"), py::call_guard<py::gil_scoped_release>())
+    .def("update_begin", &Host::UpdateBegin, py::call_guard<py::gil_scoped_release>())
+    .def("update_end", &Host::UpdateEnd, py::call_guard<py::gil_scoped_release>())
+    .def("reset", &Host::Reset, py::call_guard<py::gil_scoped_release>())
+    .def("unload", &Host::Unload, py::call_guard<py::gil_scoped_release>())
     .def("ids", &Host::Ids)
-    .def("close", &Host::Close);
+    .def("close", &Host::Close, py::call_guard<py::gil_scoped_release>());
+  m.def("start_roscpp", &StartRoscpp, py::arg("name"), py::arg("remappings"),
+        py::call_guard<py::gil_scoped_release>());
+  m.def("stop_roscpp", &StopRoscpp, py::call_guard<py::gil_scoped_release>());
 }

@@ -200,7 +200,8 @@ class WorldServer:
         self.states_period = self._rate_param('~states_publish_rate', 100.0)
         self.clock_pub = clock_publisher()
         self.sensors = SensorManager(rospy, self.sim)  # before the services: every spawn gets its sensors
-        self.plugins = PluginManager(rospy, self.sim)  # and its model plugins (diff drive, p3d, ...)
+        # and its model plugins (diff drive, p3d, ...; compiled ones with roscpp as node <this node>_cpp)
+        self.plugins = PluginManager(rospy, self.sim, roscpp_name=rospy.get_name().rsplit('/', 1)[-1] + '_cpp')
         # and gazebo_ros_control with its controller manager's services, whatever ~enable_ros_network says
         # (the flag is gazebo_ros_api_plugin's; upstream's gazebo_ros_control reads none)
         GazeboRosControlPlugin.attach(self.sim, rospy)

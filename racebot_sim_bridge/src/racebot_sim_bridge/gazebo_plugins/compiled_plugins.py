@@ -11,6 +11,7 @@ objects. A plugin whose library cannot be loaded, is of another kind, or throws 
 callback is reported with its library and the reason, unloaded, and the world goes on.
 """
 import os
+import sys
 import time
 import xml.etree.ElementTree as ET
 
@@ -30,6 +31,18 @@ def find_library(filename, environ=None):
             if folder and os.path.isfile(path):
                 return path
     return None
+
+
+def roscpp_remappings(argv):
+    """The command line's remappings (name:=value, __ns:= among them) for ros::init, without the node's own name
+    and log file: roscpp gets a name of its own beside the rospy node's."""
+    remappings = {}
+    for arg in argv:
+        if ':=' in arg and not arg.startswith('-'):
+            name, value = arg.split(':=', 1)
+            if name not in ('__name', '__log'):
+                remappings[name] = value
+    return remappings
 
 
 def plugin_xml(spec):
@@ -192,11 +205,15 @@ class EngineAdapter:
 
 class CompiledPlugins:
     """The compiled model plugins of every spawned robot, one gazebo_host.Host for them all (made at the first
-    one). `rospy` logs; `sim` the Simulator, whose lock every call here runs under."""
+    one). `rospy` logs; `sim` the Simulator, whose lock every call here runs under. `roscpp_name`: where a master
+    runs (the world server), the name roscpp's node gets when the first plugin loads (plugins make NodeHandles, as
+    in gzserver, where gazebo_ros_api_plugin has started roscpp); None: roscpp is not started (no master)."""
 
-    def __init__(self, rospy, sim):
+    def __init__(self, rospy, sim, roscpp_name=None):
         self.rospy = rospy
         self.sim = sim
+        self.roscpp_name = roscpp_name
+        self.roscpp_started = False
         self.host = None
         self.adapter = None
         self.unavailable = None  # why the host cannot be made, once known
@@ -260,6 +277,10 @@ class CompiledPlugins:
             self.host.close()
         self.plugins = {}
         self._refresh()
+        if self.roscpp_started:
+            from racebot_sim_bridge.gazebo_plugins import gazebo_host
+            gazebo_host.stop_roscpp()
+            self.roscpp_started = False
 
     def _report(self, failures):
         for plugin_id, label, message in failures:
@@ -282,6 +303,9 @@ class CompiledPlugins:
             return False
         self.adapter = EngineAdapter(self.sim)
         self.host = gazebo_host.Host(self.adapter, self.sim.spec.name)
+        if self.roscpp_name:
+            self.roscpp_started = gazebo_host.start_roscpp(self.roscpp_name, roscpp_remappings(sys.argv))
+            self.rospy.loginfo("compiled plugins: roscpp runs in the world server as node '%s'" % self.roscpp_name)
         return True
 
     def _refresh(self):
