@@ -215,6 +215,8 @@ class WorldServer:
         else:
             rospy.loginfo('ROS gazebo topics/services are disabled (~enable_ros_network is false)')
         self.sim.spawn_world_robots()  # the world file's models with joints, plugins or sensors
+        with self.sim.lock:
+            self.plugins.load_world_plugins()  # then its world plugins, as Gazebo's World loads them
         self.clock_msg = Clock()
         self.last_clock = -math.inf
         self.last_states = -math.inf

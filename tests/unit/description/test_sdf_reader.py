@@ -203,7 +203,7 @@ def test_saved_state_poses_are_applied():
     ('<include><uri>model://cafe_table</uri></include>',
      ("'model://cafe_table'", "model 'cafe_table' not found; searched", 'GAZEBO_MODEL_PATH')),
     ('<actor name="walker"/>', ("<actor> 'walker'", 'actors')),
-    ('<plugin name="wp" filename="libworld.so"/>', ("<plugin> 'wp'", 'world plugins')),
+    ('<plugin name="wp"/>', ("<plugin> 'wp' has no filename",)),
     ('<physics type="ode"><max_step_size>0</max_step_size></physics>',
      ('physics', 'max_step_size must be > 0', 'default 0.001')),
 ])
@@ -389,3 +389,12 @@ def test_an_unusable_physics_value_keeps_the_default_with_one_warning(tag, value
     assert getattr(world.physics, tag) == getattr(Physics(), tag)
     assert parse_world(world_with('', header='<physics type="ode"><real_time_update_rate>0'
                                              '</real_time_update_rate></physics>')).physics.real_time_update_rate == 0
+
+
+def test_a_worlds_plugins_are_kept_as_written_in_order():
+    world = parse_world(world_with('<plugin name="a" filename="liba.so"><rate>5</rate></plugin>'
+                                   '<include><uri>model://ground_plane</uri></include>'
+                                   '<plugin name="b" filename="libb.so"/>'))
+    assert [(p.name, p.filename) for p in world.plugins] == [('a', 'liba.so'), ('b', 'libb.so')]
+    assert '<rate>5</rate>' in world.plugins[0].xml
+    assert world.warnings == []

@@ -12,6 +12,7 @@ import pytest
 
 from racebot_sim_bridge.gazebo_plugins.compiled_plugins import find_library, plugin_xml
 from racebot_sim_bridge.description import urdf_model
+from racebot_sim_bridge.description.sdf_model import WorldPlugin
 
 from model_plugin_sim import PluginWorld
 
@@ -187,6 +188,22 @@ def test_reset_world_calls_reset_and_delete_unloads(world, capfd):
     assert world.manager.compiled.plugins == {}
     assert world.manager.compiled.host.ids() == []
     world.run(0.1)  # no callback of the deleted plugin is left to call
+
+
+def test_a_world_plugin_loads_after_the_models_and_sees_the_world(world, capfd):
+    world.spawn('spinner', robot(), '/', (0.0, 0.0, 0.1))
+    world.sim.spec.plugins = [WorldPlugin('counter', 'libworld_counter.so',
+                                          '<plugin name="counter" filename="libworld_counter.so">'
+                                          '<report>100</report></plugin>'),
+                              WorldPlugin('ghost', 'libnobody_built.so', '<plugin name="ghost" filename="x"/>')]
+    world.manager.load_world_plugins()
+    world.spawn('second', robot(), '/', (2.0, 0.0, 0.1))  # spawned after: the world plugin sees it too
+    world.run(0.2)
+    counts = lines(capfd.readouterr().out, 'WorldCounter')
+    assert counts == ['[Msg] WorldCounter %d models 2 iterations %d' % (n, n) for n in (100, 200)]
+    warnings = world.warnings("world plugin 'ghost' (libnobody_built.so) is not simulated")
+    assert len(warnings) == 1 and 'GAZEBO_PLUGIN_PATH' in warnings[0], world.fake.logs
+    assert world.warnings('libworld_counter.so') == [] and world.errors() == []
 
 
 def test_gazebo_looks_on_the_plugin_path_then_the_linkers(tmp_path):

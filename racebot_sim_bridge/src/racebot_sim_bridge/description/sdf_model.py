@@ -148,11 +148,20 @@ class Light:
 
 
 @dataclass
+class WorldPlugin:
+    """A world's <plugin>: loaded after its models (a compiled world plugin: gazebo_plugins/compiled_plugins.py)."""
+    name: str
+    filename: str
+    xml: str  # the <plugin> element as written
+
+
+@dataclass
 class World:
     name: str = 'default'
     physics: Physics = field(default_factory=Physics)
     models: list = field(default_factory=list)
     lights: list = field(default_factory=list)
+    plugins: list = field(default_factory=list)  # WorldPlugin, in the file's order
     warnings: list = field(default_factory=list)
     source: str = '<string>'
 

@@ -25,8 +25,9 @@ model's own links, so the first link is Gazebo's canonical one.
 
 A model's joints (revolute, prismatic, fixed), its ``<plugin>``s and its links' ``<sensor>``s are
 kept (plugins and sensors as the XML written): such a model is a robot, spawned through the URDF
-path (sdf_urdf.py).  Everything else that matters to the physics (heightmap and polyline
-geometry, world plugins, actors) is skipped with ONE entry in
+path (sdf_urdf.py). A world's ``<plugin>``s are kept as written (``World.plugins``; the world server loads them
+as compiled world plugins after the models). Everything else that matters to the physics (heightmap and polyline
+geometry, actors) is skipped with ONE entry in
 ``World.warnings`` naming the element, where it is and why; so are elements whose values are
 unusable (non-numeric, non-finite, zero or negative sizes) and models or meshes that cannot be
 found (the warning names the URI and every place searched) or read.  Only a missing file, text
@@ -41,7 +42,7 @@ from collections.abc import Sequence
 from racebot_sim_bridge.description import model_path, xml_document
 from racebot_sim_bridge.description.sdf_elements import Unusable, child_bool, child_float, floats, quote
 from racebot_sim_bridge.description.sdf_links import keep
-from racebot_sim_bridge.description.sdf_model import Light, Physics, World
+from racebot_sim_bridge.description.sdf_model import Light, Physics, World, WorldPlugin
 from racebot_sim_bridge.description.sdf_models import ModelReader
 from racebot_sim_bridge.kinematics.rotations import XyzRpy, as_xyz_rpy, compose, inverse
 
@@ -75,7 +76,6 @@ _WORLD_SILENT = {'physics', 'gravity', 'light', 'gui', 'scene', 'spherical_coord
                  'magnetic_field', 'atmosphere', 'wind', 'audio', 'state', 'model', 'include'}
 _WORLD_UNSUPPORTED = {
     'actor': 'actors (animated people) are not supported',
-    'plugin': 'world plugins are not supported',
     'road': 'roads are not supported',
     'population': 'populations are not supported; write the models out',
     'frame': 'frames are not supported',
@@ -193,6 +193,14 @@ class _WorldReader(ModelReader):
 
     # -- the world --------------------------------------------------------------------
 
+    def world_plugin(self, elem):
+        """A world <plugin>, or None (one warning) without a filename."""
+        name, filename = (elem.get('name') or '').strip(), (elem.get('filename') or '').strip()
+        if not filename:
+            self.warn('world', '<plugin> %s has no filename; skipped (give filename="libname.so")' % quote(name))
+            return None
+        return WorldPlugin(name, filename, ET.tostring(elem, encoding='unicode'))
+
     def world(self, root):
         if root.tag == 'world':
             world_elem = root
@@ -222,6 +230,8 @@ class _WorldReader(ModelReader):
                 keep(world.lights, self.light_of_include(child))
             elif child.tag == 'light':
                 keep(world.lights, self.light(child))
+            elif child.tag == 'plugin':
+                keep(world.plugins, self.world_plugin(child))
             elif child.tag in _WORLD_UNSUPPORTED:
                 self.unsupported('world', child, _WORLD_UNSUPPORTED)
             elif child.tag not in _WORLD_SILENT:

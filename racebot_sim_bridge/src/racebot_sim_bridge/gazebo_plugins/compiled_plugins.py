@@ -235,9 +235,7 @@ class CompiledPlugins:
         if not self._ensure_host():
             self.rospy.logerr('%s: %s. The robot works without it' % (label, self.unavailable))
             return False
-        if robot.name not in self.models:
-            self.host.add_model(robot.name, *self.adapter.add_model(robot.body))
-            self.models.add(robot.name)
+        self._add_model(robot)
         try:
             plugin_id = self.host.load('model', path, spec.filename, spec.name, robot.name, plugin_xml(spec))
         except RuntimeError as err:
@@ -248,6 +246,38 @@ class CompiledPlugins:
         self.rospy.loginfo('%s: loaded from %s' % (label, path))
         self._refresh()
         return True
+
+    def load_world(self, plugin):
+        """Loads a world's <plugin> (sdf_model.WorldPlugin), as Gazebo loads them after the world's models: True
+        when it runs, False when it failed (an error says why), None when there is no such library."""
+        path = find_library(plugin.filename)
+        if path is None:
+            return None
+        label = "world plugin '%s' (%s)" % (plugin.name, plugin.filename)
+        if not self._ensure_host():
+            self.rospy.logerr('%s: %s. The world goes on without it' % (label, self.unavailable))
+            return False
+        for name in list(self.sim.robots):
+            self._add_model(self.sim.robots[name])
+        try:
+            plugin_id = self.host.load('world', path, plugin.filename, plugin.name, '', plugin.xml)
+        except RuntimeError as err:
+            self.rospy.logerr('world: not loaded: %s. The world goes on without it; see %s' % (err, SUPPORTED_TABLE))
+            return False
+        self.plugins[plugin_id] = (None, label)
+        self.rospy.loginfo('%s: loaded from %s' % (label, path))
+        self._refresh()
+        return True
+
+    def on_spawn(self, robot):
+        """A robot spawned once the host runs: its world plugins' World::ModelByName finds it."""
+        if self.host is not None:
+            self._add_model(robot)
+
+    def _add_model(self, robot):
+        if robot.name not in self.models:
+            self.host.add_model(robot.name, *self.adapter.add_model(robot.body))
+            self.models.add(robot.name)
 
     def on_delete(self, robot):
         for plugin_id, (name, _) in list(self.plugins.items()):

@@ -60,6 +60,7 @@ class PluginManager:
 
     # -- hooks (called under sim.lock) ----------------------------------------------------------
     def on_spawn(self, robot):
+        self.compiled.on_spawn(robot)
         created = []
         for spec in robot.model.plugins:
             cls = self.registry.find(spec.filename, PluginKind.MODEL)
@@ -79,6 +80,15 @@ class PluginManager:
         if created:
             self.plugins[robot.name] = created
             self._refresh()
+
+    def load_world_plugins(self):
+        """The world file's <plugin>s, after its models, as Gazebo's World loads them: compiled world plugins
+        (racebot simulates none in Python); one without a library gets a warning naming it."""
+        for plugin in self.sim.spec.plugins:
+            if self.compiled.load_world(plugin) is None:
+                self.rospy.logwarn("world: world plugin '%s' (%s) is not simulated by racebot, so what it would do "
+                                   'does not happen; the rest of the world works (%s)'
+                                   % (plugin.name, plugin.filename, self.compiled.missing(plugin.filename)))
 
     def on_delete(self, robot):
         for plugin in self.plugins.pop(robot.name, []):
