@@ -392,6 +392,33 @@ def check_world(check, row):
     return numbers
 
 
+def check_plugin_output(check, row):
+    """A compiled plugin's own words: `text` in the commands' output (the world server's screen, where roslaunch
+    shows it) at least `count` times, within `timeout` s (default 30) of the row being ready."""
+    text, count = check['text'], int(check['count'])
+    timeout = float(check.get('timeout', 30))
+    folder = row['logs_dir']
+    deadline = time.time() + timeout
+    found = {}
+    while True:
+        found = {}
+        for name in sorted(os.listdir(folder)):
+            if name.startswith('command-') and name.endswith('.log'):
+                with open(os.path.join(folder, name), errors='replace') as f:
+                    hits = sum(1 for line in f if text in line)
+                if hits:
+                    found[name] = hits
+        total = sum(found.values())
+        if total >= count or time.time() >= deadline:
+            break
+        time.sleep(1.0)
+    where = ', '.join('%s: %d' % item for item in found.items()) or 'nowhere'
+    numbers = '%r %d time(s) in the commands\' output (%s)' % (text, total, where)
+    if total < count:
+        raise CheckFailed('%r appeared %d time(s), the row expects %d' % (text, total, count), numbers)
+    return numbers
+
+
 def check_floor(check, row):
     """The model stands on the floor: its height (get_model_state) against the world's highest collision
     surface under it no higher than `below` (floor.py, read from the world file, its models and meshes), within
@@ -591,7 +618,8 @@ def check_navigation(check, row):
 
 KINDS = {'controllers': check_controllers, 'drive': check_drive, 'joint_position': check_joint_position,
          'trajectory': check_trajectory, 'gripper': check_gripper, 'sensors': check_sensors, 'world': check_world,
-         'floor': check_floor, 'map': check_map, 'navigation': check_navigation}
+         'floor': check_floor, 'map': check_map, 'navigation': check_navigation,
+         'plugin_output': check_plugin_output}
 
 
 def run(row):

@@ -30,12 +30,14 @@ CHECK_KEYS = {
     'floor': ('world', 'tolerance'),
     'map': ('world', 'cmd_topic', 'route', 'map_topic', 'base_frame', 'height', 'tolerance', 'on_walls', 'explored'),
     'navigation': navigation.KEYS,
+    'plugin_output': ('text', 'count'),
 }
 # the numbers a kind is judged by: at least one must be in a row
 NUMERIC = {'drive': ('expect_speed', 'tolerance'), 'joint_position': ('target', 'tolerance'),
            'trajectory': ('tolerance',), 'gripper': ('position', 'tolerance'), 'sensors': ('count',),
            'controllers': (), 'world': ('min_models',), 'floor': ('tolerance',),
-           'map': ('on_walls', 'explored'), 'navigation': ('localisation_tolerance', 'xy_goal_tolerance')}
+           'map': ('on_walls', 'explored'), 'navigation': ('localisation_tolerance', 'xy_goal_tolerance'),
+           'plugin_output': ('count',)}
 FILE_NAME = re.compile(r'^[A-Za-z0-9_][A-Za-z0-9_.-]*$')
 
 

@@ -308,7 +308,7 @@ def run_checks(row, env, port, master_up, logs, result):
     """The row's checks in a child process (CHECKS) against the running commands, into result['checks']."""
     row_file = os.path.join(logs, 'row.json')
     with open(row_file, 'w') as f:
-        json.dump(row, f, indent=2)
+        json.dump(dict(row, logs_dir=logs), f, indent=2)  # plugin_output reads the commands' logs there
     result_file = os.path.join(logs, 'checks.json')
     if os.path.exists(result_file):
         os.unlink(result_file)

@@ -447,3 +447,17 @@ def test_a_deps_row_runs_in_the_underlay_make_deps_names():
               'racebot deps: underlay: source /cache/deps/ws/devel_isolated/setup.bash', 'racebot deps: done in 1.0 s']
     assert corpus_run.underlay_of(report) == '/cache/deps/ws/devel_isolated/setup.bash'
     assert corpus_run.underlay_of(['racebot deps: no package.xml at or below x']) is None
+
+
+# --- plugin_output: a compiled plugin's own words in the commands' output ---------------------------
+
+def test_plugin_output_counts_the_text_in_every_commands_log(tmp_path):
+    from corpus.checks import CheckFailed, check_plugin_output
+    (tmp_path / 'command-1.log').write_text('[ INFO] [1.2]: Hello World!\nother\n')
+    (tmp_path / 'command-2.log').write_text('Hello World! again\n')
+    (tmp_path / 'checks.log').write_text('Hello World!\n')  # not a command's output
+    row = {'logs_dir': str(tmp_path)}
+    numbers = check_plugin_output({'text': 'Hello World!', 'count': 2}, row)
+    assert numbers == "'Hello World!' 2 time(s) in the commands' output (command-1.log: 1, command-2.log: 1)"
+    with pytest.raises(CheckFailed, match=r"appeared 2 time\(s\), the row expects 3"):
+        check_plugin_output({'text': 'Hello World!', 'count': 3, 'timeout': 0}, row)
