@@ -11,6 +11,9 @@
 // SIGINT handler, an AsyncSpinner on the global queue), under a node name of its own beside the rospy node.
 // Built by racebot_sim_bridge/CMakeLists.txt into the devel space's gazebo_plugins folder.
 #include <dlfcn.h>
+#include <signal.h>
+#include <string.h>
+#include <unistd.h>
 
 #include <map>
 #include <memory>
@@ -120,6 +123,92 @@ private:
   std::map<std::string, py::object> methods;
 };
 
+// A crash inside a plugin's code (a bad pointer) ends the world server, as in Gazebo, but its log says which
+// plugin was running: the fatal signal's handler names the plugin on whose behalf the crashing thread ran (the
+// current owner: its Load, Init, Reset or event callback), or lists the loaded plugins when none was (a plugin's
+// own ROS callback), then hands the signal on to the handler before it (Python's faulthandler, or the default).
+namespace crash
+{
+constexpr int kSlots = 64;
+constexpr int kLabel = 200;
+char labels[kSlots][kLabel];  // by plugin id % kSlots; written while loading, read by the handler
+int ids[kSlots];
+const int kSignals[] = {SIGSEGV, SIGBUS, SIGFPE, SIGILL, SIGABRT};
+struct sigaction previous[sizeof(kSignals) / sizeof(kSignals[0])];
+bool installed = false;
+
+void Say(const char *_text) { (void)!write(STDERR_FILENO, _text, strlen(_text)); }
+
+const char *Name(int _signal)  // strsignal is not async-signal-safe
+{
+  switch (_signal)
+  {
+    case SIGSEGV: return "SIGSEGV";
+    case SIGBUS: return "SIGBUS";
+    case SIGFPE: return "SIGFPE";
+    case SIGILL: return "SIGILL";
+    case SIGABRT: return "SIGABRT";
+    default: return "a fatal signal";
+  }
+}
+
+void Handler(int _signal, siginfo_t *, void *)
+{
+  const int owner = gazebo::event::detail::CurrentOwner();
+  Say("\nracebot: the world server crashed (");
+  Say(Name(_signal));
+  if (owner > 0 && ids[owner % kSlots] == owner)
+  {
+    Say(") inside compiled ");
+    Say(labels[owner % kSlots]);
+    Say(", in its own code: fix or rebuild that plugin, or remove it from the robot's URDF\n");
+  }
+  else
+  {
+    Say(") outside any compiled plugin's Load, Init, Reset or event callback; compiled plugins loaded:");
+    for (int i = 0; i < kSlots; ++i)
+      if (ids[i] > 0)
+      {
+        Say(" ");
+        Say(labels[i]);
+        Say(";");
+      }
+    Say(" (a crash in a plugin's ROS callback shows here too)\n");
+  }
+  for (size_t i = 0; i < sizeof(kSignals) / sizeof(kSignals[0]); ++i)
+    if (kSignals[i] == _signal)
+      sigaction(_signal, &previous[i], nullptr);
+  raise(_signal);
+}
+
+void Install()
+{
+  if (installed)
+    return;
+  installed = true;
+  struct sigaction action;
+  memset(&action, 0, sizeof(action));
+  action.sa_sigaction = Handler;
+  action.sa_flags = SA_SIGINFO | SA_ONSTACK;
+  sigemptyset(&action.sa_mask);
+  for (size_t i = 0; i < sizeof(kSignals) / sizeof(kSignals[0]); ++i)
+    sigaction(kSignals[i], &action, &previous[i]);
+}
+
+void Remember(int _id, const std::string &_label)
+{
+  ids[_id % kSlots] = _id;
+  strncpy(labels[_id % kSlots], _label.c_str(), kLabel - 1);
+  labels[_id % kSlots][kLabel - 1] = '\0';
+}
+
+void Forget(int _id)
+{
+  if (ids[_id % kSlots] == _id)
+    ids[_id % kSlots] = 0;
+}
+}  // namespace crash
+
 // One loaded plugin: what it is, for the messages, and the object itself.
 struct Loaded
 {
@@ -203,6 +292,8 @@ public:
                                "GZ_REGISTER_MODEL_PLUGIN and its kin define)");
     sdf::ElementPtr sdf = this->PluginElement(label, _xml);
     const int id = ++this->lastId;
+    crash::Install();
+    crash::Remember(id, (_kind == "world" ? "world " : "model '" + _model + "': ") + label);
     Loaded loaded;
     loaded.label = label;
     gazebo::event::detail::OwnerScope scope(id);
@@ -242,6 +333,7 @@ public:
     catch (const std::exception &_e)
     {
       gazebo::event::DisconnectOwnerEverywhere(id);
+      crash::Forget(id);
       throw std::runtime_error(label + ": " + _e.what());
     }
     this->plugins[id] = loaded;
@@ -292,6 +384,7 @@ public:
   void Unload(int _id)
   {
     gazebo::event::DisconnectOwnerEverywhere(_id);
+    crash::Forget(_id);
     auto found = this->plugins.find(_id);
     if (found == this->plugins.end())
       return;

@@ -6,7 +6,9 @@ world goes on."""
 import os
 import re
 import shutil
+import signal
 import subprocess
+import sys
 
 import pytest
 
@@ -188,6 +190,32 @@ def test_reset_world_calls_reset_and_delete_unloads(world, capfd):
     assert world.manager.compiled.plugins == {}
     assert world.manager.compiled.host.ids() == []
     world.run(0.1)  # no callback of the deleted plugin is left to call
+
+
+CRASH_SCRIPT = """
+import sys
+sys.path.insert(0, %(here)r)
+from pathlib import Path
+from model_plugin_sim import PluginWorld
+from test_compiled_plugins import robot
+w = PluginWorld(Path(%(tmp)r))
+w.spawn('spinner', robot('<plugin name="crasher" filename="libthrowing_plugin.so"><after>5</after>'
+                         '<crash>true</crash></plugin>'), '/', (0.0, 0.0, 0.1))
+print('stepping', flush=True)
+w.run(0.1)
+print('survived', flush=True)
+"""
+
+
+def test_a_crash_inside_a_plugin_names_the_plugin_in_the_log(tmp_path, plugin_dir):
+    """A bad pointer in a plugin's update ends the process, as in Gazebo, and the log says which plugin ran."""
+    env = dict(os.environ, GAZEBO_PLUGIN_PATH=plugin_dir)
+    done = subprocess.run([sys.executable, '-c', CRASH_SCRIPT % {'here': HERE, 'tmp': str(tmp_path)}], env=env,
+                          stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, timeout=120)
+    assert done.returncode == -signal.SIGSEGV, (done.returncode, done.stdout, done.stderr[-3000:])
+    assert 'stepping' in done.stdout and 'survived' not in done.stdout
+    assert ("racebot: the world server crashed (SIGSEGV) inside compiled model 'spinner': plugin 'crasher' "
+            "(libthrowing_plugin.so), in its own code") in done.stderr, done.stderr[-3000:]
 
 
 def test_a_world_plugin_loads_after_the_models_and_sees_the_world(world, capfd):
