@@ -211,7 +211,7 @@ def test_a_crash_inside_a_plugin_names_the_plugin_in_the_log(tmp_path, plugin_di
     """A bad pointer in a plugin's update ends the process, as in Gazebo, and the log says which plugin ran."""
     env = dict(os.environ, GAZEBO_PLUGIN_PATH=plugin_dir)
     done = subprocess.run([sys.executable, '-c', CRASH_SCRIPT % {'here': HERE, 'tmp': str(tmp_path)}], env=env,
-                          stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, timeout=120)
+                          capture_output=True, text=True, timeout=120)
     assert done.returncode == -signal.SIGSEGV, (done.returncode, done.stdout, done.stderr[-3000:])
     assert 'stepping' in done.stdout and 'survived' not in done.stdout
     assert ("racebot: the world server crashed (SIGSEGV) inside compiled model 'spinner': plugin 'crasher' "
