@@ -47,6 +47,7 @@ FULL = {
     'profile_steps': 5000,
     'fleet': dict(counts=[1, 2, 3, 4, 5, 6, 7, 8], rounds=3, window_s=4.0, warmup_s=1.5, profile_s=8.0),
     'big_world': dict(runs=3, world='auto', models=90, timeout_s=300),
+    'plugins': dict(steps=20000, rounds=5),
 }
 QUICK = {
     'speed': dict(rounds=3, window_s=0.7, warmup_s=0.5, profile_s=0, memory_sim_s=10.0, memory_timeout_s=120),
@@ -61,6 +62,7 @@ QUICK = {
     'profile_steps': 500,
     'fleet': dict(counts=[1, 2], rounds=3, window_s=0.5, warmup_s=0.3),
     'big_world': dict(runs=1, world='generated', models=90, timeout_s=120),
+    'plugins': dict(steps=1000, rounds=3),
 }
 SCENARIO_TIMEOUT_S = 1800
 
@@ -209,9 +211,17 @@ def part_big_world(cfg, out, results):
     results['big_world'] = big_world.run(cfg['big_world'], out, run_scenario)
 
 
-PARTS = (('inprocess', part_inprocess), ('determinism', part_determinism), ('speed', part_speed),
-         ('realtime', part_realtime), ('sensors', part_sensors), ('startup', part_startup), ('fidelity', part_fidelity),
-         ('fleet', part_fleet), ('big_world', part_big_world))
+def part_plugins(cfg, out, results):
+    """A compiled model plugin's update and an empty C++ event callback beside the same work in Python
+    (bench/plugin_cost.py)."""
+    from bench import plugin_cost
+    with common.quiet_stdout():
+        results['plugins'] = plugin_cost.measure(cfg['plugins'], out)
+
+
+PARTS = (('inprocess', part_inprocess), ('plugins', part_plugins), ('determinism', part_determinism),
+         ('speed', part_speed), ('realtime', part_realtime), ('sensors', part_sensors), ('startup', part_startup),
+         ('fidelity', part_fidelity), ('fleet', part_fleet), ('big_world', part_big_world))
 
 
 def machine():

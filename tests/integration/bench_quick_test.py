@@ -66,6 +66,12 @@ class BenchQuickTest(unittest.TestCase):
                             for r in compared['rows']), compared['rows'])  # a quick run is never judged
         self.assertIn('| verdict', self.output)
 
+    def test_compiled_plugin_costs_beside_python(self):
+        pl = self.results['plugins']  # its measure() checked that both velocity plugins turned the joint
+        for variant in ('cpp_empty', 'cpp_velocity', 'python_velocity'):
+            self.assertTrue(finite(pl['overhead_us'][variant]), pl)
+        self.assertIn('compiled model plugin: an empty worldUpdateBegin callback', self.output)
+
     def test_real_time_and_command_path(self):
         rt = self.results['realtime']
         self.assertTrue(0.1 < rt['window']['rtf'] < 10.0, rt['window'])

@@ -182,6 +182,14 @@ SECTIONS = (
          '-', '-', '-'),
         (None, 'simulator in-process, no ROS (real-time factor; min-max)', lambda ip: stats.with_spread(
             stats.spread(ip.get('sim_rtf_runs') or [ip['sim_rtf']]), '%.1f'), '-', '-', '-'))),
+    (lambda r: r.get('plugins'), ('plugins', 'compiled plugins'), (
+        (None, 'compiled model plugin: an empty worldUpdateBegin callback, per update above none (us; min-max)',
+         lambda pl: stats.with_spread(pl['overhead_spread_us']['cpp_empty'], '%.2f'), '-', '<= 5 us',
+         lambda pl: _met(pl['overhead_us']['cpp_empty'] <= 5.0)),
+        (None, 'compiled model plugin: Joint::SetVelocity every update, above none (us; min-max)',
+         lambda pl: stats.with_spread(pl['overhead_spread_us']['cpp_velocity'], '%.2f'),
+         lambda pl: 'Python plugin, same work: %s' % stats.with_spread(pl['overhead_spread_us']['python_velocity'],
+                                                                       '%.2f'), '-', '-'))),
     (lambda r: r.get('determinism'), ('determinism', 'determinism'), (
         (None, lambda de: 'determinism: two runs, %.0f s scripted, max difference' % de['sim_s'],
          lambda de: '%.1e m' % de['max_diff_m'], 'Gazebo: not deterministic', '<= 1e-9 m',

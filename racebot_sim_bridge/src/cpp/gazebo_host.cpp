@@ -15,8 +15,10 @@
 #include <string.h>
 #include <unistd.h>
 
+#include <chrono>
 #include <map>
 #include <memory>
+#include <unordered_map>
 #include <stdexcept>
 #include <string>
 #include <tuple>
@@ -43,8 +45,8 @@ class PyEngine : public gazebo::racebot::Engine
 public:
   explicit PyEngine(py::object _adapter) : adapter(std::move(_adapter))
   {
-    for (const char *name : {"sim_time", "real_time", "step_size", "gravity", "joint_position", "joint_velocity",
-                             "joint_force", "joint_set_velocity", "joint_set_force", "joint_set_position",
+    for (const char *name : {"sim_time", "step_size", "gravity", "joint_position", "joint_velocity",
+                             "joint_set_velocity", "joint_set_force", "joint_set_position",
                              "joint_set_motor", "link_world_pose", "link_world_cog_pose", "link_world_linear_vel",
                              "link_world_cog_linear_vel", "link_world_angular_vel", "link_add_force",
                              "link_add_torque", "link_mass", "model_set_world_pose", "model_set_linear_vel",
@@ -52,16 +54,30 @@ public:
       this->methods[name] = this->adapter.attr(name);
   }
 
-  double SimTime() override { return this->Get<double>("sim_time"); }
-  double RealTime() override { return this->Get<double>("real_time"); }
+  // During a world update, the time it steps to (Gazebo adds the step to its sim time before World::Update, so
+  // World::SimTime() in an event callback is UpdateInfo::simTime); between updates, the simulator's.
+  double SimTime() override { return this->inUpdate ? this->updateTime : this->Get<double>("sim_time"); }
+  double RealTime() override
+  {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - this->started).count();
+  }
   double StepSize() override { return this->Get<double>("step_size"); }
   Vector3d Gravity() override { return V(this->Get<Vec>("gravity")); }
 
   double JointPosition(int _j) override { return this->Get<double>("joint_position", _j); }
   double JointVelocity(int _j) override { return this->Get<double>("joint_velocity", _j); }
-  double JointForce(int _j) override { return this->Get<double>("joint_force", _j); }
+  // Joint::SetForce adds for the coming step (ODE's SaveForce); GetForce reads the sum until the next update
+  double JointForce(int _j) override
+  {
+    auto found = this->efforts.find(_j);
+    return found == this->efforts.end() ? 0.0 : found->second;
+  }
   void JointSetVelocity(int _j, double _v) override { this->Call("joint_set_velocity", _j, _v); }
-  void JointSetForce(int _j, double _f) override { this->Call("joint_set_force", _j, _f); }
+  void JointSetForce(int _j, double _f) override
+  {
+    const double total = (this->efforts[_j] += _f);
+    this->Call("joint_set_force", _j, total);
+  }
   void JointSetPosition(int _j, double _p) override { this->Call("joint_set_position", _j, _p); }
   void JointSetMotor(int _j, double _v, double _f) override { this->Call("joint_set_motor", _j, _v, _f); }
 
@@ -121,6 +137,22 @@ private:
 
   py::object adapter;
   std::map<std::string, py::object> methods;
+
+public:
+  // set by the host around each world update
+  void BeginUpdate(double _time)
+  {
+    this->inUpdate = true;
+    this->updateTime = _time;
+    this->efforts.clear();
+  }
+  void EndUpdate() { this->inUpdate = false; }
+
+private:
+  bool inUpdate = false;
+  double updateTime = 0.0;
+  std::unordered_map<int, double> efforts;
+  std::chrono::steady_clock::time_point started = std::chrono::steady_clock::now();
 };
 
 // A crash inside a plugin's code (a bad pointer) ends the world server, as in Gazebo, but its log says which
@@ -221,8 +253,11 @@ struct Loaded
 class Host
 {
 public:
-  Host(py::object _adapter, const std::string &_worldName)
-    : engine(new PyEngine(std::move(_adapter))), world(new gazebo::physics::World(_worldName))
+  // `_notify(kind, value)`: called (rarely) with ('failures', [(id, label, message)]) when plugins' callbacks threw
+  // and were unloaded, and with ('wants_end', bool) when worldUpdateEnd gains its first or loses its last callback.
+  Host(py::object _adapter, const std::string &_worldName, py::object _notify)
+    : engine(new PyEngine(std::move(_adapter))), world(new gazebo::physics::World(_worldName)),
+      notify(std::move(_notify))
   {
     // the newest host is the one gazebo::physics calls (a world server has one; a test makes one per world)
     gazebo::racebot::SetEngine(this->engine.get());
@@ -341,26 +376,52 @@ public:
   }
 
   // Gazebo's World::Update around the physics step: worldUpdateBegin then beforePhysicsUpdate (before), and
-  // worldUpdateEnd (after). Failures: [(id, label, message)] of plugins whose callback threw, unloaded.
-  std::vector<std::tuple<int, std::string, std::string>> UpdateBegin(double _simTime, double _realTime,
-                                                                     uint64_t _iterations)
+  // worldUpdateEnd (after). The world server's step hooks call these directly, at every world update: no Python
+  // in between, and Python is called back only when something changed (notify).
+  void UpdateBegin(double _simTime)
   {
-    this->info.simTime = gazebo::common::Time(_simTime);
-    this->info.realTime = gazebo::common::Time(_realTime);
-    this->world->SetIterations(_iterations);
-    gazebo::event::Events::worldUpdateBegin(this->info);
-    gazebo::event::Events::beforePhysicsUpdate(this->info);
-    return this->Failures();
+    {
+      py::gil_scoped_release unlocked;  // plugin code may wait on its own ROS threads, which may call the engine
+      this->engine->BeginUpdate(_simTime);
+      this->info.simTime = gazebo::common::Time(_simTime);
+      this->info.realTime = gazebo::common::Time(this->engine->RealTime());
+      this->world->SetIterations(++this->iterations);
+      gazebo::event::Events::worldUpdateBegin(this->info);
+      gazebo::event::Events::beforePhysicsUpdate(this->info);
+    }
+    this->AfterEvents();
   }
 
-  std::vector<std::tuple<int, std::string, std::string>> UpdateEnd()
+  void UpdateEnd(double)
   {
-    gazebo::event::Events::worldUpdateEnd();
-    return this->Failures();
+    {
+      py::gil_scoped_release unlocked;
+      gazebo::event::Events::worldUpdateEnd();
+      this->engine->EndUpdate();
+    }
+    this->AfterEvents();
   }
+
+  // Between updates (the world paused, or no callback wants worldUpdateEnd): World::SimTime() asks the simulator.
+  void Idle() { this->engine->EndUpdate(); }
+
+  // Whether any callback is connected to worldUpdateEnd (the world server calls UpdateEnd only then).
+  bool WantsEnd() const { return gazebo::event::Events::worldUpdateEnd.ConnectionCount() > 0; }
+
+  // The world's update count (World::Iterations): the simulator's, at a load and after a reset.
+  void SetIterations(uint64_t _iterations) { this->iterations = _iterations; }
 
   // reset_world / reset_simulation: each plugin's Reset, then the worldReset event
-  std::vector<std::tuple<int, std::string, std::string>> Reset()
+  void Reset()
+  {
+    {
+      py::gil_scoped_release unlocked;
+      this->ResetPlugins();
+    }
+    this->AfterEvents();
+  }
+
+  void ResetPlugins()
   {
     for (auto &entry : this->plugins)
     {
@@ -378,7 +439,6 @@ public:
       }
     }
     gazebo::event::Events::worldReset();
-    return this->Failures();
   }
 
   void Unload(int _id)
@@ -441,21 +501,37 @@ private:
     return element;
   }
 
-  std::vector<std::tuple<int, std::string, std::string>> Failures()
+  // After events ran: plugins whose callbacks threw are unloaded and reported; a change in whether worldUpdateEnd
+  // has callbacks is reported (the world server hooks UpdateEnd in or out).
+  void AfterEvents()
   {
-    std::vector<std::tuple<int, std::string, std::string>> result;
-    for (const auto &failure : gazebo::event::detail::TakeFailures())
+    auto failures = gazebo::event::detail::TakeFailures();
+    if (!failures.empty())
     {
-      auto found = this->plugins.find(failure.first);
-      const std::string label = found == this->plugins.end() ? "a plugin" : found->second.label;
-      result.emplace_back(failure.first, label, failure.second);
-      this->Unload(failure.first);
+      py::list reported;
+      for (const auto &failure : failures)
+      {
+        auto found = this->plugins.find(failure.first);
+        const std::string label = found == this->plugins.end() ? "a plugin" : found->second.label;
+        reported.append(py::make_tuple(failure.first, label, failure.second));
+        py::gil_scoped_release unlocked;
+        this->Unload(failure.first);
+      }
+      this->notify("failures", reported);
     }
-    return result;
+    const bool wants = this->WantsEnd();
+    if (wants != this->wantedEnd)
+    {
+      this->wantedEnd = wants;
+      this->notify("wants_end", wants);
+    }
   }
 
   std::unique_ptr<PyEngine> engine;
   gazebo::physics::WorldPtr world;
+  py::object notify;
+  bool wantedEnd = false;
+  uint64_t iterations = 0;
   gazebo::common::UpdateInfo info;
   std::map<int, Loaded> plugins;
   int lastId = 0;
@@ -495,15 +571,19 @@ PYBIND11_MODULE(gazebo_host, m)
 {
   m.doc() = "racebot's host of compiled Gazebo plugins (racebot_sim_bridge/src/cpp/gazebo_host.cpp)";
   py::class_<Host>(m, "Host")
-    .def(py::init<py::object, const std::string &>(), py::arg("adapter"), py::arg("world_name"))
+    .def(py::init<py::object, const std::string &, py::object>(), py::arg("adapter"), py::arg("world_name"),
+         py::arg("notify"))
     .def("add_model", &Host::AddModel)
     .def("remove_model", &Host::RemoveModel)
     // plugin code runs without the interpreter lock (PyEngine takes it for each call into the engine)
     .def("load", &Host::Load, py::arg("kind"), py::arg("path"), py::arg("filename"), py::arg("name"),
          py::arg("model"), py::arg("xml"), py::call_guard<py::gil_scoped_release>())
-    .def("update_begin", &Host::UpdateBegin, py::call_guard<py::gil_scoped_release>())
-    .def("update_end", &Host::UpdateEnd, py::call_guard<py::gil_scoped_release>())
-    .def("reset", &Host::Reset, py::call_guard<py::gil_scoped_release>())
+    .def("update_begin", &Host::UpdateBegin)  // these release it themselves, around the events
+    .def("update_end", &Host::UpdateEnd)
+    .def("idle", &Host::Idle)
+    .def("wants_end", &Host::WantsEnd)
+    .def("set_iterations", &Host::SetIterations)
+    .def("reset", &Host::Reset)
     .def("unload", &Host::Unload, py::call_guard<py::gil_scoped_release>())
     .def("ids", &Host::Ids)
     .def("close", &Host::Close, py::call_guard<py::gil_scoped_release>());

@@ -247,3 +247,15 @@ def test_a_window_opens_once_every_topic_has_spoken_and_a_silent_one_does_not_st
     monkeypatch.setattr(scenarios, 'FIRST_MESSAGE_TIMEOUT_S', 0.2)
     waited = scenarios.wait_first_messages({'/scan': 3, '/camera': 0})
     assert 0.2 <= waited < 1.0  # measured as it is: 0 Hz is then the finding
+
+
+def test_the_compiled_plugin_rows_show_each_cost_beside_pythons_and_judge_the_empty_callback():
+    def s(median):
+        return stats.spread([median - 0.5, median, median + 0.5])
+    plugins = {'overhead_us': {'cpp_empty': 2.0, 'cpp_velocity': 4.0, 'python_velocity': 6.0},
+               'overhead_spread_us': {'cpp_empty': s(2.0), 'cpp_velocity': s(4.0), 'python_velocity': s(6.0)}}
+    rows = [row for row in report.rows({'plugins': plugins}) if 'compiled model plugin' in row[0]]
+    assert rows[0][1:] == ('2.00 (1.50-2.50 over 3)', '-', '<= 5 us', 'yes')
+    assert rows[1][1:3] == ('4.00 (3.50-4.50 over 3)', 'Python plugin, same work: 6.00 (5.50-6.50 over 3)')
+    plugins['overhead_us']['cpp_empty'] = 7.5
+    assert [row for row in report.rows({'plugins': plugins}) if 'empty' in row[0]][0][4] == 'NO'

@@ -54,6 +54,7 @@ file(GLOB _racebot_gazebo_sources ${CMAKE_CURRENT_LIST_DIR}/../src/*.cc)
 add_library(gazebo SHARED ${_racebot_gazebo_sources})
 target_include_directories(gazebo PUBLIC ${CMAKE_CURRENT_LIST_DIR}/../include)
 target_link_libraries(gazebo PUBLIC ignition-math6::ignition-math6 ${SDFormat_LIBRARIES})
+target_compile_options(gazebo PRIVATE -O2)  # as Gazebo's own libraries are built, whatever the build type
 set_target_properties(gazebo PROPERTIES LIBRARY_OUTPUT_DIRECTORY ${CATKIN_DEVEL_PREFIX}/lib)
 install(TARGETS gazebo LIBRARY DESTINATION lib)
 install(DIRECTORY ${CMAKE_CURRENT_LIST_DIR}/../include/gazebo DESTINATION include)

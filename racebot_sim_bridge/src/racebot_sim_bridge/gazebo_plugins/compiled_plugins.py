@@ -12,7 +12,6 @@ callback is reported with its library and the reason, unloaded, and the world go
 """
 import os
 import sys
-import time
 import xml.etree.ElementTree as ET
 
 from racebot_sim_bridge.supported_table import WHERE as SUPPORTED_TABLE
@@ -70,14 +69,9 @@ class EngineAdapter:
 
     def __init__(self, sim):
         self.sim = sim
-        self.started = time.monotonic()
         self.models = []  # handle -> engine Model
         self.links = []   # handle -> engine Link
         self.joints = []  # handle -> engine Joint
-        self.efforts = {}  # joint handle -> effort summed for the coming step (Joint::SetForce adds, as ODE)
-        # During a world update, the time it steps to: Gazebo adds the step to its sim time before World::Update,
-        # so World::SimTime() in an event callback is UpdateInfo::simTime. None between updates (sim.time then).
-        self.update_time = None
 
     def add_model(self, body):
         """Numbers an engine Model's links (its root first) and joints; returns gazebo_host.add_model's
@@ -100,11 +94,8 @@ class EngineAdapter:
         return handle, body.static, links, joints
 
     # -- world ------------------------------------------------------------------------------------------
-    def sim_time(self):
-        return self.sim.time if self.update_time is None else self.update_time
-
-    def real_time(self):
-        return time.monotonic() - self.started
+    def sim_time(self):  # between updates (gazebo_host answers during one)
+        return self.sim.time
 
     def step_size(self):
         return self.sim.step_size
@@ -119,16 +110,12 @@ class EngineAdapter:
     def joint_velocity(self, j):
         return self.joints[j].state().velocity
 
-    def joint_force(self, j):
-        return self.efforts.get(j, 0.0)
-
     def joint_set_velocity(self, j, velocity):
         joint = self.joints[j]
         joint.set_position(joint.state().position, velocity)
 
-    def joint_set_force(self, j, effort):
-        total = self.efforts.get(j, 0.0) + effort
-        self.efforts[j] = total
+    def joint_set_force(self, j, total):
+        """The effort for the coming step: gazebo_host sums a plugin's SetForce calls of one update."""
         joint = self.joints[j]
         joint.model.apply_efforts([joint.index], [total])
 
@@ -137,9 +124,6 @@ class EngineAdapter:
 
     def joint_set_motor(self, j, velocity, fmax):
         self.joints[j].drive_velocity(velocity, fmax)
-
-    def clear_efforts(self):
-        self.efforts.clear()
 
     # -- links -----------------------------------------------------------------------------------------
     def _com(self, link):
@@ -220,6 +204,7 @@ class CompiledPlugins:
         self.plugins = {}  # id -> (robot name, label)
         self.models = set()  # robot names the host knows
 
+
     def missing(self, filename):
         """Why a library racebot has no class for was not loaded: the end of the registry's warning."""
         return ('no library %s was found on GAZEBO_PLUGIN_PATH or LD_LIBRARY_PATH (a plugin you build: source its '
@@ -236,6 +221,7 @@ class CompiledPlugins:
             self.rospy.logerr('%s: %s. The robot works without it' % (label, self.unavailable))
             return False
         self._add_model(robot)
+        self.host.set_iterations(self.sim.steps)
         try:
             plugin_id = self.host.load('model', path, spec.filename, spec.name, robot.name, plugin_xml(spec))
         except RuntimeError as err:
@@ -259,6 +245,7 @@ class CompiledPlugins:
             return False
         for name in list(self.sim.robots):
             self._add_model(self.sim.robots[name])
+        self.host.set_iterations(self.sim.steps)
         try:
             plugin_id = self.host.load('world', path, plugin.filename, plugin.name, '', plugin.xml)
         except RuntimeError as err:
@@ -291,16 +278,18 @@ class CompiledPlugins:
 
     def on_reset(self):
         if self.plugins:
-            self._report(self.host.reset())
+            self.host.idle()
+            self.host.set_iterations(self.sim.steps)
+            self.host.reset()
 
-    def before_physics(self, time_next):
-        self.adapter.update_time = time_next
-        self._report(self.host.update_begin(time_next, self.adapter.real_time(), self.sim.steps + 1))
-
-    def after_step(self, time_now):
-        self.adapter.clear_efforts()
-        self._report(self.host.update_end())
-        self.adapter.update_time = None
+    def _notified(self, kind, value):
+        """gazebo_host's news after events: plugins unloaded for a throwing callback, or worldUpdateEnd wanted."""
+        if kind == 'failures':
+            for plugin_id, label, message in value:
+                _, full = self.plugins.pop(plugin_id, (None, label))
+                self.rospy.logerr('%s: unloaded after an exception in its callback: %s. The world goes on without '
+                                  'it' % (full, message))
+        self._refresh()
 
     def close(self):
         if self.host is not None:
@@ -311,14 +300,6 @@ class CompiledPlugins:
             from racebot_sim_bridge.gazebo_plugins import gazebo_host
             gazebo_host.stop_roscpp()
             self.roscpp_started = False
-
-    def _report(self, failures):
-        for plugin_id, label, message in failures:
-            name, full = self.plugins.pop(plugin_id, (None, label))
-            self.rospy.logerr('%s: unloaded after an exception in its callback: %s. The world goes on without it'
-                              % (full, message))
-        if failures:
-            self._refresh()
 
     def _ensure_host(self):
         if self.host is not None:
@@ -332,13 +313,20 @@ class CompiledPlugins:
                                 "racebot's folder" % err)
             return False
         self.adapter = EngineAdapter(self.sim)
-        self.host = gazebo_host.Host(self.adapter, self.sim.spec.name)
+        self.host = gazebo_host.Host(self.adapter, self.sim.spec.name, self._notified)
         if self.roscpp_name:
             self.roscpp_started = gazebo_host.start_roscpp(self.roscpp_name, roscpp_remappings(sys.argv))
             self.rospy.loginfo("compiled plugins: roscpp runs in the world server as node '%s'" % self.roscpp_name)
         return True
 
     def _refresh(self):
+        """gazebo_host's own methods as the step hooks while plugins are loaded (no Python between the world update
+        and the events: each call costs microseconds at thousands of updates a second); worldUpdateEnd's only
+        while a callback wants it (gazebo_host says when that changes)."""
         wanted = bool(self.plugins)
-        self.sim.set_step_hook('before_physics', self.before_physics, wanted)
-        self.sim.set_step_hook('after_step', self.after_step, wanted)
+        if self.host is None:
+            return
+        self.sim.set_step_hook('before_physics', self.host.update_begin, wanted)
+        self.sim.set_step_hook('after_step', self.host.update_end, wanted and self.host.wants_end())
+        if not wanted:
+            self.host.idle()
