@@ -66,17 +66,21 @@ public:
 
   double JointPosition(int _j) override { return this->Get<double>("joint_position", _j); }
   double JointVelocity(int _j) override { return this->Get<double>("joint_velocity", _j); }
-  // Joint::SetForce adds for the coming step (ODE's SaveForce); GetForce reads the sum until the next update
+  // Joint::SetForce adds for the coming step, and the first call of a later update starts again from zero (ODE's
+  // Joint::SaveForce); GetForce reads the last sum until then
   double JointForce(int _j) override
   {
     auto found = this->efforts.find(_j);
-    return found == this->efforts.end() ? 0.0 : found->second;
+    return found == this->efforts.end() ? 0.0 : found->second.second;
   }
   void JointSetVelocity(int _j, double _v) override { this->Call("joint_set_velocity", _j, _v); }
   void JointSetForce(int _j, double _f) override
   {
-    const double total = (this->efforts[_j] += _f);
-    this->Call("joint_set_force", _j, total);
+    auto &saved = this->efforts[_j];
+    if (saved.first != this->updateTime)
+      saved = {this->updateTime, 0.0};
+    saved.second += _f;
+    this->Call("joint_set_force", _j, saved.second);
   }
   void JointSetPosition(int _j, double _p) override { this->Call("joint_set_position", _j, _p); }
   void JointSetMotor(int _j, double _v, double _f) override { this->Call("joint_set_motor", _j, _v, _f); }
@@ -144,14 +148,13 @@ public:
   {
     this->inUpdate = true;
     this->updateTime = _time;
-    this->efforts.clear();
   }
   void EndUpdate() { this->inUpdate = false; }
 
 private:
   bool inUpdate = false;
   double updateTime = 0.0;
-  std::unordered_map<int, double> efforts;
+  std::unordered_map<int, std::pair<double, double>> efforts;  // joint -> (update time, effort summed then)
   std::chrono::steady_clock::time_point started = std::chrono::steady_clock::now();
 };
 
@@ -305,9 +308,16 @@ public:
                                                                  child, limits));
     }
     this->world->AddModel(model);
+    this->controlled.push_back(model);
   }
 
-  void RemoveModel(const std::string &_name) { this->world->RemoveModel(_name); }
+  void RemoveModel(const std::string &_name)
+  {
+    this->world->RemoveModel(_name);
+    this->controlled.clear();
+    for (const auto &model : this->world->Models())
+      this->controlled.push_back(model);
+  }
 
   // Loads the plugin library at `_path` (the <plugin filename> as written: `_filename`) as a plugin of `_kind`
   // ("model": of model `_model`; "world"), with the <plugin> element `_xml`; returns its id. RuntimeError with
@@ -372,6 +382,9 @@ public:
       throw std::runtime_error(label + ": " + _e.what());
     }
     this->plugins[id] = loaded;
+    this->controlled.clear();
+    for (const auto &model : this->world->Models())
+      this->controlled.push_back(model);
     return id;
   }
 
@@ -387,6 +400,8 @@ public:
       this->info.realTime = gazebo::common::Time(this->engine->RealTime());
       this->world->SetIterations(++this->iterations);
       gazebo::event::Events::worldUpdateBegin(this->info);
+      for (const auto &model : this->controlled)  // Gazebo's Model::Update: the models' JointControllers
+        model->Update();
       gazebo::event::Events::beforePhysicsUpdate(this->info);
     }
     this->AfterEvents();
@@ -423,6 +438,8 @@ public:
 
   void ResetPlugins()
   {
+    for (const auto &model : this->world->Models())
+      model->ResetJointController();
     for (auto &entry : this->plugins)
     {
       gazebo::event::detail::OwnerScope scope(entry.first);
@@ -530,6 +547,7 @@ private:
   std::unique_ptr<PyEngine> engine;
   gazebo::physics::WorldPtr world;
   py::object notify;
+  gazebo::physics::Model_V controlled;  // the models whose Update (JointController) runs at each world update
   bool wantedEnd = false;
   uint64_t iterations = 0;
   gazebo::common::UpdateInfo info;

@@ -3,6 +3,7 @@
 plugin API, loaded by their <plugin filename> into a real Simulator and driven by Gazebo's events: what they command
 moves the physics, what they read is the engine's state, and a plugin that fails is reported and unloaded while the
 world goes on."""
+import math
 import os
 import re
 import shutil
@@ -126,6 +127,22 @@ def test_odes_joint_motor_holds_its_velocity(world):
     r = world.spawn('spinner', robot(driver('motor', -4.0)), '/', (0.0, 0.0, 0.1))
     world.run(0.5)
     assert joint_state(r).velocity == pytest.approx(-4.0, abs=0.05)
+
+
+def test_the_models_joint_controller_holds_a_velocity_with_gazebos_pid(world, capfd):
+    """Gazebo's velodyne tutorial: Model::GetJointController()->SetVelocityPID(joint, common::PID(0.1, 0, 0)) and
+    SetVelocityTarget. Gazebo's PID pushes back against error = velocity - target; a P controller alone leaves
+    no steady error on a free joint (nothing resists it)."""
+    r = world.spawn('spinner', robot(driver('pid', 5.0, report=100)), '/', (0.0, 0.0, 0.1))
+    world.run(1.0)
+    assert joint_state(r).velocity == pytest.approx(5.0, abs=0.01)
+    first = lines(capfd.readouterr().out, 'JointDriver update')[0].split()
+    # at update 100 (0.1 s): 0.1 N m per rad/s of error on 0.002 kg m^2: e^(-50 t) of the error is left
+    assert float(first[11]) == pytest.approx(5.0 * (1 - math.exp(-50 * 0.1)), rel=0.02)
+    # GetForce in worldUpdateBegin: the PID's effort of the update before (the controller runs after the event, and
+    # a joint's force is kept until its first SetForce of a later update, as ODE's SaveForce): 0.1 N m per rad/s of
+    # that update's error, one step (e^(50 * 0.001)) larger than this one's
+    assert float(first[13]) == pytest.approx(0.1 * (5.0 - float(first[11])) * math.exp(50 * 0.001), rel=0.01)
 
 
 def test_a_force_plugin_holds_a_body_against_gravity(world, capfd):

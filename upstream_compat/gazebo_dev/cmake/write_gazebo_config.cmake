@@ -45,12 +45,16 @@ if(RACEBOT_STEP_ASIDE OR _racebot_real_gazebo)
 endif()
 
 # The plugin API's library, libgazebo (Gazebo's own name for its core library), on Debian's ignition-math6 and
-# sdformat (12: Gazebo 11 builds on 9, whose ElementPtr API a plugin uses is the same).
+# sdformat (12: Gazebo 11 builds on 9, whose ElementPtr API a plugin uses is the same), and the ignition-common
+# Gazebo's config hands on with them.
 find_package(ignition-math6 REQUIRED)
 find_package(sdformat12 REQUIRED)
+# ignition-common (4 on Debian 12; Gazebo 11 hands on 3): plugins include its Profiler.hh (IGN_PROFILE)
+find_package(ignition-common4 REQUIRED)
 set(CMAKE_CXX_STANDARD 17)
 set(CMAKE_CXX_STANDARD_REQUIRED ON)
-file(GLOB _racebot_gazebo_sources ${CMAKE_CURRENT_LIST_DIR}/../src/*.cc)
+# CONFIGURE_DEPENDS: a source file added later is built without a fresh configure
+file(GLOB _racebot_gazebo_sources CONFIGURE_DEPENDS ${CMAKE_CURRENT_LIST_DIR}/../src/*.cc)
 add_library(gazebo SHARED ${_racebot_gazebo_sources})
 target_include_directories(gazebo PUBLIC ${CMAKE_CURRENT_LIST_DIR}/../include)
 target_link_libraries(gazebo PUBLIC ignition-math6::ignition-math6 ${SDFormat_LIBRARIES})
@@ -63,6 +67,7 @@ install(DIRECTORY ${CMAKE_CURRENT_LIST_DIR}/../include/gazebo DESTINATION includ
 # architecture for find_package to search lib/x86_64-linux-gnu/cmake with
 set(RACEBOT_IGNITION_MATH_DIR "${ignition-math6_DIR}")
 set(RACEBOT_SDFORMAT_DIR "${sdformat12_DIR}")
+set(RACEBOT_IGNITION_COMMON_DIR "${ignition-common4_DIR}")
 set(RACEBOT_GAZEBO_VERSION 11.14.0)
 get_filename_component(RACEBOT_GAZEBO_INCLUDE "${CMAKE_CURRENT_LIST_DIR}/../include" REALPATH)
 set(RACEBOT_GAZEBO_LIBRARY "${CATKIN_DEVEL_PREFIX}/lib/libgazebo.so")

@@ -158,6 +158,17 @@ Vector3d Model::RelativeAngularVel() const
 void Model::SetLinearVel(const Vector3d &_vel) { TheEngine().ModelSetLinearVel(this->handle, _vel); }
 void Model::SetAngularVel(const Vector3d &_vel) { TheEngine().ModelSetAngularVel(this->handle, _vel); }
 
+JointControllerPtr Model::GetJointController()
+{
+  if (!this->jointController)
+  {
+    this->jointController.reset(new JointController(this->shared_from_this()));
+    for (const auto &joint : this->joints)
+      this->jointController->AddJoint(joint);
+  }
+  return this->jointController;
+}
+
 void Model::SetJointPosition(const std::string &_jointName, double _position)
 {
   JointPtr joint = this->GetJoint(_jointName);

@@ -9,6 +9,7 @@
 #include <ignition/math/Pose3.hh>
 #include <ignition/math/Vector3.hh>
 
+#include "gazebo/physics/JointController.hh"
 #include "gazebo/physics/PhysicsTypes.hh"
 #include "gazebo/util/system.hh"
 
@@ -44,11 +45,24 @@ public:
   void SetLinearVel(const ignition::math::Vector3d &_vel);
   void SetAngularVel(const ignition::math::Vector3d &_vel);
   void SetJointPosition(const std::string &_jointName, double _position);
+  // its joints' forces and PIDs, applied at every world update after worldUpdateBegin (made at the first call)
+  JointControllerPtr GetJointController();
 
   // racebot's host builds the model: its links (the canonical one first) and joints.
   int Handle() const { return this->handle; }
   void AddLink(const LinkPtr &_link) { this->links.push_back(_link); }
   void AddJoint(const JointPtr &_joint) { this->joints.push_back(_joint); }
+  // Gazebo's Model::Update: its JointController's, when it has one
+  void Update()
+  {
+    if (this->jointController)
+      this->jointController->Update();
+  }
+  void ResetJointController()
+  {
+    if (this->jointController)
+      this->jointController->Reset();
+  }
 
 private:
   std::string Unscoped(const std::string &_name) const;
@@ -58,6 +72,7 @@ private:
   bool isStatic;
   Link_V links;
   Joint_V joints;
+  JointControllerPtr jointController;
   mutable ignition::math::Pose3d pose;
 };
 }  // namespace physics

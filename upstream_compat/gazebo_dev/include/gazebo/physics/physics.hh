@@ -7,5 +7,6 @@
 #include "gazebo/physics/Model.hh"
 #include "gazebo/physics/Link.hh"
 #include "gazebo/physics/Joint.hh"
+#include "gazebo/physics/JointController.hh"
 
 #endif
