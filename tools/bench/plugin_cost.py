@@ -55,7 +55,7 @@ class PythonDriver(ModelPlugin):
         self.joint_.set_position(self.joint_.state().position, VELOCITY)
 
 
-class _Log:
+class _ErrorsKept:
     """The simulator's and the plugins' log (rospy's calls too): errors kept, the rest dropped."""
 
     def __init__(self):
@@ -93,7 +93,7 @@ def _world(tmp, markup):
         f.write('<sdf version="1.6"><world name="default"><model name="ground_plane"><static>true</static>'
                 '<link name="link"><collision name="c"><geometry><plane><normal>0 0 1</normal></plane></geometry>'
                 '</collision></link></model></world></sdf>')
-    log = _Log()
+    log = _ErrorsKept()
     sim = Simulator(sdf_reader.load_world(path), _NullIO(), log, lambda name: None)
     manager = PluginManager(log, sim, registry=Registry((PythonDriver,)))
     sim.spawn_urdf('spinner', ROBOT % markup, '/', (0.0, 0.0, 0.1))

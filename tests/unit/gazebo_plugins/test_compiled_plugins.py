@@ -210,8 +210,8 @@ def test_reset_world_calls_reset_and_delete_unloads(world, capfd):
 
 
 CRASH_SCRIPT = """
-import sys
-sys.path.insert(0, %(here)r)
+import os, sys
+sys.path[:0] = [%(here)r, os.path.dirname(%(here)r)]  # this folder and tests/unit (model_plugin_sim, fakes)
 from pathlib import Path
 from model_plugin_sim import PluginWorld
 from test_compiled_plugins import robot

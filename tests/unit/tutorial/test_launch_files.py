@@ -18,6 +18,7 @@ EXCLUDED = {'build', 'devel', '.venv', 'install', 'out', '.git', 'node_modules'}
 EXAMPLE_PACKAGE = REPO / 'examples' / 'demo_diffbot'  # hidden from catkin and rospack by examples/CATKIN_IGNORE
 ROBOT_FIXTURES = REPO / 'tests' / 'fixtures' / 'robots'  # the issue-17 test robots' packages
 STANDIN_FIXTURES = REPO / 'tests' / 'fixtures' / 'standin_workspace'  # a workspace naming the stand-ins
+PLUGIN_FIXTURES = REPO / 'tests' / 'fixtures' / 'gazebo_plugin_workspace'  # a compiled plugin package's
 FROM_DEPS = {REPO / 'racebot_gazebo' / 'launch' / 'gmapping.launch': 'gmapping'}  # launch file: the package it needs
 
 
@@ -39,7 +40,7 @@ def ros_package_path(monkeypatch):
         paths = [str(REPO)] + paths
     # the example robot package's own launch file finds its package (last: it shadows nothing)
     monkeypatch.setenv('ROS_PACKAGE_PATH', os.pathsep.join(paths + [str(EXAMPLE_PACKAGE), str(ROBOT_FIXTURES),
-                                                                    str(STANDIN_FIXTURES)]))
+                                                                    str(STANDIN_FIXTURES), str(PLUGIN_FIXTURES)]))
     # roslaunch keeps one RosPack for the process, made from the ROS_PACKAGE_PATH of its first $(find)
     # (an earlier test's, in a whole run): no public call resets it, so start each check with none.
     import roslaunch.substitution_args
