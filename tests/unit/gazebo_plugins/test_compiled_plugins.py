@@ -101,6 +101,10 @@ def test_a_velocity_plugin_drives_its_joint_and_sees_gazebos_times(world, capfd)
     assert float(first[7]) == pytest.approx(0.5, abs=1e-9)
     assert float(first[11]) == pytest.approx(2.5, abs=1e-3)  # its own SetVelocity, read back
     assert int(first[15]) == 499  # worldUpdateEnd came after each update before this one
+    # Joint::GetForceTorque(0).body2Force: what the joint holds of the rotor, in its frame: measured from the first
+    # call on (update 500), so update 1000 reads the rotor's weight held up
+    second = updates[1].split()
+    assert [float(v) for v in second[17:20]] == pytest.approx([0.0, 0.0, ROTOR_MASS * 9.8], abs=0.02 * ROTOR_MASS * 9.8)
 
 
 def test_an_effort_plugin_accelerates_its_joint_by_its_inertia(world, capfd):
@@ -151,7 +155,9 @@ def test_a_force_plugin_holds_a_body_against_gravity(world, capfd):
     r = world.spawn('spinner', robot(pusher), '/', (0.0, 0.0, 1.0))
     world.run(1.0)
     assert r.body.frame_pose().position[2] == pytest.approx(1.0, abs=2e-3)
-    assert 'ModelPusher on spinner::base_link mass 5 force 0 0 53.9' in capfd.readouterr().out
+    out = capfd.readouterr().out
+    assert 'ModelPusher on spinner::base_link mass 5 force 0 0 53.9' in out
+    assert 'ModelPusher world force 0 0 53.9' in out  # Link::WorldForce: what AddForce applied this update
     fall = world.spawn('faller', robot(), '/', (2.0, 0.0, 1.0))
     world.run(0.3)
     assert fall.body.frame_pose().position[2] < 0.7

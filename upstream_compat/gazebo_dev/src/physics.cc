@@ -233,6 +233,10 @@ void Link::AddForceAtWorldPosition(const Vector3d &_force, const Vector3d &_pos)
 }
 
 double Link::GetMass() const { return TheEngine().LinkMass(this->handle); }
+Vector3d Link::WorldForce() const { return TheEngine().LinkWorldForce(this->handle); }
+Vector3d Link::WorldTorque() const { return TheEngine().LinkWorldTorque(this->handle); }
+Vector3d Link::RelativeForce() const { return this->WorldPose().Rot().RotateVectorReverse(this->WorldForce()); }
+Vector3d Link::RelativeTorque() const { return this->WorldPose().Rot().RotateVectorReverse(this->WorldTorque()); }
 
 // -- Joint ------------------------------------------------------------------------------------------------------
 Joint::Joint(const ModelPtr &_model, const std::string &_name, int _handle, const LinkPtr &_parent,
@@ -308,6 +312,17 @@ bool Joint::SetPosition(const unsigned int _index, const double _position, const
     return false;
   TheEngine().JointSetPosition(this->handle, _position);
   return true;
+}
+
+JointWrench Joint::GetForceTorque(unsigned int _index)
+{
+  JointWrench wrench;
+  if (!this->ValidIndex(_index, "GetForceTorque"))
+    return wrench;
+  TheEngine().JointWrench(this->handle, wrench.body2Force, wrench.body2Torque);
+  wrench.body1Force = -wrench.body2Force;
+  wrench.body1Torque = -wrench.body2Torque;
+  return wrench;
 }
 
 double Joint::LowerLimit(unsigned int _index) const

@@ -14,6 +14,7 @@ import os
 import sys
 import xml.etree.ElementTree as ET
 
+from racebot_sim_bridge.gazebo_plugins.gazebo_ros_ft_sensor import wrench_at_link_origin
 from racebot_sim_bridge.supported_table import WHERE as SUPPORTED_TABLE
 
 
@@ -72,6 +73,7 @@ class EngineAdapter:
         self.models = []  # handle -> engine Model
         self.links = []   # handle -> engine Link
         self.joints = []  # handle -> engine Joint
+        self.measured = set()  # joint handles whose wrench PyBullet measures
 
     def add_model(self, body):
         """Numbers an engine Model's links (its root first) and joints; returns gazebo_host.add_model's
@@ -166,6 +168,24 @@ class EngineAdapter:
 
     def link_mass(self, k):
         return self.links[k].dynamics().mass
+
+    def link_world_force(self, k):
+        return self.links[k].applied_wrench()[0]
+
+    def link_world_torque(self, k):
+        return self.links[k].applied_wrench()[1]
+
+    def joint_wrench(self, j):
+        """Joint::GetForceTorque's body2 (gazebo_ros_ft_sensor's reading, in the child link's frame about its
+        origin); PyBullet measures a joint's wrench from the first time it is asked for."""
+        joint = self.joints[j]
+        link = joint.model.links[joint.child_link]
+        if j not in self.measured:
+            self.measured.add(j)
+            link.enable_parent_wrench()
+        force, torque = link.parent_wrench()
+        dyn = link.dynamics()
+        return wrench_at_link_origin(force, torque, dyn.inertial_position, dyn.inertial_orientation)
 
     # -- models ----------------------------------------------------------------------------------------
     def model_world_pose(self, m):

@@ -7,6 +7,7 @@
 #ifndef GAZEBO_COMMON_EVENT_HH_
 #define GAZEBO_COMMON_EVENT_HH_
 
+#include "gazebo/util/bind.hh"
 #include <functional>
 #include <memory>
 #include <mutex>

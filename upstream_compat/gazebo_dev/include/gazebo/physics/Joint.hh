@@ -7,6 +7,7 @@
 #include <string>
 
 #include <boost/any.hpp>
+#include <ignition/math/Vector3.hh>
 
 #include "gazebo/physics/PhysicsTypes.hh"
 #include "gazebo/util/system.hh"
@@ -15,6 +16,17 @@ namespace gazebo
 {
 namespace physics
 {
+// Gazebo's physics::JointWrench: the forces and torques through a joint. racebot measures body2 (what the parent
+// applies to the child link, in the child link's frame, the torque about its origin); body1 is its opposite.
+class JointWrench
+{
+public:
+  ignition::math::Vector3d body1Force;
+  ignition::math::Vector3d body2Force;
+  ignition::math::Vector3d body1Torque;
+  ignition::math::Vector3d body2Torque;
+};
+
 struct JointLimits
 {
   double lower = 0.0;
@@ -43,6 +55,9 @@ public:
   void SetForce(unsigned int _index, double _effort);
   bool SetPosition(const unsigned int _index, const double _position, const bool _preserveWorldVelocity = false);
 
+  // the wrench through the joint in the last step (body2: on the child link; measured from the first call on, so
+  // the first reads zero, as a joint whose feedback Gazebo had not been asked for)
+  JointWrench GetForceTorque(unsigned int _index);
   double LowerLimit(unsigned int _index = 0) const;
   double UpperLimit(unsigned int _index = 0) const;
   double GetEffortLimit(unsigned int _index);

@@ -40,6 +40,12 @@ public:
   // a force at a point given in the world frame: the force at the CoG plus its moment about the CoG
   void AddForceAtWorldPosition(const ignition::math::Vector3d &_force, const ignition::math::Vector3d &_pos);
 
+  // the force and torque applied to the link for the coming step (AddForce & co.), world axes, the torque about
+  // the CoG; RelativeForce / RelativeTorque: in the link frame
+  ignition::math::Vector3d WorldForce() const;
+  ignition::math::Vector3d WorldTorque() const;
+  ignition::math::Vector3d RelativeForce() const;
+  ignition::math::Vector3d RelativeTorque() const;
   double GetMass() const;  // not Gazebo's (GetInertial()->Mass()): racebot has no Inertial class yet
   int Handle() const { return this->handle; }
 

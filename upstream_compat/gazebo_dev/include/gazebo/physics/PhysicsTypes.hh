@@ -5,6 +5,7 @@
 
 #include <vector>
 
+#include "gazebo/util/bind.hh"
 #include <boost/shared_ptr.hpp>
 #include <boost/weak_ptr.hpp>
 #include <boost/make_shared.hpp>

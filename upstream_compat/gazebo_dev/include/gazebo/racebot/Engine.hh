@@ -41,6 +41,12 @@ public:
   virtual void LinkAddForce(int _link, const ignition::math::Vector3d &_force) = 0;  // world frame, at the CoG
   virtual void LinkAddTorque(int _link, const ignition::math::Vector3d &_torque) = 0;
   virtual double LinkMass(int _link) = 0;
+  // the force and torque (about the CoG) applied to the link for the coming step, world axes (Link::WorldForce)
+  virtual ignition::math::Vector3d LinkWorldForce(int _link) = 0;
+  virtual ignition::math::Vector3d LinkWorldTorque(int _link) = 0;
+  // what the joint's parent applies to its child link through it in the last step, in the child link's frame, the
+  // torque about the link's origin (JointWrench::body2Force / body2Torque)
+  virtual void JointWrench(int _joint, ignition::math::Vector3d &_force, ignition::math::Vector3d &_torque) = 0;
 
   virtual void ModelSetWorldPose(int _model, const ignition::math::Pose3d &_pose) = 0;  // of the model frame
   virtual void ModelSetLinearVel(int _model, const ignition::math::Vector3d &_vel) = 0;
