@@ -8,6 +8,7 @@ import os
 import signal
 import subprocess
 import threading
+import time
 
 import rosgraph
 import rospy
@@ -23,14 +24,18 @@ ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)
 class Rosout:
     """Every /rosout message since start, searchable by level, node and text."""
 
-    def __init__(self):
+    def __init__(self, clock=None):
         self.lock = threading.Lock()
         self.messages = []
+        self.clock = clock  # a callable giving sim time, or None
+        self.last_warning = (0.0, 0.0)  # (wall, sim) when the newest warning or worse arrived here
         self.sub = rospy.Subscriber('/rosout', Log, self._on_log, queue_size=1000)
 
     def _on_log(self, msg):
         with self.lock:
             self.messages.append(msg)
+            if msg.level >= Log.WARN:
+                self.last_warning = (time.time(), (self.clock and self.clock()) or 0.0)
 
     def mark(self):
         """An index: find(..., since=mark) looks only at messages after it."""

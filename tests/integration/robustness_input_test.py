@@ -40,8 +40,8 @@ class RobustnessInputTest(unittest.TestCase):
     @classmethod
     def setUpClass(cls):
         rospy.init_node('robustness_input_test')
-        cls.rosout = Rosout()
         cls.sim = SimProbe()
+        cls.rosout = Rosout(clock=lambda: cls.sim.clock)
         cls.joint_state = None
         rospy.Subscriber('/racebot/joint_states', JointState, cls._on_joints, queue_size=1)
         cls.ackermann = rospy.Publisher('/ackermann_cmd_mux/output', AckermannDriveStamped, queue_size=100)
@@ -100,17 +100,22 @@ class RobustnessInputTest(unittest.TestCase):
         return [msg.position[msg.name.index(j)] for j in HINGE_JOINTS]
 
     def flood(self, send, values, times=20):
-        """Each bad value `times` times, fast: the warnings must be throttled, not one per message."""
-        for value in values:
-            for _ in range(times):
+        """Each bad value `times` times, fast: the warnings must be throttled, not one per message.
+        The values take turns: a subscriber that falls behind keeps only its queue's newest messages
+        (rospy drops the older), and any window of them holds every value."""
+        for _ in range(times):
+            for value in values:
                 send(value)
                 time.sleep(0.002)
         RobustnessInputTest.last_flood = (time.time(), self.sim.clock)
 
     def fresh_warnings(self):
         """Wait until the throttle period (5 s; wall time in the simulator, sim time in rospy nodes)
-        since the last flood is over, so the next bad input warns again."""
-        wall, sim = self.last_flood
+        since the last flood and the last warning is over, so the next bad input warns again. A
+        node that falls behind warns after the flood has ended: its warning's arrival here bounds
+        when it was written."""
+        (flood_wall, flood_sim), (warn_wall, warn_sim) = self.last_flood, self.rosout.last_warning
+        wall, sim = max(flood_wall, warn_wall), max(flood_sim, warn_sim)
         wait_for(lambda: time.time() > wall + THROTTLE_S and self.sim.clock > sim + THROTTLE_S,
                  'the warning throttle period to pass')
 
