@@ -10,9 +10,17 @@ catkin_make a workspace under /tmp holding the package, source its devel space a
 (gazebo_ros's empty_world.launch, spawn_model -urdf). Checked: roscpp's node runs beside the world server's rospy
 node without a name clash; the command drives the joint (its velocity topic reads it back); the service moves the
 joint from roscpp's thread while the world steps; ROS_INFO from Load reaches the log.
+
+The same workspace holds tests/fixtures/gazebo_plugin_workspace/fixture_cpp_controllers, a lab's own ros_control
+controllers in C++ (issue 39, point 3): find_package(catkin COMPONENTS controller_interface hardware_interface
+pluginlib realtime_tools), PLUGINLIB_EXPORT_CLASS and a plugin XML. Its launch file spawns a robot into the running
+world and starts them with ros_control's spawner beside a Python controller; checked: list_controllers and
+list_controller_types as ros_control reports them, the C++ velocity forwarder's realtime buffer and publisher, a
+MultiInterfaceController holding a joint with an effort while it reads another joint, a Python controller on the
+next joint in the same updates, a bad joint refused at load with the controller's own error, stop, start, unload.
 """
+import math
 import os
-import shutil
 import subprocess
 import sys
 import unittest
@@ -20,6 +28,10 @@ import unittest
 import rosgraph
 import rospy
 import rostest
+from controller_manager_msgs.srv import (ListControllers, ListControllerTypes, LoadController, SwitchController,
+                                         UnloadController)
+from rosgraph_msgs.msg import Log
+from sensor_msgs.msg import JointState
 from std_msgs.msg import Float64
 from std_srvs.srv import Trigger
 
@@ -27,14 +39,14 @@ from catkin_overlay import BUILD_TIMEOUT, LaunchWatch, ShellCommand, Workspace, 
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 REPO = os.path.dirname(os.path.dirname(HERE))
-PACKAGE = os.path.join(REPO, 'tests', 'fixtures', 'gazebo_plugin_workspace', 'fixture_ros_gazebo_plugins')
+FIXTURES = os.path.join(REPO, 'tests', 'fixtures', 'gazebo_plugin_workspace')
 RACEBOT_SETUP = os.path.join(REPO, 'devel', 'setup.bash')
 STARTUP_TIMEOUT = 180.0  # wall s: world server, spawn and the plugin's first message on a busy 2-core machine
 COMMAND_TIMEOUT = 60.0
 
 
 class CompiledPluginsTest(unittest.TestCase):
-    launch = workspace = None
+    launch = workspace = turntable = None
 
     @classmethod
     def setUpClass(cls):
@@ -51,8 +63,17 @@ class CompiledPluginsTest(unittest.TestCase):
         cls.velocity_sub = rospy.Subscriber('/spinner/joint_velocity', Float64, lambda m: cls.velocities.append(m.data),
                                             queue_size=100)
         cls.cmd = rospy.Publisher('/spinner/cmd', Float64, queue_size=1, latch=True)
+        cls.log = []
+        cls.log_sub = rospy.Subscriber('/rosout', Log, cls.log.append, queue_size=1000)
+        cls.joints = {}
+        cls.joint_sub = rospy.Subscriber('/turntable/joint_states', JointState, cls._on_joints, queue_size=10)
+        cls.wheel_state, cls.watched = [], []
+        rospy.Subscriber('/turntable/wheel_controller/state', Float64, lambda m: cls.wheel_state.append(m.data))
+        rospy.Subscriber('/turntable/arm_controller/watched_position', Float64, lambda m: cls.watched.append(m.data))
+        cls.wheel_cmd = rospy.Publisher('/turntable/wheel_controller/command', Float64, queue_size=1, latch=True)
+        cls.wheel2_cmd = rospy.Publisher('/turntable/wheel2_controller/command', Float64, queue_size=1, latch=True)
         cls.workspace = Workspace('racebot-plugin-ws-')
-        shutil.copytree(PACKAGE, os.path.join(cls.workspace.src, os.path.basename(PACKAGE)))
+        cls.workspace.copy_packages(FIXTURES)
         env = user_environment()
         build = ShellCommand('source %s && catkin_make -C %s' % (RACEBOT_SETUP, cls.workspace.root), env,
                              os.path.join(cls.workspace.root, 'catkin_make.log'), login=True)
@@ -69,7 +90,14 @@ class CompiledPluginsTest(unittest.TestCase):
         cls.watch = LaunchWatch(cls.launch)
 
     @classmethod
+    def _on_joints(cls, msg):
+        cls.joints = {name: (p, v) for name, p, v in zip(msg.name, msg.position, msg.velocity)}
+
+    @classmethod
     def tearDownClass(cls):
+        if cls.turntable is not None:
+            cls.turntable.stop()
+            sys.stdout.write('--- turntable roslaunch output ---\n%s\n' % cls.turntable.output()[-4000:])
         if cls.launch is not None:
             cls.launch.stop()
             sys.stdout.write('--- roslaunch output ---\n%s\n' % cls.launch.output()[-6000:])
@@ -104,6 +132,94 @@ class CompiledPluginsTest(unittest.TestCase):
         self.launched(lambda: self.velocities and abs(self.velocities[-1]) < 1e-6,
                       'the joint stopped by the service', COMMAND_TIMEOUT)
 
+    # -- a lab's C++ ros_control controllers (fixture_cpp_controllers) -------------------------------------------
+    @classmethod
+    def start_turntable(cls):
+        """roslaunch fixture_cpp_controllers turntable.launch into the running world, once."""
+        if cls.turntable is None:
+            rospy.wait_for_service('/gazebo/spawn_urdf_model', timeout=STARTUP_TIMEOUT)
+            cls.turntable = ShellCommand('source %s && exec roslaunch fixture_cpp_controllers turntable.launch'
+                                         % cls.workspace.setup, user_environment(),
+                                         os.path.join(cls.workspace.root, 'turntable.log'), login=True)
+        rospy.wait_for_service(CM + 'list_controllers', timeout=STARTUP_TIMEOUT)
+        LaunchWatch(cls.turntable).wait(lambda: len(cls.running()) == 4, 'the four controllers to run', STARTUP_TIMEOUT)
+
+    @staticmethod
+    def running():
+        controllers = rospy.ServiceProxy(CM + 'list_controllers', ListControllers)().controller
+        return {c.name: c for c in controllers if c.state == 'running'}
+
+    def joint(self, name):
+        return self.joints.get(name, (math.nan, math.nan))
+
+    def test_4_cpp_controllers_are_listed_as_ros_control_lists_them(self):
+        self.start_turntable()
+        claimed = {name: [(r.hardware_interface, list(r.resources)) for r in c.claimed_resources]
+                   for name, c in self.running().items()}
+        self.assertEqual(claimed, {
+            'joint_state_controller': [('hardware_interface::JointStateInterface', [])],
+            'wheel_controller': [('hardware_interface::VelocityJointInterface', ['wheel_joint'])],
+            'wheel2_controller': [('hardware_interface::VelocityJointInterface', ['wheel2_joint'])],
+            'arm_controller': [('hardware_interface::EffortJointInterface', ['arm_joint']),
+                               ('hardware_interface::JointStateInterface', [])]})
+        self.assertEqual(self.running()['wheel_controller'].type, 'fixture_cpp_controllers/VelocityForwardController')
+        types = rospy.ServiceProxy(CM + 'list_controller_types', ListControllerTypes)()
+        listed = dict(zip(types.types, types.base_classes))
+        for cpp in ('VelocityForwardController', 'HoldPositionController'):
+            cpp = 'fixture_cpp_controllers/' + cpp
+            self.assertEqual(listed.get(cpp), 'controller_interface::ControllerBase', types)
+        self.assertIn('velocity_controllers/JointVelocityController', listed)
+
+    def test_5_cpp_and_python_controllers_drive_their_joints_in_the_same_updates(self):
+        self.start_turntable()
+        self.wheel_cmd.publish(Float64(2.0))
+        self.wheel2_cmd.publish(Float64(-1.0))
+        self.launched(lambda: abs(self.joint('wheel_joint')[1] - 2.0) < 1e-6
+                      and abs(self.joint('wheel2_joint')[1] + 1.0) < 1e-6,
+                      'wheel_joint at 2 rad/s (C++) and wheel2_joint at -1 rad/s (Python)', COMMAND_TIMEOUT)
+        # the realtime publisher sends what the C++ controller reads from its handle
+        del self.wheel_state[:]
+        self.launched(lambda: self.wheel_state and abs(self.wheel_state[-1] - 2.0) < 1e-6,
+                      "the C++ controller's state topic at 2 rad/s", COMMAND_TIMEOUT)
+        # the MultiInterfaceController holds arm_joint at its target (effort) and reads wheel_joint (state only)
+        self.launched(lambda: abs(self.joint('arm_joint')[0] - 0.5) < 0.01 and abs(self.joint('arm_joint')[1]) < 0.01,
+                      'arm_joint held at 0.5 rad', COMMAND_TIMEOUT)
+        del self.watched[:]
+        self.launched(lambda: len(self.watched) > 10, 'watched positions', COMMAND_TIMEOUT)
+        self.assertGreater(self.watched[-1], self.watched[0], 'wheel_joint turns, as read by the arm controller')
+
+    def test_6_a_bad_joint_is_refused_at_load_with_the_controllers_own_error(self):
+        self.start_turntable()
+        mark = len(self.log)
+        self.assertFalse(rospy.ServiceProxy(CM + 'load_controller', LoadController)('bad_controller').ok)
+        self.launched(lambda: any("Could not find resource 'no_such_joint'" in m.msg and m.name == '/gazebo_cpp'
+                                  for m in self.log[mark:]), "the C++ controller's ROS_ERROR, from /gazebo_cpp",
+                      COMMAND_TIMEOUT)
+        self.launched(lambda: any("Initializing controller 'bad_controller' failed" in m.msg and m.level == Log.ERROR
+                                  for m in self.log[mark:]), "the controller manager's error", COMMAND_TIMEOUT)
+        self.assertEqual(len(self.running()), 4)
+
+    def test_7_a_cpp_controller_stops_starts_and_unloads(self):
+        self.start_turntable()
+        switch = rospy.ServiceProxy(CM + 'switch_controller', SwitchController)
+        self.wheel_cmd.publish(Float64(2.0))
+        self.launched(lambda: abs(self.joint('wheel_joint')[1] - 2.0) < 1e-6, 'wheel_joint at 2 rad/s', COMMAND_TIMEOUT)
+        self.assertTrue(switch([], ['wheel_controller'], 2, False, 0.0).ok)  # STRICT
+        self.launched(lambda: abs(self.joint('wheel_joint')[1]) < 1e-6, 'the stopped joint at rest', COMMAND_TIMEOUT)
+        self.assertTrue(switch(['wheel_controller'], [], 2, False, 0.0).ok)
+        self.wheel_cmd.publish(Float64(-3.0))
+        self.launched(lambda: abs(self.joint('wheel_joint')[1] + 3.0) < 1e-6, 'wheel_joint at -3 rad/s again',
+                      COMMAND_TIMEOUT)
+        self.assertTrue(switch([], ['wheel_controller'], 2, False, 0.0).ok)
+        self.assertTrue(rospy.ServiceProxy(CM + 'unload_controller', UnloadController)('wheel_controller').ok)
+        self.launched(lambda: '/turntable/wheel_controller/state' not in
+                      [t for t, _ in rosgraph.Master('/compiled_plugins_test').getSystemState()[0]],
+                      "the unloaded controller's publisher gone from the master", COMMAND_TIMEOUT)
+        self.assertNotIn('wheel_controller', self.running())
+        self.assertIn('arm_controller', self.running())
+
+
+CM = '/turntable/controller_manager/'
 
 if __name__ == '__main__':
     rostest.rosrun('racebot_tests', 'compiled_plugins', CompiledPluginsTest, sys.argv)

@@ -4,7 +4,8 @@
 # installs that launch files and tools read (YAML, launch files, plugin description XML: every *.yaml,
 # *.launch and *.xml at the package's top, package.xml aside) and a catkin config, so that `rospack find`,
 # `$(find pkg)`, `roslaunch pkg file` and `find_package(catkin REQUIRED COMPONENTS pkg)` work as upstream's.
-# The config refuses a package whose C++ includes the stand-in's headers (racebot_cpp_check.cmake).
+# The config refuses a package whose C++ includes the stand-in's headers (racebot_cpp_check.cmake), or, for a
+# stand-in with an include/ folder, headers that folder lacks.
 #
 # Each stand-in's CMakeLists.txt is:
 #
@@ -20,13 +21,24 @@
 #                            (gazebo_plugins: gazebo_dev, whose config brings Gazebo's)
 #   RACEBOT_STANDIN_HEADERS  the include folders upstream installs (default: the package's name)
 #   RACEBOT_STANDIN_EXTRAS   more CFG_EXTRAS, relative to the package's cmake/ folder
+#   RACEBOT_STANDIN_CPP_API  ON: the package's include/ holds racebot's copy of part of upstream's C++ API
 
 if(NOT RACEBOT_STANDIN_HEADERS)
   set(RACEBOT_STANDIN_HEADERS ${PROJECT_NAME})
 endif()
 
+# A stand-in with RACEBOT_STANDIN_CPP_API has racebot's copy of part of upstream's C++ API in its include/ folder
+# (ros_control's hardware_interface, controller_interface, realtime_tools: what C++ controllers build against); its
+# config hands the folder on and refuses only headers it lacks.
+set(_racebot_standin_include)
+if(RACEBOT_STANDIN_CPP_API)
+  set(_racebot_standin_include include)
+  install(DIRECTORY include/ DESTINATION ${CATKIN_GLOBAL_INCLUDE_DESTINATION})
+endif()
+
 find_package(catkin REQUIRED COMPONENTS ${RACEBOT_STANDIN_DEPENDS})
 catkin_package(
+  INCLUDE_DIRS ${_racebot_standin_include}
   CATKIN_DEPENDS ${RACEBOT_STANDIN_DEPENDS}
   CFG_EXTRAS
     ${CMAKE_CURRENT_LIST_DIR}/racebot_cpp_check.cmake

@@ -122,3 +122,24 @@ function(racebot_refuse_cpp standin)
     message(FATAL_ERROR "${_message}")
   endif()
 endfunction()
+
+# FATAL_ERROR when the configured package includes a header under any folder in ARGN that is not a file under
+# `root`: for a stand-in (`standin`) that has part of upstream's C++ API.
+function(racebot_refuse_unprovided standin root)
+  foreach(_folder ${ARGN})
+    racebot_cpp_unprovided(_where "${_folder}" "${root}")
+    if(_where)
+      racebot_configured_package(_package)
+      set(_skip "${_package}")
+      if(CATKIN_BLACKLIST_PACKAGES)
+        set(_skip "${CATKIN_BLACKLIST_PACKAGES};${_package}")
+      endif()
+      string(CONCAT _text
+        "racebot: package '${_package}' includes a header of ${standin} that racebot's copy of its C++ API does "
+        "not have (${_where}). Its ${standin} is racebot's stand-in: it has the headers C++ controllers build "
+        "against (docs/SUPPORTED.md lists them), not this one. Leave the package out of the build:\n"
+        "  catkin_make -DCATKIN_BLACKLIST_PACKAGES=\"${_skip}\"")
+      message(FATAL_ERROR "${_text}")
+    endif()
+  endforeach()
+endfunction()

@@ -334,10 +334,19 @@ class CompiledPlugins:
             return False
         self.adapter = EngineAdapter(self.sim)
         self.host = gazebo_host.Host(self.adapter, self.sim.spec.name, self._notified)
-        if self.roscpp_name:
-            self.roscpp_started = gazebo_host.start_roscpp(self.roscpp_name, roscpp_remappings(sys.argv))
-            self.rospy.loginfo("compiled plugins: roscpp runs in the world server as node '%s'" % self.roscpp_name)
+        self.ensure_roscpp()
         return True
+
+    def ensure_roscpp(self):
+        """Starts roscpp in the world server as node `roscpp_name`, once, where a master runs: what compiled plugins
+        and C++ controllers (ros_control/compiled_controllers.py) make their NodeHandles on. False when it cannot."""
+        if self.roscpp_started or not self.roscpp_name:
+            return self.roscpp_started
+        from racebot_sim_bridge.gazebo_plugins import gazebo_host
+        self.roscpp_started = gazebo_host.start_roscpp(self.roscpp_name, roscpp_remappings(sys.argv))
+        if self.roscpp_started:
+            self.rospy.loginfo("roscpp runs in the world server as node '%s'" % self.roscpp_name)
+        return self.roscpp_started
 
     def _refresh(self):
         """gazebo_host's own methods as the step hooks while plugins are loaded (no Python between the world update

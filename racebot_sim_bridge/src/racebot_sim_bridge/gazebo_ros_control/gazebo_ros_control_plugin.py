@@ -19,6 +19,7 @@ from racebot_sim_bridge.gazebo_ros_api import plugin_namespace
 from racebot_sim_bridge.gazebo_ros_api.plugin_kind import PluginKind
 from racebot_sim_bridge.gazebo_ros_control.robot_hw_sim import (DEFAULT_ROBOT_SIM_TYPE, DefaultRobotHWSim,
                                                                 hardware_joints, pid_gains)
+from racebot_sim_bridge.ros_control.compiled_controllers import CompiledControllers
 from racebot_sim_bridge.ros_control.controller_manager import ControllerManager, ControllerManagerServices
 from racebot_sim_bridge.ros_controllers import CONTROLLER_TYPES
 
@@ -38,9 +39,10 @@ class GazeboRosControlPlugin(ControlHook):
     plugin_kind = PluginKind.ROBOT_HARDWARE
     filename = libraries[0]
 
-    def __init__(self, sim, robot, spec, rospy=None, controller_types=CONTROLLER_TYPES):
+    def __init__(self, sim, robot, spec, rospy=None, controller_types=CONTROLLER_TYPES, ensure_roscpp=None):
         """Load(): `spec` is the robot's gazebo_ros_control <plugin> (urdf_model.GazeboPlugin);
-        `controller_types` (type name -> class) are what its controller manager can load. Leaves
+        `controller_types` (type name -> class) are what its controller manager can load, and with
+        `ensure_roscpp` (what starts roscpp in this process) the C++ controllers pluginlib can make. Leaves
         robot.control unset when the transmissions cannot be simulated (the robot stays, without a
         controller manager, as in Gazebo); SpawnError when the spawn must fail (the namespace of
         another robot's controller manager, joints that are not movable)."""
@@ -87,7 +89,7 @@ class GazeboRosControlPlugin(ControlHook):
         self.read, self.write = self.hw.read_sim, self.hw.write_sim  # what step() calls: no layer between
         ns = self.ns
         self.cm = ControllerManager(ns, self.hw, lambda c: sim.get_params('%s/%s' % (ns, c)), sim.io, sim.log,
-                                    controller_types)
+                                    controller_types, CompiledControllers(ns, self.hw, ensure_roscpp))
         self.read(sim.world)
         if rospy is not None:
             self.services = ControllerManagerServices(rospy, self.cm)
@@ -112,14 +114,15 @@ class GazeboRosControlPlugin(ControlHook):
             self.cm.shutdown()
 
     @classmethod
-    def attach(cls, sim, rospy=None, controller_types=CONTROLLER_TYPES):
+    def attach(cls, sim, rospy=None, controller_types=CONTROLLER_TYPES, ensure_roscpp=None):
         """Hooks gazebo_ros_control into `sim` (sim.on_create): every robot spawned from now on that declares
         the plugin gets one, with its controller manager's services when `rospy` is given, loading
-        `controller_types` (type name -> class; ros_controllers' by default). Returns the hook."""
+        `controller_types` (type name -> class; ros_controllers' by default) and, with `ensure_roscpp`, C++
+        controllers. Returns the hook."""
         def on_create(robot):
             spec = control_plugin(robot.model)
             if spec is not None:
-                cls(sim, robot, spec, rospy, controller_types)
+                cls(sim, robot, spec, rospy, controller_types, ensure_roscpp)
             elif robot.model.transmissions:
                 sim.log.warn("%s has <transmission>s but declares no %s plugin: no controller manager for it, so "
                              "its controllers cannot be loaded; add <gazebo><plugin name=\"gazebo_ros_control\" "

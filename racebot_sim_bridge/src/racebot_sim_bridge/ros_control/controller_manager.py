@@ -25,16 +25,19 @@ Entry = collections.namedtuple('Entry', 'controller type_name')
 
 
 class ControllerManager:
-    def __init__(self, ns, hw, get_params, io, log, types):
+    def __init__(self, ns, hw, get_params, io, log, types, compiled=None):
         """get_params(name) -> the dict under <ns>/<name>, or None; log has error/warn/info; types: controller
         type name -> class, what load() builds from (given by whoever builds the manager, as pluginlib's
-        loader gives upstream's: gazebo_ros_control's plugin passes ros_controllers' CONTROLLER_TYPES)."""
+        loader gives upstream's: gazebo_ros_control's plugin passes ros_controllers' CONTROLLER_TYPES);
+        compiled: the C++ controllers pluginlib can make (compiled_controllers.CompiledControllers), asked for a
+        type `types` lacks, or None."""
         self.ns = '/' + ns.strip('/') if ns.strip('/') else ''
         self.hw = hw
         self.get_params = get_params
         self.io = io
         self.log = log
         self.types = dict(types)
+        self.compiled = compiled
         self.loaded = collections.OrderedDict()  # name -> Entry, in load order (= update order)
         self.state = {}  # name -> 'initialized' | 'running' | 'stopped'
         self.pending = None  # the accepted SwitchRequest the next update carries out
@@ -91,10 +94,19 @@ class ControllerManager:
             return None
         type_name = params['type']
         cls = self.types.get(type_name) if isinstance(type_name, str) else None
+        if cls is None and isinstance(type_name, str) and self.compiled is not None:
+            try:
+                made = self.compiled.make(name, type_name)
+            except ControllerInitError as err:
+                self.log.error("Initializing controller '%s' failed: %s" % (name, err))
+                return None
+            if made is not None:
+                return Entry(made, type_name)
         if cls is None:
             self.log.error("Could not load controller '%s' because controller type '%s' does not exist. "
                            "Use 'rosservice call %s/controller_manager/list_controller_types' to get the "
-                           "available types; %s says which ros_controllers racebot has and which not yet"
+                           "available types; %s says which ros_controllers racebot has and which not yet, and "
+                           "how a package's own C++ controller is exported to pluginlib"
                            % (name, type_name, self.ns, WHERE))
             return None
         try:
@@ -197,6 +209,13 @@ class ControllerManager:
                 if h is not None and iface == h.interface:
                     h.command = 0.0 if iface != 'hardware_interface/PositionJointInterface' else h.position
 
+    def type_names(self):
+        """list_controller_types: the Python types, then the C++ ones pluginlib declares that they do not shadow."""
+        names = sorted(self.types)
+        if self.compiled is not None:
+            names += sorted(set(self.compiled.types()) - set(self.types))
+        return names
+
     def list(self):
         with self.lock:
             return [(n, e.type_name, self.state[n], e.controller.claimed_resources()) for n, e in self.loaded.items()]
@@ -294,12 +313,15 @@ class ControllerManagerServices:
                   lambda r: srv.SwitchControllerResponse(manager.switch(
                       r.start_controllers, r.stop_controllers, r.strictness, r.start_asap, r.timeout, running))),
             serve('list_controllers', srv.ListControllers, self._list),
-            serve('list_controller_types', srv.ListControllerTypes,
-                  lambda r: srv.ListControllerTypesResponse(
-                      sorted(manager.types), ['controller_interface::ControllerBase'] * len(manager.types))),
+            serve('list_controller_types', srv.ListControllerTypes, self._list_types),
             serve('reload_controller_libraries', srv.ReloadControllerLibraries,
                   lambda r: srv.ReloadControllerLibrariesResponse(manager.reload_libraries(r.force_kill, running))),
         ]
+
+    def _list_types(self, _req):
+        from controller_manager_msgs.srv import ListControllerTypesResponse
+        names = self.manager.type_names()
+        return ListControllerTypesResponse(names, ['controller_interface::ControllerBase'] * len(names))
 
     def _list(self, _req):
         from controller_manager_msgs.srv import ListControllersResponse
