@@ -7,7 +7,8 @@ packages and tf as catkin components, calls find_package(gazebo REQUIRED) and bu
 sim_robot_plugins compiles a Gazebo C++ world plugin; sim_robot_hw a C++ ros_control RobotHW. As a user would,
 from a login shell that sourced racebot's devel space: catkin_make the workspace, and when it stops, run the
 catkin_make line its message gives. Checked: the world plugin builds against racebot's Gazebo plugin API (issue
-39); the RobotHW, whose ros_control headers racebot does not have yet, is refused with a message naming it, its
+39); the RobotHW builds against racebot's hardware_interface but its node runs
+ros_control's C++ controller manager, which racebot does not have: it is refused with a message naming it, its
 file and how to leave it out; with it left out the workspace builds; `rospack find` gives every stand-in; a
 launch file's `$(find joint_state_controller)/joint_state_controller.yaml` loads into the parameter server;
 `roslaunch joint_state_controller joint_state_controller.launch` resolves.
@@ -32,7 +33,7 @@ STANDINS = ('joint_state_controller', 'effort_controllers', 'position_controller
             'transmission_interface', 'joint_limits_interface', 'control_toolbox', 'realtime_tools',
             'gazebo_plugins', 'gazebo_ros_control', 'gazebo_dev')
 # what each C++ package includes first of what racebot does not have
-REFUSED = {'sim_robot_hw': 'src/sim_robot_hw_node.cpp: #include <hardware_interface/joint_command_interface.h>'}
+REFUSED = {'sim_robot_hw': 'src/sim_robot_hw_node.cpp: #include <controller_manager/controller_manager.h>'}
 SUGGESTED = re.compile(r'catkin_make -DCATKIN_BLACKLIST_PACKAGES="([^"]*)"')
 COMMAND_TIMEOUT = 60.0  # wall s for rospack and roslaunch on a busy machine
 

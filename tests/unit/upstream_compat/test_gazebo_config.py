@@ -134,8 +134,31 @@ def test_a_standins_catkin_config_refuses_code_including_its_headers(tmp_path, s
 
 
 def test_the_advice_keeps_what_is_left_out_already(tmp_path):
-    code, out, _ = project(tmp_path, 'set(CATKIN_BLACKLIST_PACKAGES "other_pkg")\nfind_package(hardware_interface)\n',
-                           {'src/hw.cpp': '#include <hardware_interface/robot_hw.h>\n'}, name='my_robot_hw')
+    code, out, _ = project(tmp_path, 'set(CATKIN_BLACKLIST_PACKAGES "other_pkg")\nfind_package(controller_manager)\n',
+                           {'src/hw.cpp': '#include <controller_manager/controller_manager.h>\n'}, name='my_robot_hw')
     assert code != 0, out
     assert 'catkin_make -DCATKIN_BLACKLIST_PACKAGES="other_pkg;my_robot_hw"' in flat(out)
+
+
+@pytest.mark.parametrize('standin, include, refused', [
+    ('hardware_interface', '#include <hardware_interface/robot_hw.h>', False),
+    ('hardware_interface', '#include <hardware_interface/joint_command_interface.h>', False),
+    ('controller_interface', '#include <controller_interface/multi_interface_controller.h>', False),
+    ('realtime_tools', '#include <realtime_tools/realtime_publisher.h>', False),
+    ('realtime_tools', '#include <realtime_tools/realtime_clock.h>', True),
+    ('hardware_interface', '#include <hardware_interface/posvelacc_command_interface.h>', True),
+])
+def test_a_standin_with_cpp_api_refuses_only_headers_it_lacks(tmp_path, standin, include, refused):
+    """ros_control's stand-ins carry the C++ API controllers build against (RACEBOT_STANDIN_CPP_API): their
+    configs hand on the include folder and refuse a header of theirs that is not in it, naming it."""
+    code, out, _ = project(tmp_path, 'find_package(%s REQUIRED)\n' % standin + REPORT,
+                                {'src/my_controller.cpp': include + '\n'}, name='my_controllers')
+    if not refused:
+        assert code == 0, out
+        return
+    assert code != 0, out
+    out = flat(out)
+    assert ("racebot: package 'my_controllers' includes a header of %s that racebot's copy of its C++ API does not "
+            "have (src/my_controller.cpp: %s)" % (standin, include)) in out
+    assert 'catkin_make -DCATKIN_BLACKLIST_PACKAGES="my_controllers"' in out
 
