@@ -189,6 +189,22 @@ public:
     return loader->isClassAvailable(type);
   }
 
+  // Declared and its library found: what a package built, not a name in racebot's own plugin XMLs.
+  bool Built(const std::string& type)
+  {
+    py::gil_scoped_release release;
+    if (!loader->isClassAvailable(type))
+      return false;
+    try
+    {
+      return !loader->getClassLibraryPath(type).empty();
+    }
+    catch (const pluginlib::PluginlibException&)
+    {
+      return false;
+    }
+  }
+
   std::vector<std::string> Types()
   {
     py::gil_scoped_release release;
@@ -329,6 +345,7 @@ PYBIND11_MODULE(controller_host, m)
     .def(py::init<const std::string&, const std::vector<std::tuple<std::string, std::string, py::object>>&>(),
          py::arg("ns"), py::arg("joints"))
     .def("available", &Host::Available, py::arg("type"))
+    .def("built", &Host::Built, py::arg("type"))
     .def("types", &Host::Types)
     .def("load", &Host::Load, py::arg("name"), py::arg("type"))
     .def("claimed", &Host::Claimed, py::arg("id"))

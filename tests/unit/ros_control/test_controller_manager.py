@@ -13,7 +13,7 @@ import pytest
 
 from racebot_sim_bridge.gazebo_ros_control.robot_hw_sim import hardware_joints
 from racebot_sim_bridge.description import urdf_reader
-from racebot_sim_bridge.ros_control.controller_interface import Controller
+from racebot_sim_bridge.ros_control.controller_interface import Controller, ControllerInitError
 from racebot_sim_bridge.ros_control.controller_manager import ControllerManager
 from racebot_sim_bridge.ros_control.controller_switch import BEST_EFFORT, STRICT
 from racebot_sim_bridge.ros_controllers import CONTROLLER_TYPES
@@ -599,3 +599,84 @@ def test_a_controller_raising_in_update_is_stopped_and_the_others_keep_running()
     assert states == {'broken': 'stopped', 'fine': 'running'}
     assert Counting.updates == 2
     assert any("Controller 'broken' raised ZeroDivisionError" in m for m in log.errors)
+
+
+# -- C++ controllers (ros_control/compiled_controllers.py gives them; the rostest compiled_plugins runs real ones) --
+
+class CompiledTypes:
+    """What CompiledControllers answers the manager: pluginlib's declared types, those whose library is built,
+    and make() (a controller, or ControllerInitError as a C++ init that returned false)."""
+
+    def __init__(self, declared, built, failing=()):
+        self.declared, self.built_types, self.failing = set(declared), set(built), set(failing)
+        self.made = []
+
+    def types(self):
+        return sorted(self.declared)
+
+    def built(self, type_name):
+        return type_name in self.built_types
+
+    def make(self, name, type_name):
+        if type_name not in self.declared:
+            return None
+        if type_name in self.failing:
+            raise ControllerInitError('C++ controller %s: its init returned false' % type_name)
+        self.made.append((name, type_name))
+        controller = Recorder(name, NS, {'joints': []}, None, None)
+        controller.journal = []
+        return controller
+
+
+def compiled_rig(compiled, **params):
+    rig = Rig(dict(PARAMS, **params))
+    rig.cm.compiled = compiled
+    return rig
+
+
+def test_a_type_racebot_lacks_is_made_by_pluginlib():
+    compiled = CompiledTypes(declared={'lab_controllers/Arm'}, built={'lab_controllers/Arm'})
+    rig = compiled_rig(compiled, arm={'type': 'lab_controllers/Arm'})
+    assert rig.cm.load('arm'), rig.log.errors
+    assert compiled.made == [('arm', 'lab_controllers/Arm')]
+    assert rig.cm.list()[0][:3] == ('arm', 'lab_controllers/Arm', 'initialized')
+    assert 'lab_controllers/Arm' in rig.cm.type_names()
+
+
+def test_a_failing_cpp_init_is_an_error_naming_it():
+    compiled = CompiledTypes(declared={'lab_controllers/Arm'}, built={'lab_controllers/Arm'},
+                             failing={'lab_controllers/Arm'})
+    rig = compiled_rig(compiled, arm={'type': 'lab_controllers/Arm'})
+    assert not rig.cm.load('arm')
+    assert "Initializing controller 'arm' failed: C++ controller lab_controllers/Arm" in rig.log.errors[-1]
+    assert rig.cm.list() == []
+
+
+def test_a_built_cpp_controller_runs_instead_of_racebots_python_one():
+    python_type = 'effort_controllers/JointEffortController'
+    compiled = CompiledTypes(declared={python_type}, built={python_type})
+    rig = compiled_rig(compiled)
+    assert rig.cm.load('rear_wheel_effort'), rig.log.errors
+    assert compiled.made == [('rear_wheel_effort', python_type)]
+
+
+def test_racebots_python_controller_is_the_fallback_for_one_not_built_or_not_loading():
+    python_type = 'effort_controllers/JointEffortController'
+    declared_only = CompiledTypes(declared={python_type}, built=())  # racebot's own plugin XML: no library
+    rig = compiled_rig(declared_only)
+    assert rig.cm.load('rear_wheel_effort'), rig.log.errors
+    assert declared_only.made == [] and rig.log.warnings == []
+    failing = CompiledTypes(declared={python_type}, built={python_type}, failing={python_type})
+    rig = compiled_rig(failing)
+    assert rig.cm.load('rear_wheel_effort'), rig.log.errors
+    assert "racebot's Python %s runs instead" % python_type in rig.log.warnings[-1]
+    assert rig.cm.list()[0][1] == python_type
+
+
+def test_list_controller_types_gives_python_then_cpp_types_once():
+    compiled = CompiledTypes(declared={'lab_controllers/Arm', 'effort_controllers/JointEffortController'}, built=())
+    rig = compiled_rig(compiled)
+    names = rig.cm.type_names()
+    assert names.count('effort_controllers/JointEffortController') == 1
+    assert names[-1] == 'lab_controllers/Arm'
+    assert names[:-1] == sorted(names[:-1])

@@ -230,26 +230,28 @@ class CompiledPlugins:
         return ('no library %s was found on GAZEBO_PLUGIN_PATH or LD_LIBRARY_PATH (a plugin you build: source its '
                 "workspace's devel/setup.bash before roslaunch)" % filename)
 
-    def load(self, robot, spec):
+    def load(self, robot, spec, fallback=False):
         """Loads `spec` (a urdf_model.GazeboPlugin) for `robot` when its library is found: True when it runs,
-        False when it failed (an error says why), None when there is no such library."""
+        False when it failed (an error says why), None when there is no such library. fallback: racebot simulates
+        the plugin too, and does when this fails (the message says so)."""
         path = find_library(spec.filename)
         if path is None:
             return None
         label = "%s: plugin '%s' (%s)" % (robot.name, spec.name, spec.filename)
+        without = ("racebot's own simulation of it runs instead" if fallback else 'The robot works without it')
         if not self._ensure_host():
-            self.rospy.logerr('%s: %s. The robot works without it' % (label, self.unavailable))
+            self.rospy.logerr('%s: %s. %s' % (label, self.unavailable, without))
             return False
         self._add_model(robot)
         self.host.set_iterations(self.sim.steps)
         try:
             plugin_id = self.host.load('model', path, spec.filename, spec.name, robot.name, plugin_xml(spec))
         except RuntimeError as err:
-            self.rospy.logerr('%s: not loaded: %s. The robot works without it; see %s'
-                              % (robot.name, err, SUPPORTED_TABLE))
+            self.rospy.logerr('%s: not loaded: %s. %s; see %s' % (robot.name, err, without, SUPPORTED_TABLE))
             return False
         self.plugins[plugin_id] = (robot.name, label)
-        self.rospy.loginfo('%s: loaded from %s' % (label, path))
+        self.rospy.loginfo('%s: loaded from %s%s' % (label, path, " (the package's own build, not racebot's "
+                                                                    'simulation of it)' if fallback else ''))
         self._refresh()
         return True
 

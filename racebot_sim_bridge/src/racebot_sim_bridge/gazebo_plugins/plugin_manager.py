@@ -8,11 +8,13 @@ reason. Nothing a plugin raises reaches the world server: a plugin whose update 
 an error, the world goes on. At each update a plugin is called only outside its quiet span (ModelPlugin.quiet_span:
 its update clock says nothing is due), and what upstream does at every update whatever the rate (the diff drive's
 encoder) is its every_update, called first. A plugin library racebot has no class for is looked for as a compiled
-plugin (compiled_plugins.py), built against racebot's Gazebo plugin API, and loaded when found.
+plugin (compiled_plugins.py), built against racebot's Gazebo plugin API, and loaded when found; so is one it has a
+class for, whose library a package built (ridgeback_gazebo_plugins' own): the library runs, racebot's class only
+when the library does not load.
 """
 from racebot_sim_bridge.engine.sim_time import to_ns
 from racebot_sim_bridge.gazebo_ros_api.plugin_kind import PluginKind
-from racebot_sim_bridge.gazebo_plugins.compiled_plugins import CompiledPlugins
+from racebot_sim_bridge.gazebo_plugins.compiled_plugins import CompiledPlugins, find_library
 from racebot_sim_bridge.gazebo_plugins.model_plugin import ModelPlugin, PluginError
 from racebot_sim_bridge.gazebo_plugins.registry import REGISTRY
 
@@ -64,6 +66,11 @@ class PluginManager:
         created = []
         for spec in robot.model.plugins:
             cls = self.registry.find(spec.filename, PluginKind.MODEL)
+            if cls is not None and find_library(spec.filename) is not None:
+                # the package's own build of a plugin racebot also simulates: it runs, as in Gazebo; racebot's
+                # class is the fallback when it does not load
+                if self.compiled.load(robot, spec, fallback=True):
+                    continue
             if cls is None:
                 warning = self.registry.not_simulated(robot.name, spec)
                 if warning and self.compiled.load(robot, spec) is None:

@@ -57,7 +57,6 @@ class CompiledControllers:
                 self.unavailable = ("racebot's controller host (controller_host) is not built (%s): run 'make build' "
                                     "in racebot's folder" % err)
                 return None
-            self.ensure_roscpp()
             joints = [(n, self.hw.handles[n].interface, self.hw.handles[n]) for n in self.hw.names]
             self.host = controller_host.Host(self.ns, joints)
         return self.host
@@ -67,12 +66,20 @@ class CompiledControllers:
         host = self._ensure_host()
         return host.types() if host is not None else []
 
+    def built(self, type_name):
+        """Whether a package exports `type_name` to pluginlib and its library is there (built): then it runs, not
+        racebot's Python controller of that type (which stays the fallback: racebot's own plugin XMLs name no
+        library)."""
+        host = self._ensure_host()
+        return host is not None and host.built(type_name)
+
     def make(self, name, type_name):
         """The controller `name` of C++ type `type_name`, initialized; None when pluginlib has no such type;
         ControllerInitError saying why when it cannot be made or its init fails."""
         host = self._ensure_host()
         if host is None or not host.available(type_name):
             return None
+        self.ensure_roscpp()  # its NodeHandles
         try:
             ident = host.load(name, type_name)
         except RuntimeError as err:

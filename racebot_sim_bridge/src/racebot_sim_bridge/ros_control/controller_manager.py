@@ -94,12 +94,18 @@ class ControllerManager:
             return None
         type_name = params['type']
         cls = self.types.get(type_name) if isinstance(type_name, str) else None
-        if cls is None and isinstance(type_name, str) and self.compiled is not None:
+        # a C++ controller: of a type racebot has no class for, or whose library a package built (that runs, as
+        # in ros_control; racebot's class of the same type is the fallback when it does not load)
+        if isinstance(type_name, str) and self.compiled is not None and (cls is None or self.compiled.built(type_name)):
             try:
                 made = self.compiled.make(name, type_name)
             except ControllerInitError as err:
-                self.log.error("Initializing controller '%s' failed: %s" % (name, err))
-                return None
+                if cls is None:
+                    self.log.error("Initializing controller '%s' failed: %s" % (name, err))
+                    return None
+                self.log.warn("Controller '%s': the built %s did not load (%s); racebot's Python %s runs instead"
+                              % (name, type_name, err, type_name))
+                made = None
             if made is not None:
                 return Entry(made, type_name)
         if cls is None:
