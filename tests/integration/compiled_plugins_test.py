@@ -18,6 +18,11 @@ world and starts them with ros_control's spawner beside a Python controller; che
 list_controller_types as ros_control reports them, the C++ velocity forwarder's realtime buffer and publisher, a
 MultiInterfaceController holding a joint with an effort while it reads another joint, a Python controller on the
 next joint in the same updates, a bad joint refused at load with the controller's own error, stop, start, unload.
+
+And tests/fixtures/gazebo_plugin_workspace/fixture_robot_hw_sim, a lab's own gazebo_ros_control RobotHWSim
+(issue 39, point 3): its <robotSimType> is made through pluginlib and gets the model, URDF and transmissions in
+initSim; checked: its joints, a virtual one of its own included, reach the Python joint_state_controller; a C++
+controller on its handles and a Python one through the mirror both drive their wheels through its writeSim.
 """
 import math
 import os
@@ -46,7 +51,7 @@ COMMAND_TIMEOUT = 60.0
 
 
 class CompiledPluginsTest(unittest.TestCase):
-    launch = workspace = turntable = None
+    launch = workspace = turntable = rover = None
 
     @classmethod
     def setUpClass(cls):
@@ -70,6 +75,10 @@ class CompiledPluginsTest(unittest.TestCase):
         cls.wheel_state, cls.watched = [], []
         rospy.Subscriber('/turntable/wheel_controller/state', Float64, lambda m: cls.wheel_state.append(m.data))
         rospy.Subscriber('/turntable/arm_controller/watched_position', Float64, lambda m: cls.watched.append(m.data))
+        cls.rover_joints = {}
+        rospy.Subscriber('/rover/joint_states', JointState, cls._on_rover_joints, queue_size=10)
+        cls.left_cmd = rospy.Publisher('/rover/left_controller/command', Float64, queue_size=1, latch=True)
+        cls.right_cmd = rospy.Publisher('/rover/right_controller/command', Float64, queue_size=1, latch=True)
         cls.wheel_cmd = rospy.Publisher('/turntable/wheel_controller/command', Float64, queue_size=1, latch=True)
         cls.wheel2_cmd = rospy.Publisher('/turntable/wheel2_controller/command', Float64, queue_size=1, latch=True)
         cls.workspace = Workspace('racebot-plugin-ws-')
@@ -94,7 +103,14 @@ class CompiledPluginsTest(unittest.TestCase):
         cls.joints = {name: (p, v) for name, p, v in zip(msg.name, msg.position, msg.velocity)}
 
     @classmethod
+    def _on_rover_joints(cls, msg):
+        cls.rover_joints = {name: (p, v) for name, p, v in zip(msg.name, msg.position, msg.velocity)}
+
+    @classmethod
     def tearDownClass(cls):
+        if cls.rover is not None:
+            cls.rover.stop()
+            sys.stdout.write('--- rover roslaunch output ---\n%s\n' % cls.rover.output()[-4000:])
         if cls.turntable is not None:
             cls.turntable.stop()
             sys.stdout.write('--- turntable roslaunch output ---\n%s\n' % cls.turntable.output()[-4000:])
@@ -217,6 +233,29 @@ class CompiledPluginsTest(unittest.TestCase):
                       "the unloaded controller's publisher gone from the master", COMMAND_TIMEOUT)
         self.assertNotIn('wheel_controller', self.running())
         self.assertIn('arm_controller', self.running())
+
+    # -- a lab's C++ RobotHWSim (fixture_robot_hw_sim) ----------------------------------------------------------
+    def test_8_a_packages_robot_hw_sim_carries_cpp_and_python_controllers(self):
+        rospy.wait_for_service('/gazebo/spawn_urdf_model', timeout=STARTUP_TIMEOUT)
+        type(self).rover = ShellCommand('source %s && exec roslaunch fixture_robot_hw_sim rover.launch'
+                                        % self.workspace.setup, user_environment(),
+                                        os.path.join(self.workspace.root, 'rover.log'), login=True)
+        self.launched(lambda: 'WheelHWSim in /rover: 2 driven wheels, 1 joints reported, on model rover'
+                      in self.launch.output(), "the RobotHWSim's ROS_INFO from its initSim")
+        rospy.wait_for_service('/rover/controller_manager/list_controllers', timeout=STARTUP_TIMEOUT)
+        listed = rospy.ServiceProxy('/rover/controller_manager/list_controllers', ListControllers)
+        LaunchWatch(self.rover).wait(lambda: len([c for c in listed().controller if c.state == 'running']) == 3,
+                                     "the rover's three controllers to run", STARTUP_TIMEOUT)
+        # the Python joint_state_controller reports every joint of the RobotHWSim, its virtual mean_wheel too
+        self.launched(lambda: set(self.rover_joints) == {'left_wheel_joint', 'right_wheel_joint', 'flag_joint',
+                                                          'mean_wheel'}, "the RobotHWSim's joints on joint_states",
+                      COMMAND_TIMEOUT)
+        self.left_cmd.publish(Float64(2.0))  # C++ controller, on the RobotHWSim's own handle
+        self.right_cmd.publish(Float64(-1.0))  # Python controller, through the mirror
+        self.launched(lambda: abs(self.rover_joints['left_wheel_joint'][1] - 2.0) < 1e-6
+                      and abs(self.rover_joints['right_wheel_joint'][1] + 1.0) < 1e-6
+                      and abs(self.rover_joints['mean_wheel'][1] - 0.5) < 1e-6,
+                      'left wheel at 2 rad/s, right at -1 rad/s, their mean at 0.5', COMMAND_TIMEOUT)
 
 
 CM = '/turntable/controller_manager/'

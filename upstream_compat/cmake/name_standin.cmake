@@ -22,6 +22,7 @@
 #   RACEBOT_STANDIN_HEADERS  the include folders upstream installs (default: the package's name)
 #   RACEBOT_STANDIN_EXTRAS   more CFG_EXTRAS, relative to the package's cmake/ folder
 #   RACEBOT_STANDIN_CPP_API  ON: the package's include/ holds racebot's copy of part of upstream's C++ API
+#   RACEBOT_STANDIN_LIBRARIES  system libraries (absolute paths) its config hands on, as upstream's DEPENDS do
 
 if(NOT RACEBOT_STANDIN_HEADERS)
   set(RACEBOT_STANDIN_HEADERS ${PROJECT_NAME})
@@ -39,6 +40,7 @@ endif()
 find_package(catkin REQUIRED COMPONENTS ${RACEBOT_STANDIN_DEPENDS})
 catkin_package(
   INCLUDE_DIRS ${_racebot_standin_include}
+  LIBRARIES ${RACEBOT_STANDIN_LIBRARIES}
   CATKIN_DEPENDS ${RACEBOT_STANDIN_DEPENDS}
   CFG_EXTRAS
     ${CMAKE_CURRENT_LIST_DIR}/racebot_cpp_check.cmake

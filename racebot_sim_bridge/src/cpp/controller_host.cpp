@@ -10,6 +10,13 @@
 // that controller claimed (a resource is claimed by one running controller at a time: ros_control's rule, which
 // the Python manager checks), so Python and C++ controllers share the joints within one update.
 //
+// With a package's own RobotHWSim (gazebo_ros_control's <robotSimType>), the RobotHW is that class instead, made through
+// pluginlib and initialized with the model (racebot's Gazebo 11 plugin API, from gazebo_host), its URDF and
+// transmissions; readSim and writeSim run around the controllers. The C++ controllers then use its handles directly,
+// and the Python controllers (joint_state_controller, ...) a mirror of them: Python joint handles that readSim's
+// states are copied into, and whose commands are copied back before writeSim for the joints no running C++
+// controller claimed.
+//
 // Controller code runs without the interpreter lock; it publishes and subscribes with roscpp, which runs in the
 // world server (gazebo_host's start_roscpp). Built by racebot_sim_bridge/CMakeLists.txt into the devel space's
 // ros_control folder.
@@ -17,6 +24,7 @@
 #include <string.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <map>
 #include <memory>
 #include <set>
@@ -31,10 +39,13 @@
 #include <ros/ros.h>
 
 #include <controller_interface/controller_base.h>
+#include <gazebo_ros_control/robot_hw_sim.h>
 #include <hardware_interface/joint_command_interface.h>
 #include <hardware_interface/joint_state_interface.h>
 #include <hardware_interface/robot_hw.h>
 #include <pluginlib/class_loader.hpp>
+#include <tinyxml.h>
+#include <urdf/model.h>
 
 namespace py = pybind11;
 
@@ -137,18 +148,117 @@ private:
 };
 
 typedef pluginlib::ClassLoader<controller_interface::ControllerBase> Loader;
+typedef pluginlib::ClassLoader<gazebo_ros_control::RobotHWSim> SimLoader;
 
-// One process-wide loader (it asks rospack for every package's exported controllers once), kept while a Host is.
-std::shared_ptr<Loader> SharedLoader()
+// One process-wide loader per base class (each asks rospack for every package's exported classes once), kept while
+// a Host is.
+template <class L>
+std::shared_ptr<L> Shared(const char* package, const char* base)
 {
-  static std::weak_ptr<Loader> shared;
-  std::shared_ptr<Loader> loader = shared.lock();
+  static std::weak_ptr<L> shared;
+  std::shared_ptr<L> loader = shared.lock();
   if (!loader)
   {
-    loader = std::make_shared<Loader>("controller_interface", "controller_interface::ControllerBase");
+    loader = std::make_shared<L>(package, base);
     shared = loader;
   }
   return loader;
+}
+
+const char* const kCommandInterfaces[] = {kEffort, kVelocity, kPosition};
+
+// The joint handles of a RobotHWSim's command interface `name` ('hardware_interface/EffortJointInterface', ...).
+hardware_interface::JointCommandInterface* CommandInterface(hardware_interface::RobotHW& hw, const std::string& name)
+{
+  if (name == kEffort)
+    return hw.get<hardware_interface::EffortJointInterface>();
+  if (name == kVelocity)
+    return hw.get<hardware_interface::VelocityJointInterface>();
+  if (name == kPosition)
+    return hw.get<hardware_interface::PositionJointInterface>();
+  return nullptr;
+}
+
+// One joint of a RobotHWSim as the Python controllers see it.
+struct Mirrored
+{
+  hardware_interface::JointStateHandle state;
+  hardware_interface::JointHandle command;  // default (no command) for a joint with only a state
+  bool commanded = false;
+  py::object handle;
+};
+
+// The <hardwareInterface>s of a transmission's <joint> or <actuator>, as written.
+std::vector<std::string> Interfaces(const TiXmlElement* element)
+{
+  std::vector<std::string> interfaces;
+  for (const TiXmlElement* i = element->FirstChildElement("hardwareInterface"); i;
+       i = i->NextSiblingElement("hardwareInterface"))
+    if (i->GetText())
+      interfaces.push_back(i->GetText());
+  return interfaces;
+}
+
+std::string Text(const TiXmlElement* element)
+{
+  TiXmlPrinter printer;
+  element->Accept(&printer);
+  return printer.CStr();
+}
+
+// A URDF's <transmission>s as transmission_interface's TransmissionParser reads them for gazebo_ros_control: one
+// without a name or a <type>, or a joint without a name or a <hardwareInterface>, is left out with an error.
+std::vector<transmission_interface::TransmissionInfo> ParseTransmissions(const std::string& urdf)
+{
+  std::vector<transmission_interface::TransmissionInfo> out;
+  TiXmlDocument doc;
+  if (!doc.Parse(urdf.c_str()) && doc.Error())
+  {
+    ROS_ERROR("Can't parse transmissions. Invalid robot description.");
+    return out;
+  }
+  for (const TiXmlElement* t = doc.RootElement()->FirstChildElement("transmission"); t;
+       t = t->NextSiblingElement("transmission"))
+  {
+    transmission_interface::TransmissionInfo info;
+    const TiXmlElement* type = t->FirstChildElement("type");
+    if (!t->Attribute("name") || !type || !type->GetText())
+    {
+      ROS_ERROR_STREAM("A transmission without a name or a <type> was skipped: " << Text(t));
+      continue;
+    }
+    info.name_ = t->Attribute("name");
+    info.type_ = type->GetText();
+    bool ok = true;
+    for (const TiXmlElement* j = t->FirstChildElement("joint"); j; j = j->NextSiblingElement("joint"))
+    {
+      transmission_interface::JointInfo joint;
+      joint.hardware_interfaces_ = Interfaces(j);
+      if (!j->Attribute("name") || joint.hardware_interfaces_.empty())
+      {
+        ROS_ERROR_STREAM("Transmission '" << info.name_ << "': a joint without a name or a <hardwareInterface>; "
+                                             "the transmission is skipped");
+        ok = false;
+        break;
+      }
+      joint.name_ = j->Attribute("name");
+      const TiXmlElement* role = j->FirstChildElement("role");
+      joint.role_ = role && role->GetText() ? role->GetText() : "";
+      joint.xml_element_ = Text(j);
+      info.joints_.push_back(joint);
+    }
+    for (const TiXmlElement* a = t->FirstChildElement("actuator"); ok && a; a = a->NextSiblingElement("actuator"))
+    {
+      transmission_interface::ActuatorInfo actuator;
+      actuator.name_ = a->Attribute("name") ? a->Attribute("name") : "";
+      actuator.hardware_interfaces_ = Interfaces(a);
+      actuator.xml_element_ = Text(a);
+      info.actuators_.push_back(actuator);
+    }
+    if (ok)
+      out.push_back(info);
+  }
+  return out;
 }
 
 struct Loaded
@@ -156,6 +266,8 @@ struct Loaded
   std::string name, type, label;
   controller_interface::ControllerBase::ClaimedResources claimed;
   std::vector<size_t> commanded;  // the joints whose commands it claimed, by index
+  std::set<std::string> claimed_joints;  // the same by name (a RobotHWSim's joints)
+  bool running = false;
   std::shared_ptr<controller_interface::ControllerBase> controller;
 };
 
@@ -164,8 +276,10 @@ class Host
 {
 public:
   // joints: (name, interface, Python JointHandle) for every joint of the robot's RobotHWSim.
+  // joints: (name, interface, Python JointHandle) for every joint of the robot's DefaultRobotHWSim; none for a
+  // robot whose RobotHWSim is a package's own (InitSim).
   Host(const std::string& ns, const std::vector<std::tuple<std::string, std::string, py::object>>& joints)
-    : ns(ns), loader(SharedLoader())
+    : ns(ns), loader(Shared<Loader>("controller_interface", "controller_interface::ControllerBase"))
   {
     std::vector<std::pair<std::string, std::string>> described;
     for (const auto& joint : joints)
@@ -173,14 +287,148 @@ public:
       described.emplace_back(std::get<0>(joint), std::get<1>(joint));
       handles.push_back(std::get<2>(joint));
     }
-    hw.reset(new SimRobotHW(described));
+    sim_hw.reset(new SimRobotHW(described));
+    hw = sim_hw.get();
     crash::Install();
   }
 
-  ~Host()
+  ~Host() { Close(); }
+
+  // The controllers, then the RobotHWSim, then the loaders that hold their libraries.
+  void Close()
+  {
+    std::vector<py::object> gone;
+    gone.swap(handles);
+    for (Mirrored& m : mirror)
+      gone.push_back(m.handle);
+    mirror.clear();
+    py::gil_scoped_release release;
+    controllers.clear();
+    hw = sim_hw.get();
+    robot_hw_sim.reset();
+    sim_loader.reset();
+  }
+
+  // gazebo_ros_control's Load with <robotSimType> `type`: the URDF from the parameter `robot_param` (searched up
+  // from the robot's namespace), its transmissions, the RobotHWSim made through pluginlib and its initSim. Its joints
+  // as [(name, [command interfaces])], every joint of its JointStateInterface; std::runtime_error saying why when it
+  // cannot be made or initSim fails.
+  std::vector<std::pair<std::string, std::vector<std::string>>> InitSim(const std::string& type,
+                                                                       const std::string& robot_namespace,
+                                                                       const std::string& robot_param,
+                                                                       py::capsule model)
+  {
+    gazebo::physics::ModelPtr parent = *static_cast<gazebo::physics::ModelPtr*>(model.get_pointer());
+    {
+      py::gil_scoped_release release;  // initSim calls the engine, which takes the lock per call
+      ros::NodeHandle model_nh(robot_namespace);
+      std::string found, urdf_xml;
+      if (!model_nh.searchParam(robot_param, found) || !model_nh.getParam(found, urdf_xml))
+        throw std::runtime_error("no URDF on the parameter server under '" + robot_param + "' (searched from '" +
+                                 model_nh.getNamespace() + "'); set <robotParam> or load the robot's description");
+      const std::vector<transmission_interface::TransmissionInfo> infos = ParseTransmissions(urdf_xml);
+      sim_loader = Shared<SimLoader>("gazebo_ros_control", "gazebo_ros_control::RobotHWSim");
+      try
+      {
+        robot_hw_sim = sim_loader->createSharedInstance(type);
+      }
+      catch (const pluginlib::PluginlibException& error)
+      {
+        throw std::runtime_error("pluginlib could not make the RobotHWSim " + type + ": " + error.what());
+      }
+      const urdf::Model* urdf = urdf_model.initString(urdf_xml) ? &urdf_model : nullptr;
+      bool ok = false;
+      try
+      {
+        crash::Running running("RobotHWSim " + type);
+        ok = robot_hw_sim->initSim(robot_namespace, model_nh, parent, urdf, infos);
+      }
+      catch (const std::exception& error)
+      {
+        throw std::runtime_error("the RobotHWSim " + type + "'s initSim threw: " + error.what());
+      }
+      if (!ok)
+        throw std::runtime_error("the RobotHWSim " + type + "'s initSim returned false (its own error is in the "
+                                 "world server's log, from its roscpp node)");
+    }
+    hw = robot_hw_sim.get();
+    sim_label = "RobotHWSim " + type;
+    std::vector<std::pair<std::string, std::vector<std::string>>> joints;
+    auto* states = hw->get<hardware_interface::JointStateInterface>();
+    for (const std::string& name : states ? states->getNames() : std::vector<std::string>())
+    {
+      std::vector<std::string> interfaces;
+      for (const char* interface : kCommandInterfaces)
+      {
+        auto* commands = CommandInterface(*hw, interface);
+        if (commands)
+        {
+          const std::vector<std::string> names = commands->getNames();
+          if (std::find(names.begin(), names.end(), name) != names.end())
+            interfaces.push_back(interface);
+        }
+      }
+      joints.emplace_back(name, interfaces);
+    }
+    return joints;
+  }
+
+  // The Python handles of the RobotHWSim's joints: (name, interface it is commanded through or '', handle).
+  void BindMirror(const std::vector<std::tuple<std::string, std::string, py::object>>& joints)
+  {
+    auto* states = hw->get<hardware_interface::JointStateInterface>();
+    mirror.clear();
+    for (const auto& joint : joints)
+    {
+      Mirrored m;
+      m.state = states->getHandle(std::get<0>(joint));
+      if (!std::get<1>(joint).empty())
+      {
+        m.command = CommandInterface(*hw, std::get<1>(joint))->getHandle(std::get<0>(joint));
+        m.commanded = true;
+      }
+      m.handle = std::get<2>(joint);
+      mirror.push_back(m);
+    }
+  }
+
+  // readSim, then the states into the Python handles.
+  void ReadSim(double time, double period)
+  {
+    {
+      py::gil_scoped_release release;
+      crash::Running running(sim_label);
+      robot_hw_sim->readSim(ros::Time(time), ros::Duration(period));
+    }
+    static const py::str position("position"), velocity("velocity"), effort("effort");
+    for (Mirrored& m : mirror)
+    {
+      m.handle.attr(position) = m.state.getPosition();
+      m.handle.attr(velocity) = m.state.getVelocity();
+      m.handle.attr(effort) = m.state.getEffort();
+    }
+  }
+
+  // The Python controllers' commands (joints no running C++ controller claimed), then writeSim.
+  void WriteSim(double time, double period)
+  {
+    std::set<std::string> cpp;
+    for (const auto& entry : controllers)
+      if (entry.second->running)
+        cpp.insert(entry.second->claimed_joints.begin(), entry.second->claimed_joints.end());
+    static const py::str command("command");
+    for (Mirrored& m : mirror)
+      if (m.commanded && !cpp.count(m.state.getName()))
+        m.command.setCommand(m.handle.attr(command).cast<double>());
+    py::gil_scoped_release release;
+    crash::Running running(sim_label);
+    robot_hw_sim->writeSim(ros::Time(time), ros::Duration(period));
+  }
+
+  void EStopActive(bool active)
   {
     py::gil_scoped_release release;
-    controllers.clear();  // before the loader that holds their libraries
+    robot_hw_sim->eStopActive(active);
   }
 
   bool Available(const std::string& type)
@@ -198,6 +446,23 @@ public:
     try
     {
       return !loader->getClassLibraryPath(type).empty();
+    }
+    catch (const pluginlib::PluginlibException&)
+    {
+      return false;
+    }
+  }
+
+  // A RobotHWSim class `type` declared to pluginlib whose library is there.
+  bool SimAvailable(const std::string& type)
+  {
+    py::gil_scoped_release release;
+    auto simulated = Shared<SimLoader>("gazebo_ros_control", "gazebo_ros_control::RobotHWSim");
+    if (!simulated->isClassAvailable(type))
+      return false;
+    try
+    {
+      return !simulated->getClassLibraryPath(type).empty();
     }
     catch (const pluginlib::PluginlibException&)
     {
@@ -234,7 +499,7 @@ public:
       try
       {
         crash::Running running(made->label);
-        ok = made->controller->initRequest(hw.get(), root, own, made->claimed);
+        ok = made->controller->initRequest(hw, root, own, made->claimed);
       }
       catch (const std::exception& error)
       {
@@ -248,8 +513,11 @@ public:
       if (claimed.hardware_interface != "hardware_interface::JointStateInterface")
         for (const std::string& resource : claimed.resources)
         {
-          auto found = hw->index.find(resource);
-          if (found != hw->index.end())
+          made->claimed_joints.insert(resource);
+          if (!sim_hw)
+            continue;
+          auto found = sim_hw->index.find(resource);
+          if (found != sim_hw->index.end())
             made->commanded.push_back(found->second);
         }
     const int id = ++last_id;
@@ -267,8 +535,16 @@ public:
     return out;
   }
 
-  void Starting(int id, double time) { Call(id, [time](controller_interface::ControllerBase& c) { c.startRequest(ros::Time(time)); }); }
-  void Stopping(int id, double time) { Call(id, [time](controller_interface::ControllerBase& c) { c.stopRequest(ros::Time(time)); }); }
+  void Starting(int id, double time)
+  {
+    Call(id, [time](controller_interface::ControllerBase& c) { c.startRequest(ros::Time(time)); });
+    Get(id).running = true;
+  }
+  void Stopping(int id, double time)
+  {
+    Get(id).running = false;
+    Call(id, [time](controller_interface::ControllerBase& c) { c.stopRequest(ros::Time(time)); });
+  }
   void Update(int id, double time, double period)
   {
     Call(id, [time, period](controller_interface::ControllerBase& c) {
@@ -293,17 +569,17 @@ private:
     return *found->second;
   }
 
-  // The joints' state and commands from the Python handles.
+  // The joints' state and commands from the Python handles (a DefaultRobotHWSim's; a RobotHWSim's are its own).
   void Read()
   {
     static const py::str position("position"), velocity("velocity"), effort("effort"), command("command");
     for (size_t i = 0; i < handles.size(); ++i)
     {
       const py::handle h = handles[i];
-      hw->pos[i] = h.attr(position).cast<double>();
-      hw->vel[i] = h.attr(velocity).cast<double>();
-      hw->eff[i] = h.attr(effort).cast<double>();
-      hw->cmd[i] = h.attr(command).cast<double>();
+      sim_hw->pos[i] = h.attr(position).cast<double>();
+      sim_hw->vel[i] = h.attr(velocity).cast<double>();
+      sim_hw->eff[i] = h.attr(effort).cast<double>();
+      sim_hw->cmd[i] = h.attr(command).cast<double>();
     }
   }
 
@@ -326,12 +602,18 @@ private:
     }
     static const py::str command("command");
     for (size_t i : loaded.commanded)
-      handles[i].attr(command) = hw->cmd[i];
+      handles[i].attr(command) = sim_hw->cmd[i];
   }
 
   std::string ns;
   std::shared_ptr<Loader> loader;
-  std::unique_ptr<SimRobotHW> hw;
+  std::unique_ptr<SimRobotHW> sim_hw;  // over the Python handles of a DefaultRobotHWSim
+  std::shared_ptr<SimLoader> sim_loader;
+  std::shared_ptr<gazebo_ros_control::RobotHWSim> robot_hw_sim;  // or a package's own
+  urdf::Model urdf_model;
+  std::string sim_label;
+  std::vector<Mirrored> mirror;
+  hardware_interface::RobotHW* hw = nullptr;  // the one the controllers get
   std::vector<py::object> handles;
   std::map<int, std::shared_ptr<Loaded>> controllers;
   int last_id = 0;
@@ -352,5 +634,13 @@ PYBIND11_MODULE(controller_host, m)
     .def("starting", &Host::Starting, py::arg("id"), py::arg("time"))
     .def("stopping", &Host::Stopping, py::arg("id"), py::arg("time"))
     .def("update", &Host::Update, py::arg("id"), py::arg("time"), py::arg("period"))
-    .def("unload", &Host::Unload, py::arg("id"));
+    .def("unload", &Host::Unload, py::arg("id"))
+    .def("sim_available", &Host::SimAvailable, py::arg("type"))
+    .def("init_sim", &Host::InitSim, py::arg("type"), py::arg("robot_namespace"), py::arg("robot_param"),
+         py::arg("model"))
+    .def("close", &Host::Close)
+    .def("bind_mirror", &Host::BindMirror, py::arg("joints"))
+    .def("read_sim", &Host::ReadSim, py::arg("time"), py::arg("period"))
+    .def("write_sim", &Host::WriteSim, py::arg("time"), py::arg("period"))
+    .def("estop_active", &Host::EStopActive, py::arg("active"));
 }

@@ -76,9 +76,11 @@ public:
   void JointSetVelocity(int _j, double _v) override { this->Call("joint_set_velocity", _j, _v); }
   void JointSetForce(int _j, double _f) override
   {
+    // keyed by the time of the step the force is for: a RobotHWSim's writeSim sets forces between updates
+    const double now = this->SimTime();
     auto &saved = this->efforts[_j];
-    if (saved.first != this->updateTime)
-      saved = {this->updateTime, 0.0};
+    if (saved.first != now)
+      saved = {now, 0.0};
     saved.second += _f;
     this->Call("joint_set_force", _j, saved.second);
   }
@@ -317,6 +319,18 @@ public:
     }
     this->world->AddModel(model);
     this->controlled.push_back(model);
+  }
+
+  // The model as gazebo_ros_control hands it to a RobotHWSim's initSim (the controller_host module takes it): a
+  // capsule owning a ModelPtr, so that the model lives while the RobotHWSim holds it.
+  py::capsule ModelCapsule(const std::string &_name)
+  {
+    gazebo::physics::ModelPtr model = this->world->ModelByName(_name);
+    if (!model)
+      throw std::runtime_error("no model '" + _name + "' in racebot's Gazebo plugin API world");
+    return py::capsule(new gazebo::physics::ModelPtr(model), "gazebo::physics::ModelPtr", [](PyObject *_capsule) {
+      delete static_cast<gazebo::physics::ModelPtr *>(PyCapsule_GetPointer(_capsule, "gazebo::physics::ModelPtr"));
+    });
   }
 
   void RemoveModel(const std::string &_name)
@@ -601,6 +615,7 @@ PYBIND11_MODULE(gazebo_host, m)
          py::arg("notify"))
     .def("add_model", &Host::AddModel)
     .def("remove_model", &Host::RemoveModel)
+    .def("model_capsule", &Host::ModelCapsule)
     // plugin code runs without the interpreter lock (PyEngine takes it for each call into the engine)
     .def("load", &Host::Load, py::arg("kind"), py::arg("path"), py::arg("filename"), py::arg("name"),
          py::arg("model"), py::arg("xml"), py::call_guard<py::gil_scoped_release>())

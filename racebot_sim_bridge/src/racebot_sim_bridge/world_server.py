@@ -204,8 +204,9 @@ class WorldServer:
         self.plugins = PluginManager(rospy, self.sim, roscpp_name=rospy.get_name().rsplit('/', 1)[-1] + '_cpp')
         # and gazebo_ros_control with its controller manager's services, whatever ~enable_ros_network says
         # (the flag is gazebo_ros_api_plugin's; upstream's gazebo_ros_control reads none)
-        # (C++ controllers with roscpp, as the compiled plugins have it)
-        GazeboRosControlPlugin.attach(self.sim, rospy, ensure_roscpp=self.plugins.compiled.ensure_roscpp)
+        # (C++ controllers with roscpp, as the compiled plugins have it; a package's RobotHWSim on their model)
+        GazeboRosControlPlugin.attach(self.sim, rospy, ensure_roscpp=self.plugins.compiled.ensure_roscpp,
+                                      model_capsule=self.plugins.compiled.model_capsule)
         # gazebo_ros advertises in its node's namespace (a node `gazebo` in ns /sim serves /sim/gazebo/...)
         # and, with ~enable_ros_network false, nothing but /clock.
         self.services = self.metrics = self.reconfigure = None

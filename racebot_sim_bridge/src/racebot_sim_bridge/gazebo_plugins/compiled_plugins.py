@@ -339,6 +339,14 @@ class CompiledPlugins:
         self.ensure_roscpp()
         return True
 
+    def model_capsule(self, robot):
+        """`robot` in racebot's Gazebo plugin API, as gazebo_ros_control hands a RobotHWSim its model (the
+        controller_host module takes it). RuntimeError when the plugin host cannot be made."""
+        if not self._ensure_host():
+            raise RuntimeError(self.unavailable)
+        self._add_model(robot)
+        return self.host.model_capsule(robot.name)
+
     def ensure_roscpp(self):
         """Starts roscpp in the world server as node `roscpp_name`, once, where a master runs: what compiled plugins
         and C++ controllers (ros_control/compiled_controllers.py) make their NodeHandles on. False when it cannot."""

@@ -44,9 +44,11 @@ class CompiledControllers:
     (a DefaultRobotHWSim). `ensure_roscpp()` starts roscpp in this process if it is not running; None where no
     master runs, and then no C++ controller loads (their NodeHandles need one)."""
 
-    def __init__(self, ns, hw, ensure_roscpp=None):
+    def __init__(self, ns, hw, ensure_roscpp=None, host=None):
+        """host: the controller_host.Host to use, when it was made already (a compiled RobotHWSim's, whose
+        handles the C++ controllers then get); else one is made over `hw`'s Python handles when first needed."""
         self.ns, self.hw, self.ensure_roscpp = ns, hw, ensure_roscpp
-        self.host = None
+        self.host = host
         self.unavailable = None if ensure_roscpp is not None else 'no ROS master: C++ controllers need roscpp'
 
     def _ensure_host(self):
