@@ -37,7 +37,7 @@ from controller_manager_msgs.srv import (ListControllers, ListControllerTypes, L
                                          UnloadController)
 from rosgraph_msgs.msg import Log
 from sensor_msgs.msg import JointState
-from std_msgs.msg import Float64
+from std_msgs.msg import Bool, Float64
 from std_srvs.srv import Trigger
 
 from catkin_overlay import BUILD_TIMEOUT, LaunchWatch, ShellCommand, Workspace, user_environment
@@ -151,14 +151,16 @@ class CompiledPluginsTest(unittest.TestCase):
     # -- a lab's C++ ros_control controllers (fixture_cpp_controllers) -------------------------------------------
     @classmethod
     def start_turntable(cls):
-        """roslaunch fixture_cpp_controllers turntable.launch into the running world, once."""
+        """roslaunch fixture_cpp_controllers turntable.launch into the running world, once, and wait for its four
+        controllers to run."""
         if cls.turntable is None:
             rospy.wait_for_service('/gazebo/spawn_urdf_model', timeout=STARTUP_TIMEOUT)
             cls.turntable = ShellCommand('source %s && exec roslaunch fixture_cpp_controllers turntable.launch'
                                          % cls.workspace.setup, user_environment(),
                                          os.path.join(cls.workspace.root, 'turntable.log'), login=True)
-        rospy.wait_for_service(CM + 'list_controllers', timeout=STARTUP_TIMEOUT)
-        LaunchWatch(cls.turntable).wait(lambda: len(cls.running()) == 4, 'the four controllers to run', STARTUP_TIMEOUT)
+            rospy.wait_for_service(CM + 'list_controllers', timeout=STARTUP_TIMEOUT)
+            LaunchWatch(cls.turntable).wait(lambda: len(cls.running()) == 4, 'the four controllers to run',
+                                            STARTUP_TIMEOUT)
 
     @staticmethod
     def running():
@@ -234,8 +236,31 @@ class CompiledPluginsTest(unittest.TestCase):
         self.assertNotIn('wheel_controller', self.running())
         self.assertIn('arm_controller', self.running())
 
+    def test_8_a_cpp_controller_that_throws_is_stopped_and_the_world_goes_on(self):
+        self.start_turntable()
+        load = rospy.ServiceProxy(CM + 'load_controller', LoadController)
+        mark = len(self.log)
+        self.assertFalse(load('unknown_joint_controller').ok)  # its init lets HardwareInterfaceException out
+        self.launched(lambda: any("Initializing controller 'unknown_joint_controller' failed" in m.msg
+                                  and "its init threw: Could not find resource 'no_such_joint'" in m.msg
+                                  for m in self.log[mark:]), "the manager's error quoting the exception",
+                      COMMAND_TIMEOUT)
+        self.assertTrue(load('failing_controller').ok)
+        switch = rospy.ServiceProxy(CM + 'switch_controller', SwitchController)
+        self.assertTrue(switch(['failing_controller'], [], 2, False, 0.0).ok)
+        self.assertIn('failing_controller', self.running())
+        fail = rospy.Publisher('/turntable/failing_controller/fail', Bool, queue_size=1, latch=True)
+        fail.publish(Bool(True))
+        self.launched(lambda: any("Controller 'failing_controller' raised RuntimeError in its update (C++ exception: "
+                                  "joint wheel_joint read past the end of a table)" in m.msg for m in self.log[mark:]),
+                      'the error naming the controller and its exception', COMMAND_TIMEOUT)
+        self.assertNotIn('failing_controller', self.running())
+        self.assertIn('arm_controller', self.running())
+        del self.watched[:]
+        self.launched(lambda: len(self.watched) > 10, 'the other C++ controller still publishing', COMMAND_TIMEOUT)
+
     # -- a lab's C++ RobotHWSim (fixture_robot_hw_sim) ----------------------------------------------------------
-    def test_8_a_packages_robot_hw_sim_carries_cpp_and_python_controllers(self):
+    def test_9_a_packages_robot_hw_sim_carries_cpp_and_python_controllers(self):
         rospy.wait_for_service('/gazebo/spawn_urdf_model', timeout=STARTUP_TIMEOUT)
         type(self).rover = ShellCommand('source %s && exec roslaunch fixture_robot_hw_sim rover.launch'
                                         % self.workspace.setup, user_environment(),

@@ -7,7 +7,8 @@ ignition-math6 and sdformat); for code that includes a Gazebo header the API doe
 and gazebo_FOUND false without it, the message naming the package, the file and the catkin_make line that leaves it
 out; and a compile error with the same advice for an include the scan cannot see. The catkin config
 of a name stand-in refuses code including its headers the same way. Needs `make build`, cmake and g++; no
-master. The projects declare no language (no compiler check), so each configure takes a fraction of a second.
+master. The projects declare no language (no compiler check), so each configure takes a fraction of a second; those
+of the stand-ins with a C++ API enable C++, as their configs need (about half a second more).
 """
 import shutil
 import subprocess
@@ -147,12 +148,23 @@ def test_the_advice_keeps_what_is_left_out_already(tmp_path):
     ('realtime_tools', '#include <realtime_tools/realtime_publisher.h>', False),
     ('realtime_tools', '#include <realtime_tools/realtime_clock.h>', True),
     ('hardware_interface', '#include <hardware_interface/posvelacc_command_interface.h>', True),
+    ('control_toolbox', '#include <control_toolbox/pid.h>', False),
+    ('control_toolbox', '#include <control_toolbox/pid_gains_setter.h>', True),
+    ('control_toolbox', '#include <control_toolbox/sine_sweep.h>', True),
+    ('joint_limits_interface', '#include <joint_limits_interface/joint_limits_interface.h>', False),
+    ('joint_limits_interface', '#include <joint_limits_interface/joint_limits_urdf.h>', False),
+    ('joint_limits_interface', '#include <joint_limits_interface/joint_limits_rosparam.h>', False),
+    ('joint_limits_interface', '#include <joint_limits_interface/joint_limits_interface_exception.h>', False),
+    ('joint_limits_interface', '#include <joint_limits_interface/joint_limits_extra.h>', True),  # no such header
 ])
 def test_a_standin_with_cpp_api_refuses_only_headers_it_lacks(tmp_path, standin, include, refused):
     """ros_control's stand-ins carry the C++ API controllers build against (RACEBOT_STANDIN_CPP_API): their
     configs hand on the include folder and refuse a header of theirs that is not in it, naming it."""
-    code, out, _ = project(tmp_path, 'find_package(%s REQUIRED)\n' % standin + REPORT,
-                                {'src/my_controller.cpp': include + '\n'}, name='my_controllers')
+    # C++ enabled, as in every catkin package: control_toolbox's config pulls in control_msgs' and so catkin's, which
+    # looks for threads, and urdf's and dynamic_reconfigure's configs sit under /usr/lib/<arch>/cmake, which CMake
+    # searches only once a compiler has told it the architecture.
+    code, out, _ = project(tmp_path, 'enable_language(CXX)\nfind_package(%s REQUIRED)\n' % standin + REPORT,
+                           {'src/my_controller.cpp': include + '\n'}, name='my_controllers')
     if not refused:
         assert code == 0, out
         return

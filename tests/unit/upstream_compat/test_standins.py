@@ -24,7 +24,10 @@ PATTERN = re.compile(r'cmake_minimum_required\(VERSION 3\.0\.2\)\n'
                      r'project\((\w+)\)\n'
                      r'include\(\$\{CMAKE_CURRENT_SOURCE_DIR\}/\.\./cmake/step_aside\.cmake\)\n'
                      r'if\(NOT RACEBOT_STEP_ASIDE\)\n'
-                     r'(?:  (?:#.*|set\(RACEBOT_STANDIN_\w+ [\w .-]+\))\n)*'
+                     # settings, and a stand-in's own build step in its cmake/ folder (control_toolbox's
+                     # dynamic_reconfigure config)
+                     r'(?:  (?:#.*|set\(RACEBOT_STANDIN_\w+ [\w .-]+\)'
+                     r'|include\(\$\{CMAKE_CURRENT_SOURCE_DIR\}/cmake/\w+\.cmake\))\n)*'
                      r'  include\(\$\{CMAKE_CURRENT_SOURCE_DIR\}/\.\./cmake/name_standin\.cmake\)\n')
 
 
