@@ -119,7 +119,7 @@ def test_an_include_the_scan_misses_fails_the_compile_with_the_advice(tmp_path):
     ('joint_trajectory_controller', '#include <joint_trajectory_controller/joint_trajectory_controller.h>', True),
     ('joint_trajectory_controller', '#include <control_msgs/FollowJointTrajectoryAction.h>', False),  # generated
     ('controller_manager', '#include <controller_manager/controller_manager.h>', True),  # not a name stand-in
-    ('gazebo_ros_control', '#include <gazebo_ros_control/robot_hw_sim.h>', True),
+    ('gazebo_plugins', '#include <gazebo_plugins/gazebo_ros_utils.h>', True),
 ])
 def test_a_standins_catkin_config_refuses_code_including_its_headers(tmp_path, standin, include, refused):
     code, out, _ = project(tmp_path, 'find_package(%s REQUIRED)\n' % standin, {'src/arm_hw.cpp': include + '\n'},
@@ -156,6 +156,10 @@ def test_the_advice_keeps_what_is_left_out_already(tmp_path):
     ('joint_limits_interface', '#include <joint_limits_interface/joint_limits_rosparam.h>', False),
     ('joint_limits_interface', '#include <joint_limits_interface/joint_limits_interface_exception.h>', False),
     ('joint_limits_interface', '#include <joint_limits_interface/joint_limits_extra.h>', True),  # no such header
+    ('gazebo_ros_control', '#include <gazebo_ros_control/robot_hw_sim.h>', False),
+    ('gazebo_ros_control', '#include <gazebo_ros_control/default_robot_hw_sim.h>', True),
+    ('transmission_interface', '#include <transmission_interface/transmission_info.h>', False),
+    ('transmission_interface', '#include <transmission_interface/simple_transmission.h>', True),
 ])
 def test_a_standin_with_cpp_api_refuses_only_headers_it_lacks(tmp_path, standin, include, refused):
     """ros_control's stand-ins carry the C++ API controllers build against (RACEBOT_STANDIN_CPP_API): their

@@ -8,7 +8,6 @@
 #include <map>
 #include <memory>
 #include <string>
-#include <type_traits>
 #include <vector>
 
 #include <ros/console.h>
@@ -21,44 +20,48 @@ namespace hardware_interface
 namespace internal
 {
 
-// Whether T is a ResourceManager (has T::ResourceManagerType): only those can be combined or list resources.
-template <class T, class = void>
-struct IsResourceManager : std::false_type
-{
-};
-template <class T>
-struct IsResourceManager<T, std::void_t<typename T::ResourceManagerType>> : std::true_type
-{
-};
-
+// What InterfaceManager does with a T that is a ResourceManager (has T::ResourceManagerType) and with one that is
+// not, chosen by overload (C++11: packages build with -std=c++11 too): the first overload of each pair is viable
+// only for a ResourceManager, the variadic one always, and ranks last.
 template <class T>
 struct CheckIsResourceManager
 {
+  template <class C>
+  static void getResources(std::vector<std::string>& resources, C* iface, typename C::ResourceManagerType*)
+  {
+    resources = iface->getNames();
+  }
+  template <class C>
+  static void getResources(std::vector<std::string>&, C*, ...)
+  {
+  }
   static void callGetResources(std::vector<std::string>& resources, T* iface)
   {
-    if constexpr (IsResourceManager<T>::value)
-      resources = iface->getNames();
+    getResources<T>(resources, iface, nullptr);
   }
 
+  template <class C>
+  static C* combine(std::vector<std::unique_ptr<ResourceManagerBase>>& guards, std::vector<C*>& managers,
+                    typename C::ResourceManagerType*)
+  {
+    C* combined = new C;
+    guards.emplace_back(combined);
+    std::vector<typename C::ResourceManagerType*> parts(managers.begin(), managers.end());
+    C::concatManagers(parts, combined);
+    return combined;
+  }
+  template <class C>
+  static C* combine(std::vector<std::unique_ptr<ResourceManagerBase>>&, std::vector<C*>&, ...)
+  {
+    ROS_ERROR("You cannot register multiple interfaces of the same type which are not of type ResourceManager. "
+              "There is no established protocol for combining them.");
+    return nullptr;
+  }
   // A new T holding every handle of `managers`, owned by `guards`; nullptr (with an error) when T cannot combine.
   static T* newCombinedInterface(std::vector<std::unique_ptr<ResourceManagerBase>>& guards,
                                  std::vector<T*>& managers)
   {
-    if constexpr (IsResourceManager<T>::value)
-    {
-      auto combined = std::make_unique<T>();
-      std::vector<typename T::ResourceManagerType*> parts(managers.begin(), managers.end());
-      T::concatManagers(parts, combined.get());
-      T* raw = combined.get();
-      guards.push_back(std::move(combined));
-      return raw;
-    }
-    else
-    {
-      ROS_ERROR("You cannot register multiple interfaces of the same type which are not of type ResourceManager. "
-                "There is no established protocol for combining them.");
-      return nullptr;
-    }
+    return combine<T>(guards, managers, nullptr);
   }
 };
 
