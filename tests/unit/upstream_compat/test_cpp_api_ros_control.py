@@ -211,16 +211,17 @@ def test_robot_hw_sim_and_transmission_info_headers_compile(tmp_path):
     source.write_text('#include <gazebo_ros_control/robot_hw_sim.h>\n'
                       'struct S : gazebo_ros_control::RobotHWSim {\n'
                       '  bool initSim(const std::string&, ros::NodeHandle, gazebo::physics::ModelPtr,\n'
-                      '               const urdf::Model* const, std::vector<transmission_interface::TransmissionInfo> t)\n'
+                      '               const urdf::Model* const,\n'
+                      '               std::vector<transmission_interface::TransmissionInfo> t)\n'
                       '  override { return !t.empty() && t[0].joints_[0].role_.empty(); }\n'
                       '  void readSim(ros::Time, ros::Duration) override {}\n'
                       '  void writeSim(ros::Time, ros::Duration) override {}\n'
                       '};\n')
     flags = include_flags() + [flag for name in ('gazebo_ros_control', 'transmission_interface', 'gazebo_dev')
                                for flag in ('-I', str(ROOT / 'upstream_compat' / name / 'include'))]
-    flags += [flag for folder in ['/usr/include/ignition/math6', '/usr/include/ignition/common4',
-                                  '/usr/include/ignition/utils1'] + [str(p) for p in Path('/usr/include').glob('sdformat-12*')]
-              for flag in ('-I', folder)]
+    folders = ['/usr/include/ignition/math6', '/usr/include/ignition/common4', '/usr/include/ignition/utils1']
+    folders += [str(p) for p in Path('/usr/include').glob('sdformat-12*')]
+    flags += [flag for folder in folders for flag in ('-I', folder)]
     done = subprocess.run(['g++', '-std=c++17', '-fsyntax-only', str(source)] + flags + roscpp_flags(),
                           stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, timeout=300)
     assert done.returncode == 0, done.stdout
