@@ -48,6 +48,7 @@ FULL = {
     'fleet': dict(counts=[1, 2, 3, 4, 5, 6, 7, 8], rounds=3, window_s=4.0, warmup_s=1.5, profile_s=8.0),
     'big_world': dict(runs=3, world='auto', models=90, timeout_s=300),
     'plugins': dict(steps=20000, rounds=5),
+    'controllers': dict(steps=20000, rounds=5),
 }
 QUICK = {
     'speed': dict(rounds=3, window_s=0.7, warmup_s=0.5, profile_s=0, memory_sim_s=10.0, memory_timeout_s=120),
@@ -63,6 +64,7 @@ QUICK = {
     'fleet': dict(counts=[1, 2], rounds=3, window_s=0.5, warmup_s=0.3),
     'big_world': dict(runs=1, world='generated', models=90, timeout_s=120),
     'plugins': dict(steps=1000, rounds=3),
+    'controllers': dict(steps=1000, rounds=3),
 }
 SCENARIO_TIMEOUT_S = 1800
 
@@ -219,7 +221,14 @@ def part_plugins(cfg, out, results):
         results['plugins'] = plugin_cost.measure(cfg['plugins'], out)
 
 
-PARTS = (('inprocess', part_inprocess), ('plugins', part_plugins), ('determinism', part_determinism),
+def part_controllers(cfg, out, results):
+    """A compiled ros_control controller's update beside racebot's Python controller doing the same
+    (bench/controller_cost.py; a scenario: its NodeHandles need a master)."""
+    results['controllers'] = run_scenario('controllers', cfg['controllers'], out)
+
+
+PARTS = (('inprocess', part_inprocess), ('plugins', part_plugins), ('controllers', part_controllers),
+         ('determinism', part_determinism),
          ('speed', part_speed), ('realtime', part_realtime), ('sensors', part_sensors), ('startup', part_startup),
          ('fidelity', part_fidelity), ('fleet', part_fleet), ('big_world', part_big_world))
 

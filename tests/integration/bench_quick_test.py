@@ -72,6 +72,12 @@ class BenchQuickTest(unittest.TestCase):
             self.assertTrue(finite(pl['overhead_us'][variant]), pl)
         self.assertIn('compiled model plugin: an empty worldUpdateBegin callback', self.output)
 
+    def test_compiled_controller_costs_beside_python(self):
+        co = self.results['controllers']  # its measure() checked that both controllers turned the joint
+        for variant in ('cpp', 'python'):
+            self.assertTrue(finite(co['overhead_us'][variant]), co)
+        self.assertIn('compiled ros_control controller: a velocity command', self.output)
+
     def test_real_time_and_command_path(self):
         rt = self.results['realtime']
         self.assertTrue(0.1 < rt['window']['rtf'] < 10.0, rt['window'])

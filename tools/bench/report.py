@@ -190,6 +190,11 @@ SECTIONS = (
          lambda pl: stats.with_spread(pl['overhead_spread_us']['cpp_velocity'], '%.2f'),
          lambda pl: 'Python plugin, same work: %s' % stats.with_spread(pl['overhead_spread_us']['python_velocity'],
                                                                        '%.2f'), '-', '-'))),
+    (lambda r: r.get('controllers'), ('controllers', 'compiled controllers'), (
+        (None, 'compiled ros_control controller: a velocity command to a joint every update, above none (us; min-max)',
+         lambda co: stats.with_spread(co['overhead_spread_us']['cpp'], '%.2f'),
+         lambda co: 'Python controller, same work: %s' % stats.with_spread(co['overhead_spread_us']['python'],
+                                                                          '%.2f'), '-', '-'),)),
     (lambda r: r.get('determinism'), ('determinism', 'determinism'), (
         (None, lambda de: 'determinism: two runs, %.0f s scripted, max difference' % de['sim_s'],
          lambda de: '%.1e m' % de['max_diff_m'], 'Gazebo: not deterministic', '<= 1e-9 m',

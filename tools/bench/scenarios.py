@@ -550,6 +550,11 @@ def big_world(p, out):
     return scenario(p, out)
 
 
+def controllers(p, out):
+    from .controller_cost import measure
+    return measure(p, out)
+
+
 SCENARIOS = {'speed': speed, 'realtime': realtime, 'sensors': sensors_realtime, 'startup': startup,
              'fidelity': fidelity,
-             'determinism': determinism, 'fleet': fleet, 'big_world': big_world}
+             'determinism': determinism, 'fleet': fleet, 'big_world': big_world, 'controllers': controllers}
