@@ -133,6 +133,9 @@ class CompiledPluginsTest(unittest.TestCase):
         self.assertIn('/gazebo/spawn_urdf_model', services)  # the rospy node is still there, not replaced
         self.launched(lambda: 'RosJointPlugin drives spinner::spin_joint in namespace /spinner'
                       in self.launch.output(), "the plugin's ROS_INFO on the world server's screen")
+        # NodeHandle("~") is /gazebo_cpp's: what the launch file loaded under /gazebo was copied there
+        self.launched(lambda: "RosJointPlugin: ~ros_joint_plugin/greeting is 'hello from the launch file'"
+                      in self.launch.output(), "the launch file's parameter read through NodeHandle(\"~\")")
 
     def test_2_the_topic_drives_the_joint(self):
         self.launched(lambda: self.velocities, "the plugin's first /spinner/joint_velocity")

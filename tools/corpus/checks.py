@@ -155,7 +155,11 @@ def _goal_tolerance(check, joint):
 
 def controller_hold(controller):
     """(largest |desired - actual| of the trajectory controller under `controller`, its joint) as its `state`
-    topic reads now: how far from the joints the position it holds is."""
+    topic reads now: how far from the joints the position it holds is. (0.0, '-') for a controller without that
+    topic (robot_controllers' FollowJointTrajectoryController has only its action), which has no start race either."""
+    topics = [name for name, _ in rospy.get_published_topics()]
+    if controller + '/state' not in topics:
+        return 0.0, '-'
     state = message(controller + '/state', 'control_msgs/JointTrajectoryControllerState')
     return max(zip((abs(e) for e in state.error.positions), state.joint_names), default=(0.0, '-'))
 

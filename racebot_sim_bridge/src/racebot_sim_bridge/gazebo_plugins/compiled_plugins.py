@@ -355,8 +355,30 @@ class CompiledPlugins:
         from racebot_sim_bridge.gazebo_plugins import gazebo_host
         self.roscpp_started = gazebo_host.start_roscpp(self.roscpp_name, roscpp_remappings(sys.argv))
         if self.roscpp_started:
-            self.rospy.loginfo("roscpp runs in the world server as node '%s'" % self.roscpp_name)
+            copied = self._share_private_params()
+            self.rospy.loginfo("roscpp runs in the world server as node '%s'%s" % (
+                self.roscpp_name, "; the world server's private parameters are copied under it (%s)" % copied
+                if copied else ''))
         return self.roscpp_started
+
+    def _share_private_params(self):
+        """In gzserver one roscpp node is /gazebo, so a plugin's NodeHandle("~") reads what a launch file loaded for
+        it there (fetch_gazebo's PID gains and default_controllers under gazebo:). Here roscpp's node has a name of
+        its own: the rospy node's private parameters, as they are now, are copied under it (parameters it already
+        has are kept). The names copied, comma-separated, or ''."""
+        own = self.rospy.get_name()
+        cpp = own.rsplit('/', 1)[0] + '/' + self.roscpp_name
+        try:
+            private = self.rospy.get_param(own, {})
+        except Exception as err:  # noqa: BLE001 (a master that went away: roscpp's own parameters only)
+            self.rospy.logwarn("could not read the world server's private parameters for roscpp: %s" % err)
+            return ''
+        copied = []
+        for key, value in sorted(private.items()) if isinstance(private, dict) else ():
+            if not self.rospy.has_param('%s/%s' % (cpp, key)):
+                self.rospy.set_param('%s/%s' % (cpp, key), value)
+                copied.append(key)
+        return ', '.join(copied)
 
     def _refresh(self):
         """gazebo_host's own methods as the step hooks while plugins are loaded (no Python between the world update
