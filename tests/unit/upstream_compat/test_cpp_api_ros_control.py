@@ -19,6 +19,8 @@ pytestmark = pytest.mark.skipif(shutil.which('g++') is None, reason='no C++ comp
 PROGRAM = r'''
 #include <controller_interface/controller.h>
 #include <controller_interface/multi_interface_controller.h>
+#include <hardware_interface/force_torque_sensor_interface.h>
+#include <hardware_interface/imu_sensor_interface.h>
 #include <hardware_interface/joint_command_interface.h>
 #include <hardware_interface/joint_state_interface.h>
 #include <hardware_interface/robot_hw.h>
@@ -152,6 +154,22 @@ int main(int argc, char** argv)
   infos.back().claimed_resources.push_back(InterfaceResources("y", {"wheel"}));
   std::printf("probe conflict: %d\n", robot.checkForConflict(infos));
 
+  double quaternion[4] = {0, 0, 0, 1}, force[3] = {1, 2, 3};
+  ImuSensorHandle::Data imu_data;
+  imu_data.name = "imu";
+  imu_data.frame_id = "imu_link";
+  imu_data.orientation = quaternion;
+  ImuSensorInterface imus;
+  imus.registerHandle(ImuSensorHandle(imu_data));
+  ForceTorqueSensorInterface wrenches;
+  wrenches.registerHandle(ForceTorqueSensorHandle("wrist", "wrist_link", force, force));
+  robot.registerInterface(&imus);
+  robot.registerInterface(&wrenches);
+  ImuSensorHandle imu = robot.get<ImuSensorInterface>()->getHandle("imu");
+  std::printf("probe imu %s w %g accel %d\n", imu.getFrameId().c_str(), imu.getOrientation()[3],
+              imu.getLinearAcceleration() == nullptr);
+  std::printf("probe wrench %g\n", robot.get<ForceTorqueSensorInterface>()->getHandle("wrist").getForce()[2]);
+
   realtime_tools::RealtimeBox<int> box(4);
   int boxed = 0;
   box.get(boxed);
@@ -176,6 +194,8 @@ EXPECTED = [
     'running 1 cmd 3 -0.5',
     'stopped 1',
     'conflict: 1',
+    'imu imu_link w 1 accel 1',
+    'wrench 3',
     'box 4',
 ]
 

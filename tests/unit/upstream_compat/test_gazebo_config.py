@@ -148,6 +148,7 @@ def test_the_advice_keeps_what_is_left_out_already(tmp_path):
     ('realtime_tools', '#include <realtime_tools/realtime_publisher.h>', False),
     ('realtime_tools', '#include <realtime_tools/realtime_clock.h>', True),
     ('hardware_interface', '#include <hardware_interface/posvelacc_command_interface.h>', True),
+    ('hardware_interface', '#include <hardware_interface/imu_sensor_interface.h>', False),
     ('control_toolbox', '#include <control_toolbox/pid.h>', False),
     ('control_toolbox', '#include <control_toolbox/pid_gains_setter.h>', True),
     ('control_toolbox', '#include <control_toolbox/sine_sweep.h>', True),
