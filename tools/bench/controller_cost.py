@@ -19,34 +19,20 @@ from racebot_sim_bridge.gazebo_ros_control.gazebo_ros_control_plugin import Gaze
 from racebot_sim_bridge.ros_control.controller_switch import STRICT
 
 from . import common, stats
-from .plugin_cost import _ErrorsKept
+from .plugin_cost import _ErrorsKept, robot
 
 FIXTURES = os.path.join(common.REPO, 'tests', 'fixtures', 'gazebo_plugin_workspace')
 SOURCE = os.path.join(FIXTURES, 'fixture_cpp_controllers', 'src', 'velocity_forward_controller.cpp')
 LIBRARY = 'fixture_cpp_controllers'  # the fixture's plugin XML: lib/libfixture_cpp_controllers
 VELOCITY = 2.5
 NS = '/bench'
-ROBOT = """<robot name="spinner">
-  <link name="base_link">
-    <inertial><mass value="5"/><inertia ixx="0.05" iyy="0.05" izz="0.05" ixy="0" ixz="0" iyz="0"/></inertial>
-    <collision><geometry><box size="0.4 0.4 0.2"/></geometry></collision>
-  </link>
-  <joint name="spin_joint" type="continuous">
-    <parent link="base_link"/><child link="rotor"/><origin xyz="0 0 0.2"/><axis xyz="0 0 1"/>
-    <limit effort="50" velocity="20"/>
-  </joint>
-  <link name="rotor">
-    <inertial><mass value="0.5"/><inertia ixx="0.001" iyy="0.001" izz="0.002" ixy="0" ixz="0" iyz="0"/></inertial>
-    <collision><geometry><cylinder radius="0.1" length="0.05"/></geometry></collision>
-  </link>
-  <transmission name="spin_transmission">
+TRANSMISSION = """<transmission name="spin_transmission">
     <type>transmission_interface/SimpleTransmission</type>
     <joint name="spin_joint"><hardwareInterface>hardware_interface/VelocityJointInterface</hardwareInterface></joint>
     <actuator name="spin_motor"><mechanicalReduction>1</mechanicalReduction></actuator>
   </transmission>
   <gazebo><plugin name="gazebo_ros_control" filename="libgazebo_ros_control.so">
-    <robotNamespace>%s</robotNamespace></plugin></gazebo>
-</robot>""" % NS
+    <robotNamespace>%s</robotNamespace></plugin></gazebo>""" % NS
 CONTROLLERS = {  # variant -> (controller name, its parameters)
     'python': ('python', {'type': 'velocity_controllers/JointVelocityController', 'joint': 'spin_joint'}),
     'cpp': ('cpp', {'type': 'fixture_cpp_controllers/VelocityForwardController', 'joint': 'spin_joint',
@@ -104,7 +90,7 @@ def _world(tmp, variant, params):
     sim = Simulator(sdf_reader.load_world(path), _UnwiredIO(), log, lambda key: params.get(key.rstrip('/')))
     from racebot_sim_bridge.gazebo_plugins import gazebo_host
     GazeboRosControlPlugin.attach(sim, ensure_roscpp=lambda: gazebo_host.start_roscpp('bench_controllers_cpp', {}))
-    sim.spawn_urdf('spinner', ROBOT, '/', (0.0, 0.0, 0.1))
+    sim.spawn_urdf('spinner', robot(TRANSMISSION), '/', (0.0, 0.0, 0.1))
     control = sim.robots['spinner'].control
     if variant in CONTROLLERS:
         name = CONTROLLERS[variant][0]

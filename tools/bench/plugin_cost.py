@@ -22,25 +22,17 @@ from . import common, stats
 PROJECT = os.path.join(common.REPO, 'tests', 'fixtures', 'gazebo_plugin_project')
 TARGET = 'joint_driver'
 VELOCITY = 2.5
-ROBOT = """<robot name="spinner">
-  <link name="base_link">
-    <inertial><mass value="5"/><inertia ixx="0.05" iyy="0.05" izz="0.05" ixy="0" ixz="0" iyz="0"/></inertial>
-    <collision><geometry><box size="0.4 0.4 0.2"/></geometry></collision>
-  </link>
-  <joint name="spin_joint" type="continuous">
-    <parent link="base_link"/><child link="rotor"/><origin xyz="0 0 0.2"/><axis xyz="0 0 1"/>
-  </joint>
-  <link name="rotor">
-    <inertial><mass value="0.5"/><inertia ixx="0.001" iyy="0.001" izz="0.002" ixy="0" ixz="0" iyz="0"/></inertial>
-    <collision><geometry><cylinder radius="0.1" length="0.05"/></geometry></collision>
-  </link>
-  <gazebo>%s</gazebo>
-</robot>"""
+with open(os.path.join(PROJECT, 'spinner.urdf.in')) as _f:
+    SPINNER = _f.read()  # the compiled plugin tests' robot; its rotor, limits and plugins filled by robot()
 CPP = '<plugin name="driver" filename="libjoint_driver.so"><joint>spin_joint</joint><mode>%s</mode>' \
       '<target>%g</target></plugin>'
 PYTHON = '<plugin name="driver" filename="libbench_python_driver.so"><joint>spin_joint</joint></plugin>'
 VARIANTS = (('none', ''), ('cpp_empty', CPP % ('none', 0.0)), ('cpp_velocity', CPP % ('velocity', VELOCITY)),
             ('python_velocity', PYTHON))
+
+
+def robot(extra):
+    return SPINNER % {'mass': 0.5, 'izz': 0.002, 'effort': 3.0, 'velocity': 40.0, 'extra': extra}
 
 
 class PythonDriver(ModelPlugin):
@@ -96,7 +88,7 @@ def _world(tmp, markup):
     log = _ErrorsKept()
     sim = Simulator(sdf_reader.load_world(path), _NullIO(), log, lambda name: None)
     manager = PluginManager(log, sim, registry=Registry((PythonDriver,)))
-    sim.spawn_urdf('spinner', ROBOT % markup, '/', (0.0, 0.0, 0.1))
+    sim.spawn_urdf('spinner', robot('<gazebo>%s</gazebo>' % markup), '/', (0.0, 0.0, 0.1))
     if log.errors:
         raise common.BenchError('the bench robot did not load its plugin: %s' % log.errors[0])
     return sim, manager

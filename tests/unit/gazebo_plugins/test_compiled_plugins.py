@@ -25,27 +25,13 @@ BUILD_TIMEOUT = 600  # s: five plugin files on sdformat's headers take about a m
 ROTOR_IZZ = 0.002
 ROTOR_MASS = 0.5
 
-ROBOT = """<robot name="spinner">
-  <link name="base_link">
-    <inertial><mass value="5"/><inertia ixx="0.05" iyy="0.05" izz="0.05" ixy="0" ixz="0" iyz="0"/></inertial>
-    <collision><geometry><box size="0.4 0.4 0.2"/></geometry></collision>
-  </link>
-  <joint name="spin_joint" type="continuous">
-    <parent link="base_link"/><child link="rotor"/><origin xyz="0 0 0.2"/><axis xyz="0 0 1"/>
-    <limit effort="3.0" velocity="40.0"/>
-  </joint>
-  <link name="rotor">
-    <inertial>
-      <mass value="%(mass)s"/><inertia ixx="0.001" iyy="0.001" izz="%(izz)s" ixy="0" ixz="0" iyz="0"/>
-    </inertial>
-    <collision><geometry><cylinder radius="0.1" length="0.05"/></geometry></collision>
-  </link>
-  <gazebo>%(plugins)s</gazebo>
-</robot>"""
+with open(os.path.join(PROJECT, 'spinner.urdf.in')) as _f:
+    SPINNER = _f.read()
 
 
 def robot(*plugins):
-    return ROBOT % {'mass': ROTOR_MASS, 'izz': ROTOR_IZZ, 'plugins': ''.join(plugins)}
+    return SPINNER % {'mass': ROTOR_MASS, 'izz': ROTOR_IZZ, 'effort': 3.0, 'velocity': 40.0,
+                      'extra': '<gazebo>%s</gazebo>' % ''.join(plugins)}
 
 
 def driver(mode, target, report=0, joint='spin_joint', name='driver'):
