@@ -263,3 +263,16 @@ def test_the_element_a_plugin_reads_has_sdformats_rewrites():
     text = plugin_xml(spec)
     assert re.search(r'<bodyName>base_link</bodyName>', text)
     assert '<nested><a>1</a></nested>' in text
+
+
+def test_every_engine_call_gazebo_host_makes_is_a_method_of_the_adapter():
+    """gazebo_host's PyEngine looks up the EngineAdapter's methods by name once, when the host is made: a name the
+    adapter lacks would fail every plugin at its first load, and an adapter method nobody calls is dead code."""
+    source = open(os.path.join(HERE, '..', '..', '..', 'racebot_sim_bridge', 'src', 'cpp', 'gazebo_host.cpp')).read()
+    listed = re.search(r'for \(const char \*name : \{([^}]*)\}\)', source)
+    assert listed, 'the method list of PyEngine is not where this test reads it'
+    called = set(re.findall(r'"(\w+)"', listed.group(1)))
+    from racebot_sim_bridge.gazebo_plugins.compiled_plugins import EngineAdapter
+    offered = {name for name in vars(EngineAdapter) if not name.startswith('_') and name != 'add_model'}
+    assert called == offered, 'PyEngine calls %s the adapter lacks; the adapter has %s PyEngine never calls' % (
+        sorted(called - offered), sorted(offered - called))
