@@ -11,15 +11,13 @@ rounds of the wall time per update above the robot without a controller, in micr
 """
 import os
 import subprocess
-import time
 
-from racebot_sim_bridge.description import sdf_reader
 from racebot_sim_bridge.engine.simulator import Simulator
 from racebot_sim_bridge.gazebo_ros_control.gazebo_ros_control_plugin import GazeboRosControlPlugin
 from racebot_sim_bridge.ros_control.controller_switch import STRICT
 
-from . import common, stats
-from .plugin_cost import _ErrorsKept, robot
+from . import common
+from .update_cost import ErrorsKept, check_turning, figures, ground_world, robot, time_updates
 
 FIXTURES = os.path.join(common.REPO, 'tests', 'fixtures', 'gazebo_plugin_workspace')
 SOURCE = os.path.join(FIXTURES, 'fixture_cpp_controllers', 'src', 'velocity_forward_controller.cpp')
@@ -81,13 +79,8 @@ def build(folder):
 
 
 def _world(tmp, variant, params):
-    path = os.path.join(tmp, 'ground.world')
-    with open(path, 'w') as f:
-        f.write('<sdf version="1.6"><world name="default"><model name="ground_plane"><static>true</static>'
-                '<link name="link"><collision name="c"><geometry><plane><normal>0 0 1</normal></plane></geometry>'
-                '</collision></link></model></world></sdf>')
-    log = _ErrorsKept()
-    sim = Simulator(sdf_reader.load_world(path), _UnwiredIO(), log, lambda key: params.get(key.rstrip('/')))
+    log = ErrorsKept()
+    sim = Simulator(ground_world(tmp), _UnwiredIO(), log, lambda key: params.get(key.rstrip('/')))
     from racebot_sim_bridge.gazebo_plugins import gazebo_host
     GazeboRosControlPlugin.attach(sim, ensure_roscpp=lambda: gazebo_host.start_roscpp('bench_controllers_cpp', {}))
     sim.spawn_urdf('spinner', robot(TRANSMISSION), '/', (0.0, 0.0, 0.1))
@@ -127,27 +120,11 @@ def measure(p, out):
         common.wait_for(lambda: sim.step() or abs(joint.state().velocity - VELOCITY) < 1e-6, 30,
                         'the C++ controller to take its command')
         steps, rounds = int(p['steps']), int(p['rounds'])
-        per_update = {variant: [] for variant in worlds}
-        for sim, _ in worlds.values():  # warm up: first updates allocate
-            for _ in range(200):
-                sim.step()
-        for _ in range(rounds):
-            for variant, (sim, _) in worlds.items():
-                start = time.perf_counter()
-                for _ in range(steps):
-                    sim.step()
-                per_update[variant].append(1e6 * (time.perf_counter() - start) / steps)
-        for variant in CONTROLLERS:
-            velocity = worlds[variant][0].robots['spinner'].body.joints['spin_joint'].state().velocity
-            if abs(velocity - VELOCITY) > 1e-3:
-                raise common.BenchError('%s: the joint turns at %.4f rad/s, not %.1f' % (variant, velocity, VELOCITY))
+        sims = {variant: sim for variant, (sim, _) in worlds.items()}
+        per_update = time_updates(sims, steps, rounds)
+        check_turning(sims, CONTROLLERS, VELOCITY)
     finally:
         for sim, _ in worlds.values():
             sim.close()
         master.stop()
-    base = per_update['none']
-    overhead = {v: [t - b for t, b in zip(times, base)] for v, times in per_update.items() if v != 'none'}
-    return {'steps': steps, 'rounds': rounds,
-            'update_us': {v: stats.median(times) for v, times in per_update.items()},
-            'overhead_us': {v: stats.median(values) for v, values in overhead.items()},
-            'overhead_spread_us': {v: stats.spread(values) for v, values in overhead.items()}}
+    return figures(per_update, steps, rounds)

@@ -9,30 +9,22 @@ the wall time per update above the bare robot's, in microseconds.
 """
 import os
 import subprocess
-import time
 
-from racebot_sim_bridge.description import sdf_reader
 from racebot_sim_bridge.engine.simulator import Simulator
 from racebot_sim_bridge.gazebo_plugins.model_plugin import ModelPlugin
 from racebot_sim_bridge.gazebo_plugins.plugin_manager import PluginManager
 from racebot_sim_bridge.gazebo_plugins.registry import Registry
 
-from . import common, stats
+from . import common
+from .update_cost import PROJECT, ErrorsKept, check_turning, figures, ground_world, robot, time_updates
 
-PROJECT = os.path.join(common.REPO, 'tests', 'fixtures', 'gazebo_plugin_project')
 TARGET = 'joint_driver'
 VELOCITY = 2.5
-with open(os.path.join(PROJECT, 'spinner.urdf.in')) as _f:
-    SPINNER = _f.read()  # the compiled plugin tests' robot; its rotor, limits and plugins filled by robot()
 CPP = '<plugin name="driver" filename="libjoint_driver.so"><joint>spin_joint</joint><mode>%s</mode>' \
       '<target>%g</target></plugin>'
 PYTHON = '<plugin name="driver" filename="libbench_python_driver.so"><joint>spin_joint</joint></plugin>'
 VARIANTS = (('none', ''), ('cpp_empty', CPP % ('none', 0.0)), ('cpp_velocity', CPP % ('velocity', VELOCITY)),
             ('python_velocity', PYTHON))
-
-
-def robot(extra):
-    return SPINNER % {'mass': 0.5, 'izz': 0.002, 'effort': 3.0, 'velocity': 40.0, 'extra': extra}
 
 
 class PythonDriver(ModelPlugin):
@@ -45,23 +37,6 @@ class PythonDriver(ModelPlugin):
 
     def before_physics(self, time):
         self.joint_.set_position(self.joint_.state().position, VELOCITY)
-
-
-class _ErrorsKept:
-    """The simulator's and the plugins' log (rospy's calls too): errors kept, the rest dropped."""
-
-    def __init__(self):
-        self.errors = []
-
-    def error(self, message):
-        self.errors.append(message)
-
-    logerr = error
-
-    def warn(self, message):
-        pass
-
-    info = logwarn = loginfo = warn
 
 
 class _NullIO:
@@ -80,13 +55,8 @@ def build(folder):
 
 
 def _world(tmp, markup):
-    path = os.path.join(tmp, 'ground.world')
-    with open(path, 'w') as f:
-        f.write('<sdf version="1.6"><world name="default"><model name="ground_plane"><static>true</static>'
-                '<link name="link"><collision name="c"><geometry><plane><normal>0 0 1</normal></plane></geometry>'
-                '</collision></link></model></world></sdf>')
-    log = _ErrorsKept()
-    sim = Simulator(sdf_reader.load_world(path), _NullIO(), log, lambda name: None)
+    log = ErrorsKept()
+    sim = Simulator(ground_world(tmp), _NullIO(), log, lambda name: None)
     manager = PluginManager(log, sim, registry=Registry((PythonDriver,)))
     sim.spawn_urdf('spinner', robot('<gazebo>%s</gazebo>' % markup), '/', (0.0, 0.0, 0.1))
     if log.errors:
@@ -100,29 +70,12 @@ def measure(params, out):
     os.environ['GAZEBO_PLUGIN_PATH'] = folder
     steps, rounds = int(params['steps']), int(params['rounds'])
     worlds = {name: _world(os.path.join(out, 'tmp'), markup) for name, markup in VARIANTS}
-    per_update = {name: [] for name, _ in VARIANTS}
     try:
-        for sim, _ in worlds.values():  # warm up: first updates allocate
-            for _ in range(200):
-                sim.step()
-        for _ in range(rounds):
-            for name, (sim, _) in worlds.items():
-                start = time.perf_counter()
-                for _ in range(steps):
-                    sim.step()
-                per_update[name].append(1e6 * (time.perf_counter() - start) / steps)
-        for name in ('cpp_velocity', 'python_velocity'):
-            sim = worlds[name][0]
-            velocity = sim.robots['spinner'].body.joints['spin_joint'].state().velocity
-            if abs(velocity - VELOCITY) > 1e-3:
-                raise common.BenchError('%s: the joint turns at %.4f rad/s, not %.1f' % (name, velocity, VELOCITY))
+        sims = {name: sim for name, (sim, _) in worlds.items()}
+        per_update = time_updates(sims, steps, rounds)
+        check_turning(sims, ('cpp_velocity', 'python_velocity'), VELOCITY)
     finally:
         for sim, manager in worlds.values():
             manager.close()
             sim.close()
-    base = per_update['none']
-    overhead = {name: [t - b for t, b in zip(times, base)] for name, times in per_update.items() if name != 'none'}
-    return {'steps': steps, 'rounds': rounds,
-            'update_us': {name: stats.median(times) for name, times in per_update.items()},
-            'overhead_us': {name: stats.median(values) for name, values in overhead.items()},
-            'overhead_spread_us': {name: stats.spread(values) for name, values in overhead.items()}}
+    return figures(per_update, steps, rounds)
