@@ -20,9 +20,7 @@
 // Controller code runs without the interpreter lock; it publishes and subscribes with roscpp, which runs in the
 // world server (gazebo_host's start_roscpp). Built by racebot_sim_bridge/CMakeLists.txt into the devel space's
 // ros_control folder.
-#include <signal.h>
 #include <string.h>
-#include <unistd.h>
 
 #include <algorithm>
 #include <map>
@@ -44,6 +42,7 @@
 #include <hardware_interface/joint_state_interface.h>
 #include <hardware_interface/robot_hw.h>
 #include <pluginlib/class_loader.hpp>
+#include <racebot_sim_bridge/fatal_signals.h>
 #include <tinyxml.h>
 #include <urdf/model.h>
 
@@ -61,39 +60,23 @@ namespace crash
 {
 constexpr int kLabel = 200;
 char running[kLabel];  // empty when no controller code runs on the simulation thread
-const int kSignals[] = {SIGSEGV, SIGBUS, SIGFPE, SIGILL, SIGABRT};
-struct sigaction previous[sizeof(kSignals) / sizeof(kSignals[0])];
-bool installed = false;
-
-void Say(const char* text) { (void)!write(STDERR_FILENO, text, strlen(text)); }
+racebot::fatal_signals::Chain chain;
 
 void Handler(int signal, siginfo_t*, void*)
 {
   if (running[0])
   {
-    Say("\nracebot: the world server crashed inside compiled ros_control controller ");
-    Say(running);
-    Say(", in its own code: fix or rebuild that controller, or leave it out of the controllers you spawn\n");
+    racebot::fatal_signals::Say("\nracebot: the world server crashed (");
+    racebot::fatal_signals::Say(racebot::fatal_signals::Name(signal));
+    racebot::fatal_signals::Say(") inside compiled ros_control controller ");
+    racebot::fatal_signals::Say(running);
+    racebot::fatal_signals::Say(", in its own code: fix or rebuild that controller, or leave it out of the "
+                                "controllers you spawn\n");
   }
-  for (size_t i = 0; i < sizeof(kSignals) / sizeof(kSignals[0]); ++i)
-    if (kSignals[i] == signal)
-      sigaction(signal, &previous[i], nullptr);
-  raise(signal);
+  chain.PassOn(signal);
 }
 
-void Install()
-{
-  if (installed)
-    return;
-  installed = true;
-  struct sigaction action;
-  memset(&action, 0, sizeof(action));
-  action.sa_sigaction = Handler;
-  action.sa_flags = SA_SIGINFO | SA_ONSTACK;
-  sigemptyset(&action.sa_mask);
-  for (size_t i = 0; i < sizeof(kSignals) / sizeof(kSignals[0]); ++i)
-    sigaction(kSignals[i], &action, &previous[i]);
-}
+void Install() { chain.Install(Handler); }
 
 // Names the controller while it runs.
 class Running

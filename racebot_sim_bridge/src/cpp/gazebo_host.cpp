@@ -11,9 +11,7 @@
 // SIGINT handler, an AsyncSpinner on the global queue), under a node name of its own beside the rospy node.
 // Built by racebot_sim_bridge/CMakeLists.txt into the devel space's gazebo_plugins folder.
 #include <dlfcn.h>
-#include <signal.h>
 #include <string.h>
-#include <unistd.h>
 
 #include <chrono>
 #include <map>
@@ -32,6 +30,7 @@
 #include <gazebo/common/Plugin.hh>
 #include <gazebo/physics/physics.hh>
 #include <gazebo/racebot/Engine.hh>
+#include <racebot_sim_bridge/fatal_signals.h>
 
 namespace py = pybind11;
 using ignition::math::Pose3d;
@@ -174,34 +173,18 @@ private:
 // own ROS callback), then hands the signal on to the handler before it (Python's faulthandler, or the default).
 namespace crash
 {
+using racebot::fatal_signals::Say;
 constexpr int kSlots = 64;
 constexpr int kLabel = 200;
 char labels[kSlots][kLabel];  // by plugin id % kSlots; written while loading, read by the handler
 int ids[kSlots];
-const int kSignals[] = {SIGSEGV, SIGBUS, SIGFPE, SIGILL, SIGABRT};
-struct sigaction previous[sizeof(kSignals) / sizeof(kSignals[0])];
-bool installed = false;
-
-void Say(const char *_text) { (void)!write(STDERR_FILENO, _text, strlen(_text)); }
-
-const char *Name(int _signal)  // strsignal is not async-signal-safe
-{
-  switch (_signal)
-  {
-    case SIGSEGV: return "SIGSEGV";
-    case SIGBUS: return "SIGBUS";
-    case SIGFPE: return "SIGFPE";
-    case SIGILL: return "SIGILL";
-    case SIGABRT: return "SIGABRT";
-    default: return "a fatal signal";
-  }
-}
+racebot::fatal_signals::Chain chain;
 
 void Handler(int _signal, siginfo_t *, void *)
 {
   const int owner = gazebo::event::detail::CurrentOwner();
   Say("\nracebot: the world server crashed (");
-  Say(Name(_signal));
+  Say(racebot::fatal_signals::Name(_signal));
   if (owner > 0 && ids[owner % kSlots] == owner)
   {
     Say(") inside compiled ");
@@ -220,25 +203,10 @@ void Handler(int _signal, siginfo_t *, void *)
       }
     Say(" (a crash in a plugin's ROS callback shows here too)\n");
   }
-  for (size_t i = 0; i < sizeof(kSignals) / sizeof(kSignals[0]); ++i)
-    if (kSignals[i] == _signal)
-      sigaction(_signal, &previous[i], nullptr);
-  raise(_signal);
+  chain.PassOn(_signal);
 }
 
-void Install()
-{
-  if (installed)
-    return;
-  installed = true;
-  struct sigaction action;
-  memset(&action, 0, sizeof(action));
-  action.sa_sigaction = Handler;
-  action.sa_flags = SA_SIGINFO | SA_ONSTACK;
-  sigemptyset(&action.sa_mask);
-  for (size_t i = 0; i < sizeof(kSignals) / sizeof(kSignals[0]); ++i)
-    sigaction(kSignals[i], &action, &previous[i]);
-}
+void Install() { chain.Install(Handler); }
 
 void Remember(int _id, const std::string &_label)
 {
