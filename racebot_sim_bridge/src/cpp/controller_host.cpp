@@ -25,6 +25,7 @@
 #include <algorithm>
 #include <map>
 #include <memory>
+#include <mutex>
 #include <set>
 #include <stdexcept>
 #include <string>
@@ -138,7 +139,9 @@ typedef pluginlib::ClassLoader<gazebo_ros_control::RobotHWSim> SimLoader;
 template <class L>
 std::shared_ptr<L> Shared(const char* package, const char* base)
 {
+  static std::mutex guard;  // called without the interpreter lock, from the services' threads too
   static std::weak_ptr<L> shared;
+  std::lock_guard<std::mutex> lock(guard);
   std::shared_ptr<L> loader = shared.lock();
   if (!loader)
   {
@@ -262,8 +265,13 @@ public:
   // joints: (name, interface, Python JointHandle) for every joint of the robot's DefaultRobotHWSim; none for a
   // robot whose RobotHWSim is a package's own (InitSim).
   Host(const std::string& ns, const std::vector<std::tuple<std::string, std::string, py::object>>& joints)
-    : ns(ns), loader(Shared<Loader>("controller_interface", "controller_interface::ControllerBase"))
+    : ns(ns)
   {
+    {
+      // pluginlib crawls every package's exports (rospack): the simulation and the services go on meanwhile
+      py::gil_scoped_release release;
+      loader = Shared<Loader>("controller_interface", "controller_interface::ControllerBase");
+    }
     std::vector<std::pair<std::string, std::string>> described;
     for (const auto& joint : joints)
     {
