@@ -23,6 +23,13 @@ And tests/fixtures/gazebo_plugin_workspace/fixture_robot_hw_sim, a lab's own gaz
 (issue 39, point 3): its <robotSimType> is made through pluginlib and gets the model, URDF and transmissions in
 initSim; checked: its joints, a virtual one of its own included, reach the Python joint_state_controller; a C++
 controller on its handles and a Python one through the mirror both drive their wheels through its writeSim.
+
+And tests/fixtures/gazebo_plugin_workspace/fixture_ray_sensor_plugins, a lab's own ray sensor plugins (issue 39,
+points 1, 2 and 7): a RayPlugin in velodyne_gazebo_plugins' pattern (sensor off at load, a Gazebo transport
+subscription to its scan and SetActive(true) when its ROS topic gets a subscriber) built twice, for a ray and a
+gpu_ray sensor, and one that reads the updated event and the laser shape's raw rays at a rate it sets. Checked:
+the scans' size, angles, frame, stamp and ranges against the walls they see; the rate the plugin set; the sensor
+moving with its body.
 """
 import math
 import os
@@ -35,8 +42,11 @@ import rospy
 import rostest
 from controller_manager_msgs.srv import (ListControllers, ListControllerTypes, LoadController, SwitchController,
                                          UnloadController)
-from rosgraph_msgs.msg import Log
-from sensor_msgs.msg import JointState
+from gazebo_msgs.msg import ModelState
+from gazebo_msgs.srv import SetModelState
+from geometry_msgs.msg import Point, Pose, Quaternion
+from rosgraph_msgs.msg import Clock, Log
+from sensor_msgs.msg import JointState, LaserScan
 from std_msgs.msg import Bool, Float64
 from std_srvs.srv import Trigger
 
@@ -51,7 +61,7 @@ COMMAND_TIMEOUT = 60.0
 
 
 class CompiledPluginsTest(unittest.TestCase):
-    launch = workspace = turntable = rover = None
+    launch = workspace = turntable = rover = ranger = None
 
     @classmethod
     def setUpClass(cls):
@@ -108,6 +118,9 @@ class CompiledPluginsTest(unittest.TestCase):
 
     @classmethod
     def tearDownClass(cls):
+        if cls.ranger is not None:
+            cls.ranger.stop()
+            sys.stdout.write('--- ranger roslaunch output ---\n%s\n' % cls.ranger.output()[-4000:])
         if cls.rover is not None:
             cls.rover.stop()
             sys.stdout.write('--- rover roslaunch output ---\n%s\n' % cls.rover.output()[-4000:])
@@ -284,6 +297,73 @@ class CompiledPluginsTest(unittest.TestCase):
                       and abs(self.rover_joints['right_wheel_joint'][1] + 1.0) < 1e-6
                       and abs(self.rover_joints['mean_wheel'][1] - 0.5) < 1e-6,
                       'left wheel at 2 rad/s, right at -1 rad/s, their mean at 0.5', COMMAND_TIMEOUT)
+
+    # -- a lab's compiled ray sensor plugins (fixture_ray_sensor_plugins) ----------------------------------------
+    @classmethod
+    def start_ranger(cls):
+        """roslaunch fixture_ray_sensor_plugins ranger.launch into the running world, once: the ranger at (0, 10)
+        between two walls, whose faces are 1.9 m ahead of its lasers and 2.9 m behind them."""
+        if cls.ranger is None:
+            rospy.wait_for_service('/gazebo/spawn_urdf_model', timeout=STARTUP_TIMEOUT)
+            cls.clock = []
+            rospy.Subscriber('/clock', Clock, lambda m: cls.clock.append(m.clock.to_sec()), queue_size=100)
+            cls.nearest, cls.nearest_raw = [], []
+            rospy.Subscriber('/ranger/nearest', Float64,
+                             lambda m: cls.nearest.append((cls.clock[-1] if cls.clock else None, m.data)))
+            rospy.Subscriber('/ranger/nearest_raw', Float64, lambda m: cls.nearest_raw.append(m.data))
+            cls.ranger = ShellCommand('source %s && exec roslaunch fixture_ray_sensor_plugins ranger.launch'
+                                      % cls.workspace.setup, user_environment(),
+                                      os.path.join(cls.workspace.root, 'ranger.log'), login=True)
+            LaunchWatch(cls.ranger).wait(lambda: 'scan relay on gpu_laser' in cls.launch.output(),
+                                         "the sensor plugins' ROS_INFO from their Load", STARTUP_TIMEOUT)
+
+    def scans(self, topic, count=3):
+        """The next `count` LaserScans on `topic` (subscribed only for them: the relay's sensor runs on demand)."""
+        got = []
+        sub = rospy.Subscriber(topic, LaserScan, got.append, queue_size=10)
+        try:
+            self.launched(lambda: len(got) >= count, '%d scans on %s' % (count, topic), COMMAND_TIMEOUT)
+        finally:
+            sub.unregister()
+        return got[:count]
+
+    def test_9b_a_ray_plugin_reads_its_sensors_scan_through_transport_on_demand(self):
+        self.start_ranger()
+        scan = self.scans('/ranger/scan')[-1]
+        self.assertEqual(len(scan.ranges), 61)
+        self.assertAlmostEqual(scan.angle_min, -0.5, places=6)
+        self.assertAlmostEqual(scan.angle_increment, 1.0 / 60, places=6)
+        self.assertEqual(scan.header.frame_id, 'laser_link')
+        self.assertGreater(scan.header.stamp.to_sec(), 0.0)  # the measurement's sim time
+        self.assertAlmostEqual(scan.ranges[30], 1.9, delta=0.01)  # straight ahead to the wall's face
+        self.assertAlmostEqual(scan.ranges[0], 1.9 / math.cos(0.5), delta=0.01)
+
+    def test_9c_a_gpu_ray_plugin_from_the_same_source_reads_its_gpu_ray_sensor(self):
+        self.start_ranger()
+        scan = self.scans('/ranger/gpu_scan')[-1]
+        self.assertEqual(len(scan.ranges), 31)
+        self.assertAlmostEqual(scan.ranges[15], 2.9, delta=0.01)  # it looks back, to the other wall
+
+    def test_9d_a_plugin_reads_the_updated_event_and_raw_rays_at_the_rate_it_sets(self):
+        self.start_ranger()
+        self.launched(lambda: len(self.nearest) > 12 and self.nearest_raw, 'the nearest obstacle published',
+                      COMMAND_TIMEOUT)
+        self.assertAlmostEqual(self.nearest[-1][1], 1.9, delta=0.01)
+        self.assertAlmostEqual(self.nearest_raw[-1], 1.9, delta=0.01)
+        # the sensor declares 50 Hz, its plugin sets 5 Hz (SetUpdateRate): the messages' sim times say which
+        times = [t for t, _ in self.nearest[-11:] if t is not None]
+        self.assertGreaterEqual(len(times), 10)
+        rate = (len(times) - 1) / (times[-1] - times[0])
+        self.assertGreater(rate, 3.0, rate)
+        self.assertLess(rate, 8.0, rate)
+
+    def test_9e_the_sensor_follows_its_body(self):
+        self.start_ranger()
+        moved = rospy.ServiceProxy('/gazebo/set_model_state', SetModelState)(ModelState(
+            model_name='ranger', pose=Pose(position=Point(0.5, 10.0, 0.0), orientation=Quaternion(0, 0, 0, 1))))
+        self.assertTrue(moved.success, moved.status_message)
+        scan = self.scans('/ranger/scan', 3)[-1]
+        self.assertAlmostEqual(scan.ranges[30], 1.4, delta=0.02)
 
 
 CM = '/turntable/controller_manager/'

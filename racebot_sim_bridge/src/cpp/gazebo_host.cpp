@@ -22,6 +22,7 @@
 #include <tuple>
 #include <vector>
 
+#include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 #include <ros/ros.h>
@@ -30,6 +31,9 @@
 #include <gazebo/common/Plugin.hh>
 #include <gazebo/physics/physics.hh>
 #include <gazebo/racebot/Engine.hh>
+#include <gazebo/sensors/GpuRaySensor.hh>
+#include <gazebo/sensors/RaySensor.hh>
+#include <gazebo/transport/Node.hh>
 #include <racebot_sim_bridge/fatal_signals.h>
 
 namespace py = pybind11;
@@ -229,7 +233,15 @@ struct Loaded
   gazebo::PluginType type;
   boost::shared_ptr<gazebo::ModelPlugin> model;
   boost::shared_ptr<gazebo::WorldPlugin> world;
+  boost::shared_ptr<gazebo::SensorPlugin> sensor;
 };
+
+// numpy's float64 arrays, as the sensor's measurement comes from racebot's ray casts
+using Doubles = py::array_t<double, py::array::c_style | py::array::forcecast>;
+std::vector<double> ToVector(const Doubles &_array)
+{
+  return std::vector<double>(_array.data(), _array.data() + _array.size());
+}
 
 class Host
 {
@@ -315,6 +327,95 @@ public:
   int Load(const std::string &_kind, const std::string &_path, const std::string &_filename,
            const std::string &_name, const std::string &_model, const std::string &_xml)
   {
+    return this->LoadPlugin(_kind, _path, _filename, _name, _model, _xml, 0);
+  }
+
+  // Loads a sensor plugin of the sensor `_sensor` (an AddRaySensor id), as Load loads a model's: Load(sensor,
+  // <plugin> element), Init().
+  int LoadSensorPlugin(int _sensor, const std::string &_path, const std::string &_filename, const std::string &_name,
+                       const std::string &_xml)
+  {
+    auto found = this->sensors.find(_sensor);
+    if (found == this->sensors.end())
+      throw std::runtime_error("no sensor " + std::to_string(_sensor) + " in racebot's plugin host");
+    const std::string model = found->second->ParentName().substr(0, found->second->ParentName().find("::"));
+    return this->LoadPlugin("sensor", _path, _filename, _name, model, _xml, _sensor);
+  }
+
+  // A <sensor type="ray"> or "gpu_ray" of model `_model`'s link `_link` for compiled sensor plugins: its id.
+  // `_pose`: in the link (x, y, z, qx, qy, qz, qw); `_geometry`: (samples, resolution, min angle, max angle,
+  // vertical samples, vertical resolution, vertical min, vertical max, range min, range max, range resolution).
+  int AddRaySensor(const std::string &_type, const std::string &_name, const std::string &_model,
+                   const std::string &_link, const std::tuple<double, double, double, double, double, double,
+                                                              double> &_pose,
+                   double _updateRate, bool _alwaysOn, bool _visualize,
+                   const std::tuple<int, double, double, double, int, double, double, double, double, double,
+                                    double> &_geometry)
+  {
+    gazebo::sensors::Sensor::Description description;
+    description.name = _name;
+    description.type = _type;
+    description.parentName = _model + "::" + _link;
+    description.worldName = this->world->Name();
+    description.id = static_cast<uint32_t>(this->lastSensorId + 1);
+    description.pose = P(_pose);
+    description.updateRate = _updateRate;
+    description.alwaysOn = _alwaysOn;
+    description.visualize = _visualize;
+    gazebo::physics::MultiRayShape::Geometry geometry;
+    std::tie(geometry.samples, geometry.resolution, geometry.minAngle, geometry.maxAngle, geometry.verticalSamples,
+             geometry.verticalResolution, geometry.verticalMinAngle, geometry.verticalMaxAngle, geometry.minRange,
+             geometry.maxRange, geometry.resRange) = _geometry;
+    std::shared_ptr<gazebo::sensors::racebot::RayScan> sensor;
+    if (_type == "gpu_ray")
+      sensor = std::make_shared<gazebo::sensors::GpuRaySensor>(description, geometry);
+    else if (_type == "ray")
+      sensor = std::make_shared<gazebo::sensors::RaySensor>(description, geometry);
+    else
+      throw std::runtime_error("racebot hosts compiled plugins of ray and gpu_ray sensors, not of type " + _type);
+    const int id = ++this->lastSensorId;
+    this->sensors[id] = sensor;
+    return id;
+  }
+
+  void RemoveSensor(int _sensor) { this->sensors.erase(_sensor); }
+
+  // Whether the sensor measures now (Sensor::IsActive: SetActive, <always_on>, a subscriber of its scan topic)
+  // and its update rate (a plugin may have set it): (active, rate).
+  std::tuple<bool, double> SensorState(int _sensor)
+  {
+    const auto &sensor = this->sensors.at(_sensor);
+    return std::make_tuple(sensor->IsActive(), sensor->UpdateRate());
+  }
+
+  // One measurement of a ray sensor at sim time `_time` (RayScan::Measure): the plugins' callbacks run without the
+  // interpreter lock, as event callbacks do; a callback that throws unloads its plugin (AfterEvents).
+  void MeasureRay(int _sensor, double _time, const std::tuple<double, double, double, double, double, double,
+                                                                double> &_worldPose,
+                  const Doubles &_ranges, const Doubles &_intensities, const Doubles &_rawRanges,
+                  const Doubles &_rawRetro)
+  {
+    auto sensor = this->sensors.at(_sensor);
+    std::vector<double> ranges = ToVector(_ranges), intensities = ToVector(_intensities);
+    std::vector<double> raw = ToVector(_rawRanges), retro = ToVector(_rawRetro);
+    {
+      py::gil_scoped_release unlocked;
+      sensor->Measure(gazebo::common::Time(_time), P(_worldPose), std::move(ranges), std::move(intensities),
+                      std::move(raw), std::move(retro));
+    }
+    this->AfterEvents();
+  }
+
+private:
+  static Pose3d P(const std::tuple<double, double, double, double, double, double, double> &_p)
+  {
+    return Pose3d(std::get<0>(_p), std::get<1>(_p), std::get<2>(_p), std::get<6>(_p), std::get<3>(_p),
+                  std::get<4>(_p), std::get<5>(_p));
+  }
+
+  int LoadPlugin(const std::string &_kind, const std::string &_path, const std::string &_filename,
+                 const std::string &_name, const std::string &_model, const std::string &_xml, int _sensor)
+  {
     const std::string label = "plugin '" + _name + "' (" + _filename + ")";
     // RTLD_NOW where Gazebo has RTLD_LAZY: a symbol racebot's API lacks is an error now, naming it, not a crash
     // at the plugin's first call
@@ -328,7 +429,9 @@ public:
     sdf::ElementPtr sdf = this->PluginElement(label, _xml);
     const int id = ++this->lastId;
     crash::Install();
-    crash::Remember(id, (_kind == "world" ? "world " : "model '" + _model + "': ") + label);
+    crash::Remember(id, (_kind == "world" ? std::string("world ") :
+                         _kind == "sensor" ? "sensor '" + this->sensors.at(_sensor)->Name() + "' of model '" + _model +
+                                               "': " : "model '" + _model + "': ") + label);
     Loaded loaded;
     loaded.label = label;
     gazebo::event::detail::OwnerScope scope(id);
@@ -339,15 +442,22 @@ public:
       if (plugin == nullptr)
         throw std::runtime_error("RegisterPlugin returned no plugin");
       loaded.type = plugin->GetType();
-      const gazebo::PluginType wanted = _kind == "world" ? gazebo::WORLD_PLUGIN : gazebo::MODEL_PLUGIN;
+      const gazebo::PluginType wanted = _kind == "world" ? gazebo::WORLD_PLUGIN :
+                                        _kind == "sensor" ? gazebo::SENSOR_PLUGIN : gazebo::MODEL_PLUGIN;
       if (loaded.type != wanted)
       {
         delete plugin;  // its destructor is virtual: the right one runs whatever kind it is
-        throw std::runtime_error(std::string("is not a ") + (_kind == "world" ? "world" : "model") +
-                                 " plugin (its GZ_REGISTER_*_PLUGIN names another kind), as Gazebo says: "
-                                 "\"detected an incorrect plugin type\"");
+        throw std::runtime_error("is not a " + _kind + " plugin (its GZ_REGISTER_*_PLUGIN names another kind), as "
+                                 "Gazebo says: \"detected an incorrect plugin type\"");
       }
-      if (loaded.type == gazebo::MODEL_PLUGIN)
+      if (loaded.type == gazebo::SENSOR_PLUGIN)
+      {
+        loaded.sensor.reset(reinterpret_cast<gazebo::SensorPlugin *>(plugin));
+        loaded.sensor->SetNames(_filename, _name);
+        loaded.sensor->Load(this->sensors.at(_sensor), sdf);
+        loaded.sensor->Init();
+      }
+      else if (loaded.type == gazebo::MODEL_PLUGIN)
       {
         loaded.model.reset(plugin);
         loaded.model->SetNames(_filename, _name);
@@ -368,6 +478,7 @@ public:
     catch (const std::exception &_e)
     {
       gazebo::event::DisconnectOwnerEverywhere(id);
+      gazebo::transport::racebot::RemoveOwnerSubscriptions(id);
       crash::Forget(id);
       throw std::runtime_error(label + ": " + _e.what());
     }
@@ -378,6 +489,7 @@ public:
     return id;
   }
 
+public:
   // Gazebo's World::Update around the physics step: worldUpdateBegin then beforePhysicsUpdate (before), and
   // worldUpdateEnd (after). The world server's step hooks call these directly, at every world update: no Python
   // in between, and Python is called back only when something changed (notify).
@@ -439,6 +551,8 @@ public:
           entry.second.model->Reset();
         if (entry.second.world)
           entry.second.world->Reset();
+        if (entry.second.sensor)
+          entry.second.sensor->Reset();
       }
       catch (const std::exception &_e)
       {
@@ -451,6 +565,7 @@ public:
   void Unload(int _id)
   {
     gazebo::event::DisconnectOwnerEverywhere(_id);
+    gazebo::transport::racebot::RemoveOwnerSubscriptions(_id);
     crash::Forget(_id);
     auto found = this->plugins.find(_id);
     if (found == this->plugins.end())
@@ -462,6 +577,7 @@ public:
     {
       loaded.model.reset();  // the plugin's destructor (its connections go with it)
       loaded.world.reset();
+      loaded.sensor.reset();
     }
     catch (...)
     {
@@ -543,6 +659,8 @@ private:
   gazebo::common::UpdateInfo info;
   std::map<int, Loaded> plugins;
   int lastId = 0;
+  std::map<int, std::shared_ptr<gazebo::sensors::racebot::RayScan>> sensors;
+  int lastSensorId = 0;
 };
 std::unique_ptr<ros::AsyncSpinner> spinner;
 std::unique_ptr<ros::NodeHandle> rosNode;
@@ -587,6 +705,14 @@ PYBIND11_MODULE(gazebo_host, m)
     // plugin code runs without the interpreter lock (PyEngine takes it for each call into the engine)
     .def("load", &Host::Load, py::arg("kind"), py::arg("path"), py::arg("filename"), py::arg("name"),
          py::arg("model"), py::arg("xml"), py::call_guard<py::gil_scoped_release>())
+    .def("add_ray_sensor", &Host::AddRaySensor, py::arg("type"), py::arg("name"), py::arg("model"),
+         py::arg("link"), py::arg("pose"), py::arg("update_rate"), py::arg("always_on"), py::arg("visualize"),
+         py::arg("geometry"))
+    .def("load_sensor_plugin", &Host::LoadSensorPlugin, py::arg("sensor"), py::arg("path"), py::arg("filename"),
+         py::arg("name"), py::arg("xml"), py::call_guard<py::gil_scoped_release>())
+    .def("remove_sensor", &Host::RemoveSensor)
+    .def("sensor_state", &Host::SensorState)
+    .def("measure_ray", &Host::MeasureRay)  // releases it itself, around the plugins' callbacks
     .def("update_begin", &Host::UpdateBegin)  // these release it themselves, around the events
     .def("update_end", &Host::UpdateEnd)
     .def("idle", &Host::Idle)

@@ -59,6 +59,7 @@ from racebot_sim_bridge.gazebo_ros_api.services import GazeboServices
 from racebot_sim_bridge.gazebo_ros_api.performance_metrics import PerformanceMetricsPublisher
 from racebot_sim_bridge.engine.load_trial import DEFAULT_TIMEOUT, LoadTrial
 from racebot_sim_bridge.engine.physics_types import PhysicsError
+from racebot_sim_bridge.gazebo_plugins.compiled_plugins import CompiledPlugins
 from racebot_sim_bridge.gazebo_plugins.plugin_manager import PluginManager
 from racebot_sim_bridge.gazebo_ros_control.gazebo_ros_control_plugin import GazeboRosControlPlugin
 from racebot_sim_bridge.gazebo_plugins.sensor_manager import SensorManager
@@ -199,9 +200,12 @@ class WorldServer:
         self.last_clock_wall = -math.inf
         self.states_period = self._rate_param('~states_publish_rate', 100.0)
         self.clock_pub = clock_publisher()
-        self.sensors = SensorManager(rospy, self.sim)  # before the services: every spawn gets its sensors
-        # and its model plugins (diff drive, p3d, ...; compiled ones with roscpp as node <this node>_cpp)
-        self.plugins = PluginManager(rospy, self.sim, roscpp_name=rospy.get_name().rsplit('/', 1)[-1] + '_cpp')
+        # compiled plugins (model, world and sensor ones, with roscpp as node <this node>_cpp): one host for all
+        compiled = CompiledPlugins(rospy, self.sim, rospy.get_name().rsplit('/', 1)[-1] + '_cpp')
+        # before the services: every spawn gets its sensors
+        self.sensors = SensorManager(rospy, self.sim, compiled=compiled)
+        # and its model plugins (diff drive, p3d, ...)
+        self.plugins = PluginManager(rospy, self.sim, compiled=compiled)
         # and gazebo_ros_control with its controller manager's services, whatever ~enable_ros_network says
         # (the flag is gazebo_ros_api_plugin's; upstream's gazebo_ros_control reads none)
         # (C++ controllers with roscpp, as the compiled plugins have it; a package's RobotHWSim on their model)

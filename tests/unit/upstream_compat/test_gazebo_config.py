@@ -46,8 +46,11 @@ def project(tmp_path, cmake, sources=None, name='probe_pkg'):
 # a model plugin's includes, all in racebot's Gazebo plugin API
 PLUGIN = {'src/plugin.cc': ('#include <ros/ros.h>\n  #  include "gazebo/physics/physics.hh"\n'
                             '#include <gazebo/gazebo.hh>\n')}
-# a sensor plugin's: gazebo/sensors/RaySensor.hh is not in it
-SENSOR_PLUGIN = {'src/plugin.cc': '#include <gazebo/gazebo.hh>\n  #  include "gazebo/sensors/RaySensor.hh"\n'}
+# a ray sensor plugin's, all in it
+RAY_PLUGIN = {'src/plugin.cc': ('#include <gazebo/plugins/RayPlugin.hh>\n#include <gazebo/sensors/RaySensor.hh>\n'
+                                '#include <gazebo/transport/Node.hh>\n#include <gazebo/msgs/MessageTypes.hh>\n')}
+# a camera plugin's: gazebo/sensors/CameraSensor.hh is not in it
+SENSOR_PLUGIN = {'src/plugin.cc': '#include <gazebo/gazebo.hh>\n  #  include "gazebo/sensors/CameraSensor.hh"\n'}
 
 
 def flat(text):
@@ -77,6 +80,13 @@ def test_a_model_plugin_gets_racebots_gazebo_plugin_api(tmp_path):
     assert values['gazebo_FOUND'] in ('1', 'TRUE'), out
 
 
+def test_a_ray_sensor_plugin_gets_racebots_gazebo_plugin_api(tmp_path):
+    code, out, values = project(tmp_path, 'find_package(gazebo REQUIRED)\n' + REPORT, RAY_PLUGIN, name='my_lidar')
+    assert code == 0, out
+    assert values['gazebo_FOUND'] in ('1', 'TRUE'), out
+    assert (DEVEL / 'lib' / 'libRayPlugin.so').is_file() and (DEVEL / 'lib' / 'libGpuRayPlugin.so').is_file()
+
+
 def test_a_newer_gazebo_than_11_is_not_found(tmp_path):
     code, out, values = project(tmp_path, 'find_package(gazebo 12 QUIET)\n' + REPORT)
     assert code == 0 and values['gazebo_FOUND'] in ('0', 'FALSE'), out
@@ -87,7 +97,7 @@ def test_a_plugin_including_a_header_the_api_lacks_is_refused_naming_the_package
     assert code != 0, out
     out = flat(out)
     assert ("racebot: package 'my_gazebo_plugins' includes a Gazebo header that racebot's Gazebo plugin API does "
-            'not have (src/plugin.cc: # include "gazebo/sensors/RaySensor.hh")') in out
+            'not have (src/plugin.cc: # include "gazebo/sensors/CameraSensor.hh")') in out
     assert 'docs/SUPPORTED.md' in out
     assert 'catkin_make -DCATKIN_BLACKLIST_PACKAGES="my_gazebo_plugins"' in out
 
@@ -105,7 +115,7 @@ def test_an_include_the_scan_misses_fails_the_compile_with_the_advice(tmp_path):
     code, out, values = project(tmp_path, 'find_package(gazebo REQUIRED)\n' + REPORT, name='elsewhere_pkg')
     assert code == 0, out
     outside = tmp_path / 'shared.cpp'  # outside the package's folder, as a source another package lends
-    outside.write_text('#include <gazebo/sensors/sensors.hh>\nint main() { return 0; }\n')
+    outside.write_text('#include <gazebo/rendering/rendering.hh>\nint main() { return 0; }\n')
     includes = [arg for folder in values['GAZEBO_INCLUDE_DIRS'].split(';') for arg in ('-I', folder)]
     done = subprocess.run(['g++', '-fsyntax-only'] + includes + [str(outside)],
                           stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, timeout=60)

@@ -61,6 +61,15 @@ target_link_libraries(gazebo PUBLIC ignition-math6::ignition-math6 ${SDFormat_LI
 target_compile_options(gazebo PRIVATE -O2)  # as Gazebo's own libraries are built, whatever the build type
 set_target_properties(gazebo PROPERTIES LIBRARY_OUTPUT_DIRECTORY ${CATKIN_DEVEL_PREFIX}/lib)
 install(TARGETS gazebo LIBRARY DESTINATION lib)
+# Gazebo's plugin base classes a sensor plugin links by name (target_link_libraries(x ... RayPlugin), found in
+# GAZEBO_LIBRARY_DIRS): libRayPlugin and libGpuRayPlugin beside libgazebo.
+foreach(_racebot_base RayPlugin GpuRayPlugin)
+  add_library(${_racebot_base} SHARED ${CMAKE_CURRENT_LIST_DIR}/../src/plugins/${_racebot_base}.cc)
+  target_link_libraries(${_racebot_base} PUBLIC gazebo)
+  target_compile_options(${_racebot_base} PRIVATE -O2)
+  set_target_properties(${_racebot_base} PROPERTIES LIBRARY_OUTPUT_DIRECTORY ${CATKIN_DEVEL_PREFIX}/lib)
+  install(TARGETS ${_racebot_base} LIBRARY DESTINATION lib)
+endforeach()
 install(DIRECTORY ${CMAKE_CURRENT_LIST_DIR}/../include/gazebo DESTINATION include)
 
 # where they were found, for the config: a package that enables no language (project(x NONE)) has no library

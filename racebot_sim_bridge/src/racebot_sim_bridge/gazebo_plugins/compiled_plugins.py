@@ -1,4 +1,5 @@
-"""Compiled Gazebo plugins: a `<plugin filename>` racebot has no Python class for, loaded from its library.
+"""Compiled Gazebo plugins: a `<plugin filename>` racebot has no Python class for, loaded from its library (or
+one it has a class for, whose library a package built).
 
 A robot package's own model plugin, built with its own `find_package(gazebo)` against racebot's Gazebo 11 plugin API
 (upstream_compat/gazebo_dev: the headers, libgazebo, the gazebo config), is found as Gazebo finds a plugin
@@ -8,7 +9,8 @@ check, Load with the model and the <plugin> element, Init. The world update fire
 (worldUpdateBegin and beforePhysicsUpdate before the physics step, worldUpdateEnd after); reset_world calls each
 plugin's Reset and worldReset. Every physics call a plugin makes comes back to EngineAdapter, on the engine's
 objects. A plugin whose library cannot be loaded, is of another kind, or throws in Load, Init, Reset or an event
-callback is reported with its library and the reason, unloaded, and the world goes on.
+callback is reported with its library and the reason, unloaded, and the world goes on. A <sensor>'s compiled
+plugins are loaded on a C++ sensor the host makes for it (load_sensor; compiled_sensors.py measures it).
 """
 import os
 import sys
@@ -208,10 +210,11 @@ class EngineAdapter:
 
 
 class CompiledPlugins:
-    """The compiled model plugins of every spawned robot, one gazebo_host.Host for them all (made at the first
-    one). `rospy` logs; `sim` the Simulator, whose lock every call here runs under. `roscpp_name`: where a master
-    runs (the world server), the name roscpp's node gets when the first plugin loads (plugins make NodeHandles, as
-    in gzserver, where gazebo_ros_api_plugin has started roscpp); None: roscpp is not started (no master)."""
+    """The compiled model, world and sensor plugins of every spawned robot, one gazebo_host.Host for them all (made
+    at the first one). `rospy` logs; `sim` the Simulator, whose lock every call here runs under. `roscpp_name`:
+    where a master runs (the world server), the name roscpp's node gets when the first plugin loads (plugins make
+    NodeHandles, as in gzserver, where gazebo_ros_api_plugin has started roscpp); None: roscpp is not started (no
+    master)."""
 
     def __init__(self, rospy, sim, roscpp_name=None):
         self.rospy = rospy
@@ -277,6 +280,51 @@ class CompiledPlugins:
         self.rospy.loginfo('%s: loaded from %s' % (label, path))
         self._refresh()
         return True
+
+    def load_sensor(self, manager, robot, spec, plugins, fallbacks=()):
+        """Hosts the compiled `plugins` (GazeboPlugin specs whose library find_library found) of the <sensor> `spec`
+        (a ray or gpu_ray sensor, compiled_sensors.HOSTED_TYPES) of `robot`: a C++ sensor, and each plugin loaded
+        on it. Returns (the CompiledRaySensor for `manager` to step, or None when no plugin loaded; the plugins
+        that loaded). `fallbacks`: the filenames racebot also simulates (its class runs when this one fails)."""
+        from racebot_sim_bridge.gazebo_plugins.compiled_sensors import CompiledRaySensor, ray_geometry
+        where = "%s: sensor '%s'" % (robot.name, spec.name)
+        if not self._ensure_host():
+            self.rospy.logerr('%s: %s. It runs without its compiled plugins' % (where, self.unavailable))
+            return None, []
+        self._add_model(robot)
+        self.host.set_iterations(self.sim.steps)
+        probe = CompiledRaySensor.mount_of(self.sim, robot, spec)  # KeyError: not on a link of the body
+        sensor_id = self.host.add_ray_sensor(spec.type, spec.name, robot.name, probe.link,
+                                             tuple(probe.offset[0]) + tuple(probe.offset[1]), float(spec.update_rate),
+                                             bool(spec.always_on), bool(spec.visualize), ray_geometry(spec.ray))
+        loaded = []
+        for plugin in plugins:
+            label = "%s: plugin '%s' (%s)" % (where, plugin.name, plugin.filename)
+            fallback = plugin.filename in fallbacks
+            without = ("racebot's own simulation of it runs instead" if fallback else 'The sensor works without it')
+            try:
+                plugin_id = self.host.load_sensor_plugin(sensor_id, find_library(plugin.filename), plugin.filename,
+                                                         plugin.name, plugin_xml(plugin))
+            except RuntimeError as err:
+                self.rospy.logerr('%s: not loaded: %s. %s; see %s' % (where, err, without, SUPPORTED_TABLE))
+                continue
+            self.plugins[plugin_id] = (robot.name, label)
+            loaded.append((plugin_id, plugin))
+            self.rospy.loginfo('%s: loaded from %s%s' % (label, find_library(plugin.filename),
+                                                         " (the package's own build, not racebot's simulation of it)"
+                                                         if fallback else ''))
+        self._refresh()
+        if not loaded:
+            self.host.remove_sensor(sensor_id)
+            return None, []
+        sensor = CompiledRaySensor(manager, robot, spec, self.host, sensor_id, [i for i, _ in loaded], self.unload)
+        return sensor, [plugin for _, plugin in loaded]
+
+    def unload(self, plugin_id):
+        """Unloads one plugin (a compiled sensor's, when its robot goes)."""
+        if self.plugins.pop(plugin_id, None) is not None:
+            self.host.unload(plugin_id)
+            self._refresh()
 
     def on_spawn(self, robot):
         """A robot spawned once the host runs: its world plugins' World::ModelByName finds it."""

@@ -27,15 +27,17 @@ def dynamic_reconfigure_server(namespace, config_type, callback):
 
 
 class PluginManager:
-    def __init__(self, rospy, sim, registry=REGISTRY, reconfigure=dynamic_reconfigure_server, roscpp_name=None):
+    def __init__(self, rospy, sim, registry=REGISTRY, reconfigure=dynamic_reconfigure_server, roscpp_name=None,
+                 compiled=None):
         """reconfigure(namespace, config_type, callback): makes a plugin's dynamic_reconfigure server
         (tests without a master give a stand-in). roscpp_name: the node name roscpp gets for compiled plugins
-        (CompiledPlugins; None without a master)."""
+        (CompiledPlugins; None without a master). compiled: the CompiledPlugins to use (the world server shares one
+        with its SensorManager), else one made here."""
         self.rospy = rospy
         self.sim = sim
         self.registry = registry
         self.reconfigure = reconfigure
-        self.compiled = CompiledPlugins(rospy, sim, roscpp_name)
+        self.compiled = compiled if compiled is not None else CompiledPlugins(rospy, sim, roscpp_name)
         self.plugins = {}  # robot name -> [ModelPlugin]
         self._active = []
         # the plugins whose class has a before_physics / after_step of its own: only they are called at each

@@ -4,7 +4,8 @@ When a URDF robot spawns, every <gazebo reference><sensor> block of its URDF tha
 gazebo_ros plugin becomes a sensor: the first of its plugins the registry has a sensor class for (one module per
 plugin library) reads its <sensor> and <plugin> in its own configure() (sensor_plugin.py: topics, frame, rate);
 after every physics step each sensor whose update is due in sim time measures the world and publishes, stamped
-with that sim time.
+with that sim time. A sensor plugin whose library a package built (a ray or gpu_ray sensor's) is hosted as Gazebo
+hosts it (compiled_sensors.py), in place of racebot's class for the same library where it has one.
 
 Cost is paid only for what somebody reads: a sensor whose topics have no subscriber does no ray
 cast, render or message at all, and a depth camera works out depth only while its depth image or
@@ -30,13 +31,17 @@ Reported: a loginfo line per period with each busy topic's rate in sim time and 
 frames skipped and the real-time factor, and the same numbers in the parameter ~sensors/rates
 ({real_time_factor, renderer, topics: [{topic, sim_hz, wall_hz, skipped}]}).
 """
+import dataclasses
 import math
 import threading
 import time as walltime
 
 from racebot_sim_bridge.gazebo_ros_api.plugin_kind import PluginKind
+from racebot_sim_bridge.gazebo_plugins.compiled_plugins import find_library
+from racebot_sim_bridge.gazebo_plugins.compiled_sensors import HOSTED_TYPES
 from racebot_sim_bridge.gazebo_plugins.plugin_manager import dynamic_reconfigure_server
 from racebot_sim_bridge.gazebo_plugins.registry import REGISTRY
+from racebot_sim_bridge.supported_table import WHERE as SUPPORTED_TABLE
 from racebot_sim_bridge.sensors.config_types import SensorConfigError, resolve_frame
 from racebot_sim_bridge.sensors.render import RENDERER_CHOICES, RENDERER_NAMES, TINY
 from racebot_sim_bridge.sensors.render_worker import RenderWorker
@@ -63,11 +68,14 @@ def sensor_config(spec, spawn_namespace='', model_name='', node_namespace='/'):
 
 
 class SensorManager:
-    def __init__(self, rospy, sim, clock=walltime.perf_counter, reconfigure=dynamic_reconfigure_server):
+    def __init__(self, rospy, sim, clock=walltime.perf_counter, reconfigure=dynamic_reconfigure_server,
+                 compiled=None):
         """reconfigure(namespace, config_type, callback): a plugin's dynamic_reconfigure server (tests without a
-        master give a stand-in)."""
+        master give a stand-in). compiled: the world server's CompiledPlugins, which hosts a sensor's compiled
+        plugins (None: none are looked for)."""
         self.rospy = rospy
         self.sim = sim
+        self.compiled = compiled
         self.clock = clock
         self.reconfigure = reconfigure
         self.noise_enabled = bool(rospy.get_param('~sensors/noise', True))
@@ -117,9 +125,42 @@ class SensorManager:
         return default
 
     # -- hooks (called under sim.lock) ----------------------------------------------------------
+    def _host_compiled(self, robot, spec):
+        """The sensor's plugins whose library a package built (find_library), hosted as Gazebo hosts them
+        (compiled_sensors.py): (the CompiledRaySensor or None, `spec` with only the plugins racebot simulates left).
+        The package's own build of a plugin racebot also simulates wins; racebot's runs when it does not load."""
+        built = [p for p in spec.plugins if find_library(p.filename) is not None]
+        if self.compiled is None or not built:
+            return None, spec
+        if spec.type not in HOSTED_TYPES:
+            for plugin in built:
+                self.rospy.logwarn("%s: sensor '%s' (type %s): plugin '%s' (%s) is compiled, and racebot hosts the "
+                                   'compiled plugins of %s sensors only: %s; see %s'
+                                   % (robot.name, spec.name, spec.type, plugin.name, plugin.filename,
+                                      ' and '.join(HOSTED_TYPES), 'racebot simulates it instead'
+                                      if REGISTRY.find(plugin.filename, PluginKind.SENSOR) else 'it publishes nothing',
+                                      SUPPORTED_TABLE))
+            return None, spec
+        fallbacks = [p.filename for p in built if REGISTRY.find(p.filename, PluginKind.SENSOR) is not None]
+        try:
+            sensor, loaded = self.compiled.load_sensor(self, robot, spec, built, fallbacks)
+        except (KeyError, ValueError) as err:
+            self.rospy.logwarn("%s: sensor '%s' cannot host its compiled plugins: %s" % (robot.name, spec.name, err))
+            return None, spec
+        left = [p for p in spec.plugins if all(p is not done for done in loaded)]
+        return sensor, dataclasses.replace(spec, plugins=left)
+
     def on_spawn(self, robot):
         created = []
         for spec in robot.model.sensors:
+            compiled, spec = self._host_compiled(robot, spec)
+            if compiled is not None:
+                created.append(compiled)
+                self.rospy.loginfo("%s: %s sensor '%s' on %s at %s with compiled plugins, scan %s" % (
+                    robot.name, spec.type, spec.name, spec.reference,
+                    '%g Hz' % spec.update_rate if spec.update_rate > 0 else 'every update', compiled.topic))
+                if not spec.plugins:
+                    continue
             try:
                 config = sensor_config(spec, robot.spawn_namespace, robot.name, self.sim.node_namespace)
             except SensorConfigError as err:

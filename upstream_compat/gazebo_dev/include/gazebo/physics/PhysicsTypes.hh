@@ -19,12 +19,14 @@ class Model;
 class Link;
 class Joint;
 class PhysicsEngine;
+class MultiRayShape;
 
 typedef boost::shared_ptr<World> WorldPtr;
 typedef boost::shared_ptr<Model> ModelPtr;
 typedef boost::shared_ptr<Link> LinkPtr;
 typedef boost::shared_ptr<Joint> JointPtr;
 typedef boost::shared_ptr<PhysicsEngine> PhysicsEnginePtr;
+typedef boost::shared_ptr<MultiRayShape> MultiRayShapePtr;
 
 typedef std::vector<ModelPtr> Model_V;
 typedef std::vector<LinkPtr> Link_V;

@@ -1,6 +1,5 @@
 // racebot's Gazebo 11 plugin API (upstream_compat/gazebo_dev): Gazebo transport's pointer types, which plugins'
-// headers include (gazebo_ros_pkgs' plugins among them) without using them. racebot has no Gazebo transport: a
-// plugin that creates a transport::Node does not build (docs/SUPPORTED.md).
+// headers include (gazebo_ros_pkgs' plugins among them). What racebot's transport has: transport/Node.hh.
 #ifndef GAZEBO_TRANSPORT_TRANSPORTTYPES_HH_
 #define GAZEBO_TRANSPORT_TRANSPORTTYPES_HH_
 

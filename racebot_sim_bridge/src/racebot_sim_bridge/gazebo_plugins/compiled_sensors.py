@@ -1,0 +1,119 @@
+"""Compiled sensor plugins: a <sensor>'s `<plugin filename>` whose library a package built against racebot's Gazebo
+plugin API (a velodyne_gazebo_plugins build, a lab's own RayPlugin), hosted as Gazebo hosts it.
+
+For a <sensor type="ray"> or "gpu_ray" that carries such a plugin, racebot's plugin host (gazebo_host) makes a
+sensors::RaySensor or GpuRaySensor (compiled_plugins.CompiledPlugins.add_ray_sensor) and loads each of the sensor's
+compiled plugins with it: Load(sensor, <plugin>), Init(). CompiledRaySensor is what the SensorManager steps for
+it: at the sensor's update rate (one the plugin sets with SetUpdateRate included), while the sensor IsActive()
+(<always_on>, SetActive, a transport subscriber of its scan topic: Gazebo's RaySensor::IsActive), it casts the
+sensor's rays in the physics world and hands the C++ sensor one measurement: the scan as Gazebo 11's RaySensor
+reports it (../sensors/ray.py, the <noise> included; intensities the laser_retro of what each ray hit) and the raw
+rays its MultiRayShape holds (../sensors/ray_shape.py). The C++ side then fires what Gazebo's RaySensor::Update
+fires, in its order (newLaserScans, the LaserScanStamped to subscribers, the updated event), with the plugins'
+callbacks running without the interpreter lock. A plugin whose Load, Init or callback throws is reported and
+unloaded (gazebo_host), the world goes on.
+"""
+import numpy as np
+
+from racebot_sim_bridge.sensors.imu_reading import quaternion_to_matrix
+from racebot_sim_bridge.sensors.mount import SensorMount
+from racebot_sim_bridge.sensors.noise import make_noise
+from racebot_sim_bridge.sensors.ray import ScanGeometry
+from racebot_sim_bridge.sensors.ray_shape import RayShape
+from racebot_sim_bridge.sensors.raycast import cast_rays
+from racebot_sim_bridge.sensors.schedule import RateMeter, UpdateSchedule
+
+# the <sensor> types whose compiled plugins racebot hosts
+HOSTED_TYPES = ('ray', 'gpu_ray')
+
+
+def ray_geometry(ray):
+    """A urdf_model.RaySpec as gazebo_host.add_ray_sensor takes it (MultiRayShape::Geometry's order)."""
+    return (int(ray.samples), float(ray.resolution), float(ray.min_angle), float(ray.max_angle),
+            int(ray.vertical_samples), float(ray.vertical_resolution), float(ray.vertical_min_angle),
+            float(ray.vertical_max_angle), float(ray.range_min), float(ray.range_max), float(ray.range_resolution))
+
+
+def scan_topic(world_name, model, link, sensor):
+    """The sensor's scan topic as Gazebo decodes RaySensor::Topic() ("~/model/link/sensor/scan")."""
+    return '/gazebo/%s/%s/%s/%s/scan' % (world_name, model, link, sensor)
+
+
+class CompiledRaySensor:
+    """A ray or gpu_ray sensor whose plugins are compiled: racebot measures, the plugins read the C++ sensor.
+
+    `host`: the gazebo_host.Host; `sensor_id`: its sensor; `plugin_ids`: the plugins loaded on it (unloaded with
+    close()). What the SensorManager asks of a sensor: step, wake_time, meter, topic, failed, spec, robot_name."""
+
+    def __init__(self, manager, robot, spec, host, sensor_id, plugin_ids, unload, rng=None):
+        self.manager = manager
+        self.sim = manager.sim
+        self.robot_name = robot.name
+        self.spec = spec
+        self.host = host
+        self.sensor_id = sensor_id
+        self.plugin_ids = list(plugin_ids)
+        self.unload = unload  # CompiledPlugins.unload(plugin id)
+        self.mount = self.mount_of(self.sim, robot, spec)
+        ray = spec.ray
+        self.geometry = ScanGeometry(ray)
+        self.shape = RayShape(ray)
+        # Gazebo casts one ray per sample and interpolates the scan from them; racebot casts each scan range as a
+        # ray of its own (ray.py), so a resolution other than 1 needs the raw rays cast too
+        self.one_cast = self.shape.directions.shape == self.geometry.directions.shape and \
+            np.allclose(self.shape.directions, self.geometry.directions)
+        self.noise = make_noise(ray.noise_type, ray.noise_mean, ray.noise_stddev, manager.noise_enabled, rng=rng)
+        self.rate = float(spec.update_rate)
+        self.schedule = UpdateSchedule(self.rate, start=self.sim.time)
+        self.meter = RateMeter()
+        self.failed = False
+        self.topic = scan_topic(self.sim.spec.name, robot.name, self.mount.link, spec.name)
+
+    @staticmethod
+    def mount_of(sim, robot, spec):
+        """Where the sensor is: its link (after sdformat's lumping) and its pose there (SensorMount; KeyError when
+        that link is not a link of the spawned body)."""
+        return SensorMount(sim.world, robot.body, robot.model, spec.reference, spec.pose)
+
+    def wake_time(self):
+        return self.schedule.next
+
+    def _cast(self, directions_of, position, rotation):
+        """(fractions, hit, retro per ray) of one set of rays: directions_of is the ScanGeometry or RayShape."""
+        starts, ends = directions_of.endpoints(position, rotation)
+        world = self.sim.world
+        retro = world.laser_retro
+        if retro:
+            fractions, hit, objects = cast_rays(world, starts, ends, objects=True)
+            return fractions, hit, np.array([retro.get(o, 0.0) for o in objects], dtype=np.float64)
+        fractions, hit = cast_rays(world, starts, ends)
+        return fractions, hit, np.zeros(len(fractions))
+
+    def step(self, time):
+        if not self.schedule.due(time):
+            return
+        active, rate = self.host.sensor_state(self.sensor_id)
+        if rate != self.rate:  # the plugin called SetUpdateRate: from now on at that rate
+            self.rate = rate
+            self.schedule = UpdateSchedule(rate, start=time)
+        self.schedule.advance(time)
+        if not active:
+            return
+        position, orientation = self.mount.pose()
+        rotation = quaternion_to_matrix(orientation)
+        fractions, hit, intensities = self._cast(self.geometry, position, rotation)
+        ranges = self.geometry.report(self.geometry.ranges_from_hits(fractions, hit), self.noise)
+        if self.one_cast:
+            raw, retro = self.shape.ranges(fractions, hit), intensities
+        else:
+            raw_fractions, raw_hit, retro = self._cast(self.shape, position, rotation)
+            raw = self.shape.ranges(raw_fractions, raw_hit)
+        pose = tuple(float(v) for v in position) + tuple(float(v) for v in orientation)
+        self.host.measure_ray(self.sensor_id, time, pose, ranges, intensities, raw, retro)
+        self.meter.tick()
+
+    def close(self):
+        for plugin_id in self.plugin_ids:
+            self.unload(plugin_id)
+        self.plugin_ids = []
+        self.host.remove_sensor(self.sensor_id)

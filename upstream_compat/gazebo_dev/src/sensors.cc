@@ -1,0 +1,277 @@
+// racebot's Gazebo 11 plugin API: the sensor classes. Their data comes from racebot's host (Measure), which casts
+// the rays in racebot's simulator; what they fire and report follows gazebo/sensors/RaySensor.cc and Sensor.cc.
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <utility>
+
+#include <boost/make_shared.hpp>
+
+#include "gazebo/common/Console.hh"
+#include "gazebo/physics/MultiRayShape.hh"
+#include "gazebo/sensors/GpuRaySensor.hh"
+#include "gazebo/sensors/RaySensor.hh"
+#include "gazebo/sensors/Sensor.hh"
+#include "gazebo/transport/Node.hh"
+
+namespace gazebo
+{
+namespace physics
+{
+double MultiRayShape::GetRange(unsigned int _index)
+{
+  std::lock_guard<std::mutex> lock(this->mutex);
+  if (_index >= this->ranges.size())
+  {
+    // Gazebo's MultiRayShape indexes its rays unchecked; here a clear error and the ray's full length
+    gzerr << "MultiRayShape::GetRange: ray index " << _index << " out of range (" << this->RayCount()
+          << " rays)\n";
+    return this->geometry.maxRange;
+  }
+  return this->ranges[_index];
+}
+
+double MultiRayShape::GetRetro(unsigned int _index)
+{
+  std::lock_guard<std::mutex> lock(this->mutex);
+  return _index < this->retro.size() ? this->retro[_index] : 0.0;
+}
+
+int MultiRayShape::GetFiducial(unsigned int /*_index*/) { return -1; }
+
+unsigned int MultiRayShape::RayCount() const
+{
+  return static_cast<unsigned int>(std::max(1, this->geometry.samples) * std::max(1, this->geometry.verticalSamples));
+}
+
+void MultiRayShape::SetRays(std::vector<double> _ranges, std::vector<double> _retro)
+{
+  std::lock_guard<std::mutex> lock(this->mutex);
+  this->ranges = std::move(_ranges);
+  this->retro = std::move(_retro);
+}
+}  // namespace physics
+
+namespace sensors
+{
+Sensor::Sensor(const Description &_description, SensorCategory _category)
+  : description(_description), category(_category), active(_description.alwaysOn)
+{
+}
+
+Sensor::~Sensor() = default;
+
+std::string Sensor::ScopedName() const
+{
+  return this->description.worldName + "::" + this->description.parentName + "::" + this->description.name;
+}
+
+double Sensor::UpdateRate() const
+{
+  std::lock_guard<std::mutex> lock(this->mutex);
+  return this->description.updateRate;
+}
+
+void Sensor::SetUpdateRate(const double _hz)
+{
+  std::lock_guard<std::mutex> lock(this->mutex);
+  this->description.updateRate = _hz > 0.0 && std::isfinite(_hz) ? _hz : 0.0;
+}
+
+ignition::math::Pose3d Sensor::Pose() const
+{
+  std::lock_guard<std::mutex> lock(this->mutex);
+  return this->description.pose;
+}
+
+void Sensor::SetPose(const ignition::math::Pose3d &_pose)
+{
+  std::lock_guard<std::mutex> lock(this->mutex);
+  this->description.pose = _pose;
+}
+
+void Sensor::SetActive(const bool _value)
+{
+  std::lock_guard<std::mutex> lock(this->mutex);
+  this->active = _value;
+}
+
+bool Sensor::IsActive() const
+{
+  std::lock_guard<std::mutex> lock(this->mutex);
+  return this->active;
+}
+
+common::Time Sensor::LastUpdateTime() const
+{
+  std::lock_guard<std::mutex> lock(this->mutex);
+  return this->lastUpdateTime;
+}
+
+common::Time Sensor::LastMeasurementTime() const
+{
+  std::lock_guard<std::mutex> lock(this->mutex);
+  return this->lastMeasurementTime;
+}
+
+event::ConnectionPtr Sensor::ConnectUpdated(std::function<void()> _subscriber)
+{
+  return this->updated.Connect(_subscriber);
+}
+
+void Sensor::ResetLastUpdateTime()
+{
+  std::lock_guard<std::mutex> lock(this->mutex);
+  this->lastUpdateTime = common::Time::Zero;
+}
+
+void Sensor::Measured(const common::Time &_time)
+{
+  {
+    std::lock_guard<std::mutex> lock(this->mutex);
+    this->lastMeasurementTime = _time;
+    this->lastUpdateTime = _time;
+  }
+  this->updated();
+}
+
+namespace racebot
+{
+RayScan::RayScan(const Description &_description, const physics::MultiRayShape::Geometry &_geometry)
+  : Sensor(_description, RAY), geometry(_geometry)
+{
+  this->laserMsg.mutable_scan()->set_frame(_description.parentName);
+}
+
+std::string RayScan::Topic() const
+{
+  std::string topic = "~/" + this->ParentName() + "/" + this->Name() + "/scan";
+  for (std::string::size_type at = topic.find("::"); at != std::string::npos; at = topic.find("::", at))
+    topic.replace(at, 2, "/");
+  return topic;
+}
+
+bool RayScan::IsActive() const
+{
+  return Sensor::IsActive() ||
+         transport::racebot::HasSubscribers(transport::racebot::DecodeTopicName(this->Topic(), this->WorldName()));
+}
+
+int RayScan::RangeCount() const
+{
+  return std::max(1, static_cast<int>(std::round(this->geometry.samples * this->geometry.resolution)));
+}
+
+int RayScan::VerticalRangeCount() const
+{
+  return std::max(1, static_cast<int>(std::round(this->geometry.verticalSamples *
+                                                 this->geometry.verticalResolution)));
+}
+
+double RayScan::AngleResolution() const
+{
+  return (this->AngleMax() - this->AngleMin()).Radian() / (this->RangeCount() - 1);
+}
+
+double RayScan::VerticalAngleResolution() const
+{
+  return (this->VerticalAngleMax() - this->VerticalAngleMin()).Radian() / (this->VerticalRangeCount() - 1);
+}
+
+void RayScan::Ranges(std::vector<double> &_ranges) const
+{
+  std::lock_guard<std::mutex> lock(this->mutex);
+  const auto &ranges = this->laserMsg.scan().ranges();
+  _ranges.assign(ranges.begin(), ranges.end());
+}
+
+double RayScan::Range(const int _index) const
+{
+  std::lock_guard<std::mutex> lock(this->mutex);
+  const auto &scan = this->laserMsg.scan();
+  if (scan.ranges_size() == 0)
+  {
+    gzwarn << "ranges not constructed yet (zero sized)\n";
+    return 0.0;
+  }
+  if (_index < 0 || _index >= scan.ranges_size())
+  {
+    gzerr << "Invalid range index[" << _index << "]\n";
+    return 0.0;
+  }
+  return scan.ranges(_index);
+}
+
+void RayScan::Measure(const common::Time &_time, const ignition::math::Pose3d &_worldPose,
+                      std::vector<double> _ranges, std::vector<double> _intensities, std::vector<double> _rawRanges,
+                      std::vector<double> _rawRetro)
+{
+  this->Cast(std::move(_rawRanges), std::move(_rawRetro));
+  auto stamped = boost::make_shared<msgs::LaserScanStamped>();
+  {
+    std::lock_guard<std::mutex> lock(this->mutex);
+    msgs::Set(this->laserMsg.mutable_time(), _time);
+    msgs::LaserScan *scan = this->laserMsg.mutable_scan();
+    msgs::Set(scan->mutable_world_pose(), _worldPose);
+    scan->set_angle_min(this->AngleMin().Radian());
+    scan->set_angle_max(this->AngleMax().Radian());
+    scan->set_angle_step((this->AngleMax() - this->AngleMin()).Radian() / (this->RangeCount() - 1));
+    scan->set_count(this->RangeCount());
+    scan->set_vertical_angle_min(this->VerticalAngleMin().Radian());
+    scan->set_vertical_angle_max(this->VerticalAngleMax().Radian());
+    scan->set_vertical_angle_step((this->VerticalAngleMax() - this->VerticalAngleMin()).Radian() /
+                                  (this->VerticalRangeCount() - 1));
+    scan->set_vertical_count(this->VerticalRangeCount());
+    scan->set_range_min(this->RangeMin());
+    scan->set_range_max(this->RangeMax());
+    scan->mutable_ranges()->Assign(std::move(_ranges));
+    scan->mutable_intensities()->Assign(std::move(_intensities));
+    *stamped = this->laserMsg;
+  }
+  const std::string topic = transport::racebot::DecodeTopicName(this->Topic(), this->WorldName());
+  if (transport::racebot::HasSubscribers(topic))
+    transport::racebot::Deliver<msgs::LaserScanStamped>(topic, stamped);
+  this->Measured(_time);
+}
+}  // namespace racebot
+
+RaySensor::RaySensor(const Description &_description, const physics::MultiRayShape::Geometry &_geometry)
+  : racebot::RayScan(_description, _geometry), laserShape(boost::make_shared<physics::MultiRayShape>(_geometry))
+{
+}
+
+double RaySensor::Retro(const int _index) const { return this->laserShape->GetRetro(_index); }
+
+int RaySensor::Fiducial(const unsigned int _index) const { return this->laserShape->GetFiducial(_index); }
+
+void RaySensor::Cast(std::vector<double> _rawRanges, std::vector<double> _rawRetro)
+{
+  this->laserShape->SetRays(std::move(_rawRanges), std::move(_rawRetro));
+  this->laserShape->FireNewLaserScans();
+}
+
+GpuRaySensor::GpuRaySensor(const Description &_description, const physics::MultiRayShape::Geometry &_geometry)
+  : racebot::RayScan(_description, _geometry)
+{
+}
+
+event::ConnectionPtr GpuRaySensor::ConnectNewLaserFrame(LaserFrameCallback _subscriber)
+{
+  return this->newLaserFrame.Connect(_subscriber);
+}
+
+void GpuRaySensor::Cast(std::vector<double> _rawRanges, std::vector<double> _rawRetro)
+{
+  if (this->newLaserFrame.ConnectionCount() == 0)
+    return;
+  this->frame.assign(_rawRanges.size() * 3, 0.0f);
+  for (size_t i = 0; i < _rawRanges.size(); ++i)
+  {
+    this->frame[i * 3] = static_cast<float>(_rawRanges[i]);
+    this->frame[i * 3 + 1] = static_cast<float>(i < _rawRetro.size() ? _rawRetro[i] : 0.0);
+  }
+  this->newLaserFrame(this->frame.data(), static_cast<unsigned int>(this->RayCount()),
+                      static_cast<unsigned int>(this->VerticalRayCount()), 3u, std::string("BLAH"));
+}
+}  // namespace sensors
+}  // namespace gazebo
