@@ -276,3 +276,112 @@ def test_every_engine_call_gazebo_host_makes_is_a_method_of_the_adapter():
     offered = {name for name in vars(EngineAdapter) if not name.startswith('_') and name != 'add_model'}
     assert called == offered, 'PyEngine calls %s the adapter lacks; the adapter has %s PyEngine never calls' % (
         sorted(called - offered), sorted(offered - called))
+
+
+# -- compiled sensor plugins (scan_probe.cc: a RayPlugin) -------------------------------------------------------
+SENSOR_HEIGHT = 0.6  # the spinner's base_link at z 0.1, the laser 0.5 above it, looking straight down
+
+
+def probe(sensor_type='ray', always_on=False, rate=20, samples=11, resolution=1, **params):
+    """The spinner with a downward ray sensor 1 m ahead of its base, carrying scan_probe (its <plugin> params)."""
+    body = ''.join('<%s>%s</%s>' % (k, v, k) for k, v in params.items())
+    return SPINNER % {'mass': ROTOR_MASS, 'izz': ROTOR_IZZ, 'effort': 3.0, 'velocity': 40.0, 'extra': (
+        '<gazebo reference="base_link"><sensor type="%s" name="probe_laser"><pose>1 0 0.5 0 1.5707963 0</pose>'
+        '<always_on>%s</always_on><update_rate>%g</update_rate><ray><scan><horizontal><samples>%d</samples>'
+        '<resolution>%g</resolution><min_angle>-0.2</min_angle><max_angle>0.2</max_angle></horizontal></scan>'
+        '<range><min>0.05</min><max>5</max><resolution>0.01</resolution></range></ray>'
+        '<plugin name="probe" filename="libscan_probe.so">%s</plugin></sensor></gazebo>'
+        % (sensor_type, 'true' if always_on else 'false', rate, samples, resolution, body))}
+
+
+@pytest.fixture
+def sensor_world(tmp_path, plugin_dir, monkeypatch):
+    """A PluginWorld whose sensors are managed too, the compiled ones on the model plugins' host (as the world
+    server shares one)."""
+    from racebot_sim_bridge.gazebo_plugins.compiled_plugins import CompiledPlugins
+    from racebot_sim_bridge.gazebo_plugins.sensor_manager import SensorManager
+    monkeypatch.setenv('GAZEBO_PLUGIN_PATH', plugin_dir)
+    w = PluginWorld(tmp_path, params={'~sensors/report_period': 0, '~sensors/render_worker': False})
+    compiled = CompiledPlugins(w.fake, w.sim)
+    w.manager.compiled = compiled
+    w.sensors = SensorManager(w.fake, w.sim, compiled=compiled)
+    yield w
+    w.sensors.close()
+    w.close()
+
+
+def test_a_sensor_plugin_reads_gazebos_names_and_counts_of_its_ray_sensor(sensor_world, capfd):
+    sensor_world.spawn('spinner', probe(samples=11, resolution=2), '/', (0.0, 0.0, 0.1))
+    loaded = lines(capfd.readouterr().out, 'ScanProbe loaded')
+    assert loaded == ['ScanProbe loaded probe_laser type ray parent spinner::base_link scoped '
+                      'default::spinner::base_link::probe_laser topic ~/spinner/base_link/probe_laser/scan rays 11 '
+                      'ranges 22 layers 1 rate 20 active 0 world default'], loaded
+    assert any("sensor 'probe_laser' on base_link at 20 Hz with compiled plugins" in m
+               for _, m in sensor_world.fake.logs), sensor_world.fake.logs
+
+
+def test_an_inactive_sensor_is_not_measured_and_an_active_one_is_at_its_rate(sensor_world, capfd):
+    sensor_world.spawn('spinner', probe(), '/', (0.0, 0.0, 0.1))
+    sensor_world.run(0.5)
+    assert lines(capfd.readouterr().out, 'ScanProbe rays') == []  # <always_on> false, nobody subscribes
+    sensor_world.sim.delete_model('spinner')
+    sensor_world.spawn('spinner', probe(always_on=True), '/', (0.0, 0.0, 0.1))
+    sensor_world.run(1.0)
+    out = capfd.readouterr().out
+    rays, updated = lines(out, 'ScanProbe rays'), lines(out, 'ScanProbe updated')
+    assert 19 <= len(rays) <= 21 and len(updated) == len(rays), out  # 20 Hz
+    # the raw rays (one per sample, from range min, no noise) and the scan, straight down to the ground
+    assert float(rays[-1].split()[6]) == pytest.approx(SENSOR_HEIGHT, abs=0.01)
+    assert float(rays[-1].split()[4]) == pytest.approx(SENSOR_HEIGHT / math.cos(0.2), abs=0.01)
+    times = [float(line.split()[3]) for line in updated]
+    assert times[1] - times[0] == pytest.approx(0.05, abs=sensor_world.sim.step_size + 1e-9)
+    assert float(updated[-1].split()[5]) == pytest.approx(SENSOR_HEIGHT, abs=0.01)
+
+
+def test_a_transport_subscriber_gets_each_scan_and_makes_the_sensor_active(sensor_world, capfd):
+    sensor_world.spawn('spinner', probe(subscribe='true', rate=10), '/', (0.0, 0.0, 0.1))
+    sensor_world.run(1.0)
+    out = capfd.readouterr().out
+    assert 'ScanProbe subscribed to /gazebo/default/spinner/base_link/probe_laser/scan active 1' in out, out
+    scans = lines(out, 'ScanProbe scan ')
+    assert 9 <= len(scans) <= 11, out  # the plugin's <rate> 10 over the sensor's 20
+    fields = scans[-1].split()
+    # ScanProbe scan N time T count C of R mid M step S pose_z Z frame F
+    assert int(fields[6]) == 11 and int(fields[8]) == 11
+    assert float(fields[10]) == pytest.approx(SENSOR_HEIGHT, abs=0.01)
+    assert float(fields[12]) == pytest.approx(0.04, abs=1e-9)  # (0.2 - -0.2) / (11 - 1)
+    assert float(fields[14]) == pytest.approx(SENSOR_HEIGHT, abs=0.01)  # the sensor's world pose
+    assert fields[16] == 'spinner::base_link'
+    assert float(fields[4]) == pytest.approx(float(lines(out, 'ScanProbe updated')[-1].split()[3]))
+
+
+def test_a_ray_plugin_on_a_gpu_ray_sensor_is_refused_as_gazebo_refuses_it(sensor_world, capfd):
+    sensor_world.spawn('spinner', probe(sensor_type='gpu_ray'), '/', (0.0, 0.0, 0.1))
+    errors = sensor_world.errors('libscan_probe.so')
+    assert len(errors) == 1 and 'RayPlugin requires a Ray Sensor as its parent' in errors[0], sensor_world.fake.logs
+
+
+def test_a_sensor_plugin_that_throws_in_its_subscriber_is_unloaded_and_the_world_goes_on(sensor_world, capfd):
+    r = sensor_world.spawn('spinner', probe(subscribe='true', throw_at=3), '/', (0.0, 0.0, 0.1))
+    sensor_world.run(0.5)
+    errors = sensor_world.errors('unloaded after an exception')
+    assert len(errors) == 1, sensor_world.fake.logs
+    assert "spinner: sensor 'probe_laser': plugin 'probe' (libscan_probe.so)" in errors[0]
+    assert 'in its subscriber of /gazebo/default/spinner/base_link/probe_laser/scan: ScanProbe: thrown in scan 3' \
+        in errors[0]
+    assert len(lines(capfd.readouterr().out, 'ScanProbe scan ')) == 2
+    assert sensor_world.manager.compiled.plugins == {}
+    sensor_world.run(0.2)  # nothing of the unloaded plugin is called
+    assert r.name in sensor_world.sim.robots
+
+
+def test_a_model_plugin_in_a_sensor_is_refused_and_a_camera_plugin_is_not_hosted(sensor_world):
+    urdf = probe().replace('libscan_probe.so', 'libjoint_driver.so')
+    sensor_world.spawn('spinner', urdf, '/', (0.0, 0.0, 0.1))
+    errors = sensor_world.errors('libjoint_driver.so')
+    assert len(errors) == 1 and 'is not a sensor plugin' in errors[0], sensor_world.fake.logs
+    sensor_world.sim.delete_model('spinner')
+    camera = probe().replace('type="ray"', 'type="camera"')
+    sensor_world.spawn('spinner', camera, '/', (0.0, 0.0, 0.1))
+    warnings = sensor_world.warnings('libscan_probe.so')
+    assert len(warnings) == 1 and 'racebot hosts the compiled plugins of ray and gpu_ray sensors only' in warnings[0]

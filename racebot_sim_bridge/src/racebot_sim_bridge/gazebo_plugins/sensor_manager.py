@@ -133,14 +133,19 @@ class SensorManager:
         if self.compiled is None or not built:
             return None, spec
         if spec.type not in HOSTED_TYPES:
+            unsimulated = []
             for plugin in built:
+                simulated = REGISTRY.find(plugin.filename, PluginKind.SENSOR) is not None
                 self.rospy.logwarn("%s: sensor '%s' (type %s): plugin '%s' (%s) is compiled, and racebot hosts the "
                                    'compiled plugins of %s sensors only: %s; see %s'
                                    % (robot.name, spec.name, spec.type, plugin.name, plugin.filename,
-                                      ' and '.join(HOSTED_TYPES), 'racebot simulates it instead'
-                                      if REGISTRY.find(plugin.filename, PluginKind.SENSOR) else 'it publishes nothing',
-                                      SUPPORTED_TABLE))
-            return None, spec
+                                      ' and '.join(HOSTED_TYPES), 'racebot simulates it instead' if simulated
+                                      else 'it publishes nothing', SUPPORTED_TABLE))
+                if not simulated:
+                    unsimulated.append(plugin)
+            # said once: the registry's "not simulated" warning is not said again for them
+            return None, dataclasses.replace(spec, plugins=[p for p in spec.plugins
+                                                            if all(p is not u for u in unsimulated)])
         fallbacks = [p.filename for p in built if REGISTRY.find(p.filename, PluginKind.SENSOR) is not None]
         try:
             sensor, loaded = self.compiled.load_sensor(self, robot, spec, built, fallbacks)
