@@ -201,11 +201,11 @@ class WorldServer:
         self.states_period = self._rate_param('~states_publish_rate', 100.0)
         self.clock_pub = clock_publisher()
         # compiled plugins (model, world and sensor ones, with roscpp as node <this node>_cpp): one host for all
-        compiled = CompiledPlugins(rospy, self.sim, rospy.get_name().rsplit('/', 1)[-1] + '_cpp')
+        self.compiled = CompiledPlugins(rospy, self.sim, rospy.get_name().rsplit('/', 1)[-1] + '_cpp')
         # before the services: every spawn gets its sensors
-        self.sensors = SensorManager(rospy, self.sim, compiled=compiled)
+        self.sensors = SensorManager(rospy, self.sim, compiled=self.compiled)
         # and its model plugins (diff drive, p3d, ...)
-        self.plugins = PluginManager(rospy, self.sim, compiled=compiled)
+        self.plugins = PluginManager(rospy, self.sim, compiled=self.compiled)
         # and gazebo_ros_control with its controller manager's services, whatever ~enable_ros_network says
         # (the flag is gazebo_ros_api_plugin's; upstream's gazebo_ros_control reads none)
         # (C++ controllers with roscpp, as the compiled plugins have it; a package's RobotHWSim on their model)
@@ -339,6 +339,10 @@ class WorldServer:
         return self.services is not None and self.services.states_wanted()
 
     def shutdown(self):
+        # roscpp first, as gzserver's gazebo_ros_api_plugin shuts ROS down on SIGINT before the world and its
+        # sensors are finished: a plugin's destructor then finds ros::ok() false (velodyne_gazebo_plugins' queue
+        # thread reads its deleted NodeHandle unless ros::ok() is false already)
+        self.compiled.stop_roscpp()
         if self.services is not None:
             self.services.shutdown()
             self.metrics.shutdown()

@@ -366,6 +366,11 @@ class CompiledPlugins:
             self.host.close()
         self.plugins = {}
         self._refresh()
+        self.stop_roscpp()
+
+    def stop_roscpp(self):
+        """Shuts roscpp in the world server down (once): the world server does it first when it stops, as
+        gazebo_ros_api_plugin does on SIGINT, so that plugins are finished with ros::ok() false, as in gzserver."""
         if self.roscpp_started:
             from racebot_sim_bridge.gazebo_plugins import gazebo_host
             gazebo_host.stop_roscpp()
