@@ -35,6 +35,7 @@ import math
 import os
 import subprocess
 import sys
+import time
 import unittest
 
 import rosgraph
@@ -43,7 +44,7 @@ import rostest
 from controller_manager_msgs.srv import (ListControllers, ListControllerTypes, LoadController, SwitchController,
                                          UnloadController)
 from gazebo_msgs.msg import ModelState
-from gazebo_msgs.srv import SetModelState
+from gazebo_msgs.srv import GetWorldProperties, SetModelState
 from geometry_msgs.msg import Point, Pose, Quaternion
 from rosgraph_msgs.msg import Clock, Log
 from sensor_msgs.msg import JointState, LaserScan
@@ -314,8 +315,16 @@ class CompiledPluginsTest(unittest.TestCase):
             cls.ranger = ShellCommand('source %s && exec roslaunch fixture_ray_sensor_plugins ranger.launch'
                                       % cls.workspace.setup, user_environment(),
                                       os.path.join(cls.workspace.root, 'ranger.log'), login=True)
-            LaunchWatch(cls.ranger).wait(lambda: 'scan relay on gpu_laser' in cls.launch.output(),
+            LaunchWatch(cls.launch).wait(lambda: 'scan relay on gpu_laser' in cls.launch.output(),
                                          "the sensor plugins' ROS_INFO from their Load", STARTUP_TIMEOUT)
+            # the walls come from spawners of their own, which may finish after the ranger's (and roslaunch ends
+            # once its spawners have: the world server's answer is what counts)
+            properties = rospy.ServiceProxy('/gazebo/get_world_properties', GetWorldProperties)
+            deadline = time.time() + STARTUP_TIMEOUT
+            while not {'front_wall', 'back_wall'} <= set(properties().model_names):
+                assert time.time() < deadline, 'the walls were not spawned within %.0f s:\n%s' % (
+                    STARTUP_TIMEOUT, cls.ranger.output()[-3000:])
+                time.sleep(0.1)
 
     def scans(self, topic, count=3):
         """The next `count` LaserScans on `topic` (subscribed only for them: the relay's sensor runs on demand)."""
@@ -346,6 +355,7 @@ class CompiledPluginsTest(unittest.TestCase):
 
     def test_9d_a_plugin_reads_the_updated_event_and_raw_rays_at_the_rate_it_sets(self):
         self.start_ranger()
+        del self.nearest[:], self.nearest_raw[:]  # from now on: both walls stand
         self.launched(lambda: len(self.nearest) > 12 and self.nearest_raw, 'the nearest obstacle published',
                       COMMAND_TIMEOUT)
         self.assertAlmostEqual(self.nearest[-1][1], 1.9, delta=0.01)
