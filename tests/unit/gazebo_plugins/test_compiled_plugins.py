@@ -79,6 +79,9 @@ def test_a_velocity_plugin_drives_its_joint_and_sees_gazebos_times(world, capfd)
     # what Load read of the model: scoped joint name, URDF limits (continuous: none, effort 3), links, the world
     assert ('model spinner joint spinner::spin_joint mode velocity target 2.5 limits 0 -1 effort 3 child rotor '
             'parent base_link links 2 canonical base_link world default') in loaded[0], loaded[0]
+    # Link::RelativePose: the rotor in the model's frame, the joint's origin 0.2 above the base (at rest, level)
+    relative = [float(v) for v in loaded[0].split('child in model ')[1].split()]
+    assert relative == pytest.approx([0.0, 0.0, 0.2, 0.0, 0.0, 0.0], abs=1e-6), loaded[0]
     updates = lines(out, 'JointDriver update')
     assert [int(line.split()[3]) for line in updates] == [500, 1000], out
     first = updates[0].split()

@@ -201,6 +201,14 @@ const Pose3d &Link::WorldPose() const
   return this->pose;
 }
 
+Pose3d Link::RelativePose() const
+{
+  ModelPtr parent = this->model.lock();
+  if (!parent)
+    return this->WorldPose();
+  return this->WorldPose() - parent->WorldPose();
+}
+
 Pose3d Link::WorldCoGPose() const { return TheEngine().LinkWorldCoGPose(this->handle); }
 Vector3d Link::WorldLinearVel() const { return TheEngine().LinkWorldLinearVel(this->handle); }
 Vector3d Link::WorldCoGLinearVel() const { return TheEngine().LinkWorldCoGLinearVel(this->handle); }

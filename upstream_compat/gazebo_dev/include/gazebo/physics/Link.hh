@@ -27,6 +27,8 @@ public:
 
   const ignition::math::Pose3d &WorldPose() const;
   ignition::math::Pose3d WorldCoGPose() const;
+  // in its model's frame (Entity::RelativePose: a link's parent is its model)
+  ignition::math::Pose3d RelativePose() const;
   ignition::math::Vector3d WorldLinearVel() const;
   ignition::math::Vector3d WorldCoGLinearVel() const;
   ignition::math::Vector3d WorldAngularVel() const;
