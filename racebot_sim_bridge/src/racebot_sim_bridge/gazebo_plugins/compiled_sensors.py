@@ -20,7 +20,7 @@ from racebot_sim_bridge.sensors.mount import SensorMount
 from racebot_sim_bridge.sensors.noise import make_noise
 from racebot_sim_bridge.sensors.ray import ScanGeometry
 from racebot_sim_bridge.sensors.ray_shape import RayShape
-from racebot_sim_bridge.sensors.raycast import cast_rays
+from racebot_sim_bridge.sensors.raycast import cast_with_retro
 from racebot_sim_bridge.sensors.schedule import RateMeter, UpdateSchedule
 
 # the <sensor> types whose compiled plugins racebot hosts
@@ -80,14 +80,7 @@ class CompiledRaySensor:
 
     def _cast(self, directions_of, position, rotation):
         """(fractions, hit, retro per ray) of one set of rays: directions_of is the ScanGeometry or RayShape."""
-        starts, ends = directions_of.endpoints(position, rotation)
-        world = self.sim.world
-        retro = world.laser_retro
-        if retro:
-            fractions, hit, objects = cast_rays(world, starts, ends, objects=True)
-            return fractions, hit, np.array([retro.get(o, 0.0) for o in objects], dtype=np.float64)
-        fractions, hit = cast_rays(world, starts, ends)
-        return fractions, hit, np.zeros(len(fractions))
+        return cast_with_retro(self.sim.world, *directions_of.endpoints(position, rotation))
 
     def step(self, time):
         if not self.schedule.due(time):

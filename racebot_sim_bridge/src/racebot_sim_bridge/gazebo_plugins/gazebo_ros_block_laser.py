@@ -28,7 +28,7 @@ from racebot_sim_bridge.sensors.imu_reading import quaternion_to_matrix
 from racebot_sim_bridge.sensors.messages import header
 from racebot_sim_bridge.sensors.ray import range_count
 from racebot_sim_bridge.sensors.ray_shape import RayShape
-from racebot_sim_bridge.sensors.raycast import cast_rays
+from racebot_sim_bridge.sensors.raycast import cast_with_retro
 
 EPSILON_DIFF = 0.000001  # upstream's: no noise on a point this close to range max
 
@@ -116,10 +116,7 @@ class BlockLaserSensor(Sensor, libraries=('libgazebo_ros_block_laser.so',), sens
         """(points N x 3, ranges N, intensities N) of one scan, with gaussianNoise, as PutLaserData fills them."""
         position, orientation = self.mount.pose()
         starts, ends = self.shape.endpoints(position, quaternion_to_matrix(orientation))
-        world = self.sim.world
-        fractions, hit, objects = cast_rays(world, starts, ends, objects=True)
-        retro_of = world.laser_retro
-        retro = [retro_of.get(o, 0.0) for o in objects] if retro_of else np.zeros(len(objects))
+        fractions, hit, retro = cast_with_retro(self.sim.world, starts, ends)
         shape = self.shape
         points, ranges, intensity = block_cloud(shape.ranges(fractions, hit), retro, self.spec.ray,
                                                 shape.range_min, shape.range_max)

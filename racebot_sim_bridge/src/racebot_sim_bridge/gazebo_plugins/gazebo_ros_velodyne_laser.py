@@ -35,7 +35,7 @@ from racebot_sim_bridge.sensors.imu_reading import quaternion_to_matrix
 from racebot_sim_bridge.sensors.messages import header
 from racebot_sim_bridge.sensors.noise import make_noise
 from racebot_sim_bridge.sensors.ray import ScanGeometry, range_count
-from racebot_sim_bridge.sensors.raycast import cast_rays
+from racebot_sim_bridge.sensors.raycast import cast_with_retro
 
 
 def _field(name, offset, datatype):
@@ -158,14 +158,7 @@ class VelodyneLaser(Sensor, libraries=('libgazebo_ros_velodyne_laser.so',), sens
         """(ranges, intensities) as the RaySensor reports them."""
         position, orientation = self.mount.pose()
         starts, ends = self.geometry.endpoints(position, quaternion_to_matrix(orientation))
-        world = self.sim.world
-        retro = world.laser_retro
-        if retro:
-            fractions, hit, objects = cast_rays(world, starts, ends, objects=True)
-            intensities = np.array([retro.get(o, 0.0) for o in objects])
-        else:
-            fractions, hit = cast_rays(world, starts, ends)
-            intensities = np.zeros(len(fractions))
+        fractions, hit, intensities = cast_with_retro(self.sim.world, starts, ends)
         return self.geometry.report(self.geometry.ranges_from_hits(fractions, hit), self.noise), intensities
 
     def update(self, time, stamp):

@@ -29,3 +29,14 @@ def cast_rays(world, starts, ends, objects=False):
     if objects:
         return fractions, hit, hits
     return fractions, hit
+
+
+def cast_with_retro(world, starts, ends):
+    """(fractions, hit flags, retro) as cast_rays, with each ray's intensity as Gazebo's ray shapes read it: the
+    laser_retro of the collision it hit (world.laser_retro), 0 for a miss or where none is set."""
+    retro_of = world.laser_retro
+    if not retro_of:
+        fractions, hit = cast_rays(world, starts, ends)
+        return fractions, hit, np.zeros(len(fractions))
+    fractions, hit, objects = cast_rays(world, starts, ends, objects=True)
+    return fractions, hit, np.array([retro_of.get(o, 0.0) for o in objects], dtype=np.float64)
