@@ -247,16 +247,26 @@ class CompiledPlugins:
             return False
         self._add_model(robot)
         self.host.set_iterations(self.sim.steps)
-        try:
-            plugin_id = self.host.load('model', path, spec.filename, spec.name, robot.name, plugin_xml(spec))
-        except RuntimeError as err:
-            self.rospy.logerr('%s: not loaded: %s. %s; see %s' % (robot.name, err, without, SUPPORTED_TABLE))
+        plugin_id = self._load_one(robot.name, robot.name, label, path, without, fallback, lambda: self.host.load(
+            'model', path, spec.filename, spec.name, robot.name, plugin_xml(spec)))
+        if plugin_id is None:
             return False
-        self.plugins[plugin_id] = (robot.name, label)
-        self.rospy.loginfo('%s: loaded from %s%s' % (label, path, " (the package's own build, not racebot's "
-                                                                    'simulation of it)' if fallback else ''))
         self._refresh()
         return True
+
+    def _load_one(self, robot_name, where, label, path, without, fallback, load):
+        """Runs `load()` (a gazebo_host load call) and records the plugin it loaded under `robot_name` (None: the
+        world's); its id, or None after an error naming `where` and saying what happens `without` it. `fallback`:
+        racebot simulates the plugin too (the log says the package's build runs instead)."""
+        try:
+            plugin_id = load()
+        except RuntimeError as err:
+            self.rospy.logerr('%s: not loaded: %s. %s; see %s' % (where, err, without, SUPPORTED_TABLE))
+            return None
+        self.plugins[plugin_id] = (robot_name, label)
+        self.rospy.loginfo('%s: loaded from %s%s' % (label, path, " (the package's own build, not racebot's "
+                                                                    'simulation of it)' if fallback else ''))
+        return plugin_id
 
     def load_world(self, plugin):
         """Loads a world's <plugin> (sdf_model.WorldPlugin), as Gazebo loads them after the world's models: True
@@ -271,13 +281,10 @@ class CompiledPlugins:
         for name in list(self.sim.robots):
             self._add_model(self.sim.robots[name])
         self.host.set_iterations(self.sim.steps)
-        try:
-            plugin_id = self.host.load('world', path, plugin.filename, plugin.name, '', plugin.xml)
-        except RuntimeError as err:
-            self.rospy.logerr('world: not loaded: %s. The world goes on without it; see %s' % (err, SUPPORTED_TABLE))
+        plugin_id = self._load_one(None, 'world', label, path, 'The world goes on without it', False,
+                                   lambda: self.host.load('world', path, plugin.filename, plugin.name, '', plugin.xml))
+        if plugin_id is None:
             return False
-        self.plugins[plugin_id] = (None, label)
-        self.rospy.loginfo('%s: loaded from %s' % (label, path))
         self._refresh()
         return True
 
@@ -293,31 +300,27 @@ class CompiledPlugins:
             return None, []
         self._add_model(robot)
         self.host.set_iterations(self.sim.steps)
-        probe = CompiledRaySensor.mount_of(self.sim, robot, spec)  # KeyError: not on a link of the body
-        sensor_id = self.host.add_ray_sensor(spec.type, spec.name, robot.name, probe.link,
-                                             tuple(probe.offset[0]) + tuple(probe.offset[1]), float(spec.update_rate),
+        mount = CompiledRaySensor.mount_of(self.sim, robot, spec)  # KeyError: not on a link of the body
+        sensor_id = self.host.add_ray_sensor(spec.type, spec.name, robot.name, mount.link,
+                                             tuple(mount.offset[0]) + tuple(mount.offset[1]), float(spec.update_rate),
                                              bool(spec.always_on), bool(spec.visualize), ray_geometry(spec.ray))
         loaded = []
         for plugin in plugins:
-            label = "%s: plugin '%s' (%s)" % (where, plugin.name, plugin.filename)
+            path = find_library(plugin.filename)
             fallback = plugin.filename in fallbacks
-            without = ("racebot's own simulation of it runs instead" if fallback else 'The sensor works without it')
-            try:
-                plugin_id = self.host.load_sensor_plugin(sensor_id, find_library(plugin.filename), plugin.filename,
-                                                         plugin.name, plugin_xml(plugin))
-            except RuntimeError as err:
-                self.rospy.logerr('%s: not loaded: %s. %s; see %s' % (where, err, without, SUPPORTED_TABLE))
-                continue
-            self.plugins[plugin_id] = (robot.name, label)
-            loaded.append((plugin_id, plugin))
-            self.rospy.loginfo('%s: loaded from %s%s' % (label, find_library(plugin.filename),
-                                                         " (the package's own build, not racebot's simulation of it)"
-                                                         if fallback else ''))
+            without = "racebot's own simulation of it runs instead" if fallback else 'The sensor works without it'
+            plugin_id = self._load_one(
+                robot.name, where, "%s: plugin '%s' (%s)" % (where, plugin.name, plugin.filename), path, without,
+                fallback, lambda: self.host.load_sensor_plugin(sensor_id, path, plugin.filename, plugin.name,
+                                                               plugin_xml(plugin)))
+            if plugin_id is not None:
+                loaded.append((plugin_id, plugin))
         self._refresh()
         if not loaded:
             self.host.remove_sensor(sensor_id)
             return None, []
-        sensor = CompiledRaySensor(manager, robot, spec, self.host, sensor_id, [i for i, _ in loaded], self.unload)
+        sensor = CompiledRaySensor(manager, robot, spec, mount, self.host, sensor_id, [i for i, _ in loaded],
+                                   self.unload)
         return sensor, [plugin for _, plugin in loaded]
 
     def unload(self, plugin_id):

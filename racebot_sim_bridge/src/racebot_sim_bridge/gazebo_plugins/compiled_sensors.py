@@ -42,10 +42,11 @@ def scan_topic(world_name, model, link, sensor):
 class CompiledRaySensor:
     """A ray or gpu_ray sensor whose plugins are compiled: racebot measures, the plugins read the C++ sensor.
 
-    `host`: the gazebo_host.Host; `sensor_id`: its sensor; `plugin_ids`: the plugins loaded on it (unloaded with
-    close()). What the SensorManager asks of a sensor: step, wake_time, meter, topic, failed, spec, robot_name."""
+    `mount`: where it is (mount_of); `host`: the gazebo_host.Host; `sensor_id`: its sensor; `plugin_ids`: the
+    plugins loaded on it (unloaded with close()). What the SensorManager asks of a sensor: step, wake_time, meter,
+    topic, failed, spec, robot_name."""
 
-    def __init__(self, manager, robot, spec, host, sensor_id, plugin_ids, unload, rng=None):
+    def __init__(self, manager, robot, spec, mount, host, sensor_id, plugin_ids, unload, rng=None):
         self.manager = manager
         self.sim = manager.sim
         self.robot_name = robot.name
@@ -54,7 +55,7 @@ class CompiledRaySensor:
         self.sensor_id = sensor_id
         self.plugin_ids = list(plugin_ids)
         self.unload = unload  # CompiledPlugins.unload(plugin id)
-        self.mount = self.mount_of(self.sim, robot, spec)
+        self.mount = mount  # mount_of's
         ray = spec.ray
         self.geometry = ScanGeometry(ray)
         self.shape = RayShape(ray)
