@@ -42,6 +42,15 @@ using ignition::math::Vector3d;
 
 namespace
 {
+using PoseT = std::tuple<double, double, double, double, double, double, double>;
+
+// A pose from Python, (x, y, z, qx, qy, qz, qw): PyBullet's order
+Pose3d PoseOf(const PoseT &_p)
+{
+  return Pose3d(std::get<0>(_p), std::get<1>(_p), std::get<2>(_p), std::get<6>(_p), std::get<3>(_p), std::get<4>(_p),
+                std::get<5>(_p));
+}
+
 // The Engine behind gazebo::physics: each call one method of the Python adapter, looked up once.
 class PyEngine : public gazebo::racebot::Engine
 {
@@ -90,8 +99,8 @@ public:
   void JointSetPosition(int _j, double _p) override { this->Call("joint_set_position", _j, _p); }
   void JointSetMotor(int _j, double _v, double _f) override { this->Call("joint_set_motor", _j, _v, _f); }
 
-  Pose3d LinkWorldPose(int _l) override { return P(this->Get<PoseT>("link_world_pose", _l)); }
-  Pose3d LinkWorldCoGPose(int _l) override { return P(this->Get<PoseT>("link_world_cog_pose", _l)); }
+  Pose3d LinkWorldPose(int _l) override { return PoseOf(this->Get<PoseT>("link_world_pose", _l)); }
+  Pose3d LinkWorldCoGPose(int _l) override { return PoseOf(this->Get<PoseT>("link_world_cog_pose", _l)); }
   Vector3d LinkWorldLinearVel(int _l) override { return V(this->Get<Vec>("link_world_linear_vel", _l)); }
   Vector3d LinkWorldCoGLinearVel(int _l) override { return V(this->Get<Vec>("link_world_cog_linear_vel", _l)); }
   Vector3d LinkWorldAngularVel(int _l) override { return V(this->Get<Vec>("link_world_angular_vel", _l)); }
@@ -123,7 +132,7 @@ public:
   {
     this->Call("model_set_angular_vel", _m, Vec(_v.X(), _v.Y(), _v.Z()));
   }
-  Pose3d ModelWorldPose(int _m) override { return P(this->Get<PoseT>("model_world_pose", _m)); }
+  Pose3d ModelWorldPose(int _m) override { return PoseOf(this->Get<PoseT>("model_world_pose", _m)); }
 
 private:
   // A Python error becomes py::error_already_set, a std::exception: the event reports it against the plugin.
@@ -143,13 +152,7 @@ private:
   }
 
   using Vec = std::tuple<double, double, double>;
-  using PoseT = std::tuple<double, double, double, double, double, double, double>;
   static Vector3d V(const Vec &_v) { return Vector3d(std::get<0>(_v), std::get<1>(_v), std::get<2>(_v)); }
-  static Pose3d P(const PoseT &_p)  // (x, y, z, qx, qy, qz, qw), PyBullet's order
-  {
-    return Pose3d(std::get<0>(_p), std::get<1>(_p), std::get<2>(_p),
-                  std::get<6>(_p), std::get<3>(_p), std::get<4>(_p), std::get<5>(_p));
-  }
 
 
   py::object adapter;
@@ -346,8 +349,7 @@ public:
   // `_pose`: in the link (x, y, z, qx, qy, qz, qw); `_geometry`: (samples, resolution, min angle, max angle,
   // vertical samples, vertical resolution, vertical min, vertical max, range min, range max, range resolution).
   int AddRaySensor(const std::string &_type, const std::string &_name, const std::string &_model,
-                   const std::string &_link, const std::tuple<double, double, double, double, double, double,
-                                                              double> &_pose,
+                   const std::string &_link, const PoseT &_pose,
                    double _updateRate, bool _alwaysOn, bool _visualize,
                    const std::tuple<int, double, double, double, int, double, double, double, double, double,
                                     double> &_geometry)
@@ -358,7 +360,7 @@ public:
     description.parentName = _model + "::" + _link;
     description.worldName = this->world->Name();
     description.id = static_cast<uint32_t>(this->lastSensorId + 1);
-    description.pose = P(_pose);
+    description.pose = PoseOf(_pose);
     description.updateRate = _updateRate;
     description.alwaysOn = _alwaysOn;
     description.visualize = _visualize;
@@ -390,29 +392,21 @@ public:
 
   // One measurement of a ray sensor at sim time `_time` (RayScan::Measure): the plugins' callbacks run without the
   // interpreter lock, as event callbacks do; a callback that throws unloads its plugin (AfterEvents).
-  void MeasureRay(int _sensor, double _time, const std::tuple<double, double, double, double, double, double,
-                                                                double> &_worldPose,
-                  const Doubles &_ranges, const Doubles &_intensities, const Doubles &_rawRanges,
-                  const Doubles &_rawRetro)
+  void MeasureRay(int _sensor, double _time, const PoseT &_worldPose, const Doubles &_ranges,
+                  const Doubles &_intensities, const Doubles &_rawRanges, const Doubles &_rawRetro)
   {
     auto sensor = this->sensors.at(_sensor);
     std::vector<double> ranges = ToVector(_ranges), intensities = ToVector(_intensities);
     std::vector<double> raw = ToVector(_rawRanges), retro = ToVector(_rawRetro);
     {
       py::gil_scoped_release unlocked;
-      sensor->Measure(gazebo::common::Time(_time), P(_worldPose), std::move(ranges), std::move(intensities),
+      sensor->Measure(gazebo::common::Time(_time), PoseOf(_worldPose), std::move(ranges), std::move(intensities),
                       std::move(raw), std::move(retro));
     }
     this->AfterEvents();
   }
 
 private:
-  static Pose3d P(const std::tuple<double, double, double, double, double, double, double> &_p)
-  {
-    return Pose3d(std::get<0>(_p), std::get<1>(_p), std::get<2>(_p), std::get<6>(_p), std::get<3>(_p),
-                  std::get<4>(_p), std::get<5>(_p));
-  }
-
   int LoadPlugin(const std::string &_kind, const std::string &_path, const std::string &_filename,
                  const std::string &_name, const std::string &_model, const std::string &_xml, int _sensor)
   {

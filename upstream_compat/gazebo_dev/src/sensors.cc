@@ -138,7 +138,8 @@ void Sensor::Measured(const common::Time &_time)
 namespace racebot
 {
 RayScan::RayScan(const Description &_description, const physics::MultiRayShape::Geometry &_geometry)
-  : Sensor(_description, RAY), geometry(_geometry)
+  : Sensor(_description, RAY), geometry(_geometry),
+    scanTopic(transport::racebot::DecodeTopicName(this->Topic(), _description.worldName))
 {
   this->laserMsg.mutable_scan()->set_frame(_description.parentName);
 }
@@ -153,8 +154,7 @@ std::string RayScan::Topic() const
 
 bool RayScan::IsActive() const
 {
-  return Sensor::IsActive() ||
-         transport::racebot::HasSubscribers(transport::racebot::DecodeTopicName(this->Topic(), this->WorldName()));
+  return Sensor::IsActive() || transport::racebot::HasSubscribers(this->scanTopic);
 }
 
 int RayScan::RangeCount() const
@@ -207,7 +207,7 @@ void RayScan::Measure(const common::Time &_time, const ignition::math::Pose3d &_
                       std::vector<double> _rawRetro)
 {
   this->Cast(std::move(_rawRanges), std::move(_rawRetro));
-  auto stamped = boost::make_shared<msgs::LaserScanStamped>();
+  boost::shared_ptr<msgs::LaserScanStamped> stamped;  // a copy for the subscribers, made only when there are some
   {
     std::lock_guard<std::mutex> lock(this->mutex);
     msgs::Set(this->laserMsg.mutable_time(), _time);
@@ -215,22 +215,21 @@ void RayScan::Measure(const common::Time &_time, const ignition::math::Pose3d &_
     msgs::Set(scan->mutable_world_pose(), _worldPose);
     scan->set_angle_min(this->AngleMin().Radian());
     scan->set_angle_max(this->AngleMax().Radian());
-    scan->set_angle_step((this->AngleMax() - this->AngleMin()).Radian() / (this->RangeCount() - 1));
+    scan->set_angle_step(this->AngleResolution());
     scan->set_count(this->RangeCount());
     scan->set_vertical_angle_min(this->VerticalAngleMin().Radian());
     scan->set_vertical_angle_max(this->VerticalAngleMax().Radian());
-    scan->set_vertical_angle_step((this->VerticalAngleMax() - this->VerticalAngleMin()).Radian() /
-                                  (this->VerticalRangeCount() - 1));
+    scan->set_vertical_angle_step(this->VerticalAngleResolution());
     scan->set_vertical_count(this->VerticalRangeCount());
     scan->set_range_min(this->RangeMin());
     scan->set_range_max(this->RangeMax());
     scan->mutable_ranges()->Assign(std::move(_ranges));
     scan->mutable_intensities()->Assign(std::move(_intensities));
-    *stamped = this->laserMsg;
+    if (transport::racebot::HasSubscribers(this->scanTopic))
+      stamped = boost::make_shared<msgs::LaserScanStamped>(this->laserMsg);
   }
-  const std::string topic = transport::racebot::DecodeTopicName(this->Topic(), this->WorldName());
-  if (transport::racebot::HasSubscribers(topic))
-    transport::racebot::Deliver<msgs::LaserScanStamped>(topic, stamped);
+  if (stamped)
+    transport::racebot::Deliver<msgs::LaserScanStamped>(this->scanTopic, stamped);
   this->Measured(_time);
 }
 }  // namespace racebot

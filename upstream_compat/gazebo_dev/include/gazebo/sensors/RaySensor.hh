@@ -62,6 +62,7 @@ protected:
 
   physics::MultiRayShape::Geometry geometry;
   msgs::LaserScanStamped laserMsg;
+  const std::string scanTopic;  // Topic(), decoded as transport decodes it (/gazebo/<world>/...)
 };
 }  // namespace racebot
 
