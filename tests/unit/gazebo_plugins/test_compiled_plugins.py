@@ -285,8 +285,9 @@ def test_every_engine_call_gazebo_host_makes_is_a_method_of_the_adapter():
 SENSOR_HEIGHT = 0.6  # the spinner's base_link at z 0.1, the laser 0.5 above it, looking straight down
 
 
-def probe(sensor_type='ray', always_on=False, rate=20, samples=11, resolution=1, **params):
-    """The spinner with a downward ray sensor 1 m ahead of its base, carrying scan_probe (its <plugin> params)."""
+def probe(sensor_type='ray', always_on=False, update_rate=20, samples=11, resolution=1, **params):
+    """The spinner with a downward ray sensor 1 m ahead of its base (at `update_rate`), carrying scan_probe (its
+    <plugin> params: `params`)."""
     body = ''.join('<%s>%s</%s>' % (k, v, k) for k, v in params.items())
     return SPINNER % {'mass': ROTOR_MASS, 'izz': ROTOR_IZZ, 'effort': 3.0, 'velocity': 40.0, 'extra': (
         '<gazebo reference="base_link"><sensor type="%s" name="probe_laser"><pose>1 0 0.5 0 1.5707963 0</pose>'
@@ -294,7 +295,7 @@ def probe(sensor_type='ray', always_on=False, rate=20, samples=11, resolution=1,
         '<resolution>%g</resolution><min_angle>-0.2</min_angle><max_angle>0.2</max_angle></horizontal></scan>'
         '<range><min>0.05</min><max>5</max><resolution>0.01</resolution></range></ray>'
         '<plugin name="probe" filename="libscan_probe.so">%s</plugin></sensor></gazebo>'
-        % (sensor_type, 'true' if always_on else 'false', rate, samples, resolution, body))}
+        % (sensor_type, 'true' if always_on else 'false', update_rate, samples, resolution, body))}
 
 
 @pytest.fixture
