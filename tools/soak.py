@@ -19,7 +19,13 @@ speed changes and stops, chosen by sim time. It measures:
     of samples taken while driving measures how many frames happen to be in flight, which a machine's
     speed changes: a window-quantile rule read +5.1 % on a slower machine where the 30-minute soak
     read +0.96 %. At rest nothing is in flight and the readings agree to the page; a leak stays. A rest
-    is also taken every REST_EVERY s of sim time in between, reported as the curve (warm-up, ..., end);
+    is also taken every REST_EVERY s of sim time in between, reported as the curve (warm-up, ..., end).
+    The launch runs with glibc's mmap threshold fixed (MEASURED_TUNABLES): by default glibc raises the
+    threshold to the largest block freed, so later frames come from the per-thread arenas (each camera
+    publishes on a thread of its own) and a freed frame's pages may stay there, resident, until the arena
+    trims. Which frames a rest finds held that way is chance: rests stepped up and down by whole frames
+    (1875 kB, one 800 x 800 RGB image) from one rest to the next. With the threshold fixed, every frame is
+    mapped and unmapped and RSS at rest is the memory in use;
   - every ERROR or FATAL on /rosout_agg, and any node that died (roslaunch's output): none allowed;
   - /clock: it must never go back (the soak does no reset);
   - at the end: the simulator still serves, the seven controllers run, the car's state is finite.
@@ -67,6 +73,8 @@ ROUTE_PERIOD = sum(seg[2] for seg in ROUTE)
 COMMAND_WALL_PERIOD = 0.1   # s of wall time between two published commands
 SAMPLE_WALL_PERIOD = 0.25   # s of wall time between RSS samples while driving (reported, the swing; no verdict)
 SENSOR_TYPES = ('sensor_msgs/LaserScan', 'sensor_msgs/Imu', 'sensor_msgs/Image', 'sensor_msgs/PointCloud2')
+# glibc.malloc.mmap_threshold fixed at its default 128 KB: also turns off glibc's dynamic threshold (module doc).
+MEASURED_TUNABLES = 'glibc.malloc.mmap_threshold=131072'
 STARTUP_TIMEOUT = 180.0     # wall s for the launch to bring up the car with its controllers
 
 
@@ -115,6 +123,15 @@ def rss_kb(pid):
     except OSError:
         return None
     return None
+
+
+def measured_environ(environ):
+    """The launch's environment: `environ` with MEASURED_TUNABLES added to any GLIBC_TUNABLES it sets."""
+    env = dict(environ)
+    tunables = [t for t in env.get('GLIBC_TUNABLES', '').split(':')
+                if t and not t.startswith('glibc.malloc.mmap_threshold=')]
+    env['GLIBC_TUNABLES'] = ':'.join(tunables + [MEASURED_TUNABLES])
+    return env
 
 
 def rest_due(driven, warm, rests, every=REST_EVERY):
@@ -201,7 +218,8 @@ class Soak:
                'world_name:=%s' % world]
         print('soak: %s (master on port %d, logs in %s)' % (' '.join(cmd), port, os.path.relpath(self.run_dir, ROOT)),
               flush=True)
-        self.launch = subprocess.Popen(cmd, stdout=self.launch_log, stderr=subprocess.STDOUT, start_new_session=True)
+        self.launch = subprocess.Popen(cmd, stdout=self.launch_log, stderr=subprocess.STDOUT, start_new_session=True,
+                                       env=measured_environ(os.environ))
         import rospy
         self.rospy = rospy
         deadline = time.time() + STARTUP_TIMEOUT
@@ -451,6 +469,7 @@ class Soak:
             'rss_end_kb': rests[-1][1] if len(rests) > 1 else None,
             'rss_growth_percent': round(growth, 2) if growth is not None else None,
             'rss_rests': rests,
+            'allocator': MEASURED_TUNABLES,
             'rss_max_kb': max(r for _, r in self.samples) if self.samples else None,
             'rss_samples': self.samples,
             'clock_messages': self.clock_messages,

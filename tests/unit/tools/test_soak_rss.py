@@ -29,3 +29,13 @@ def test_a_leak_reads_as_growth():
 def test_the_median_of_the_readings_stands_for_the_rest():
     assert soak.stats.median([5, 1, 9]) == 5
     assert soak.stats.median([140000] * 7 + [180000]) == 140000  # one reading with a frame freed late
+
+
+def test_the_launch_runs_with_the_mmap_threshold_fixed():
+    env = soak.measured_environ({'PATH': '/usr/bin'})
+    assert env['GLIBC_TUNABLES'] == 'glibc.malloc.mmap_threshold=131072' and env['PATH'] == '/usr/bin'
+
+
+def test_a_users_own_tunables_stay_and_the_threshold_is_ours():
+    env = soak.measured_environ({'GLIBC_TUNABLES': 'glibc.malloc.arena_max=2:glibc.malloc.mmap_threshold=1'})
+    assert env['GLIBC_TUNABLES'] == 'glibc.malloc.arena_max=2:glibc.malloc.mmap_threshold=131072'
