@@ -41,10 +41,26 @@ class Providers:
         if path:
             kind = 'racebot' if path.startswith(self.racebot_root + os.sep) else 'installed'
             return Provider(kind, path)
+        config = self.cmake_config(name)
+        if config:
+            return Provider('racebot', config)
         resolved, packages, why = self._rosdep.resolve(name)
         if resolved:
             return Provider('debian', 'rosdep', packages, self._rosdep.not_installed(packages))
         return Provider('source', why)
+
+    def cmake_config(self, name):
+        """The CMake package configuration racebot's devel space has for `name`, or None: a system dependency such as
+        `gazebo` (rosdep's key for Gazebo 11 on Ubuntu, no rule for Debian) that is no ROS package but whose
+        find_package racebot answers (docs/SUPPORTED.md, racebot's Gazebo plugin API)."""
+        for devel in os.environ.get('CMAKE_PREFIX_PATH', '').split(os.pathsep):
+            if not devel or not os.path.realpath(devel).startswith(self.racebot_root + os.sep):
+                continue
+            for base in ('%s-config.cmake' % name, '%sConfig.cmake' % name):
+                path = os.path.join(devel, 'lib', 'cmake', name, base)
+                if os.path.isfile(path):
+                    return path
+        return None
 
 
 class _RosdepResolver:

@@ -11,7 +11,6 @@ import re
 import subprocess
 import time
 
-from deps.needs import declared
 
 FAILED = re.compile(r"<== Failed to process package '([^']+)'")
 STARTED = re.compile(r"==> Processing (?:catkin|plain cmake) package: '([^']+)'")
@@ -95,13 +94,22 @@ def section(log_text, package):
     return '\n'.join(lines[start:] if start is not None else lines)
 
 
+def build_needs(package):
+    """What a package needs to build: its build and buildtool dependencies (`<depend>` is one too), not its exec
+    ones, which catkin does not look for."""
+    groups = [package.build_depends, package.buildtool_depends]
+    return {dep.name for group in groups for dep in group if dep.evaluated_condition is not False}
+
+
 def dependents(failed, packages):
-    """The packages of `packages` ({name: (folder, Package)}) that need `failed`, directly or not."""
+    """The packages of `packages` ({name: (folder, Package)}) that need `failed` to build, directly or not (an exec
+    dependency that failed leaves a package buildable: hector_sensors_description's hector_gazebo_thermal_camera,
+    a compiled camera plugin, is needed only by the xacro macro of a thermal camera)."""
     found, todo = set(), [failed]
     while todo:
         name = todo.pop()
         for other, (_, package) in packages.items():
-            if other not in found and name in declared(package, tests=False):
+            if other not in found and name in build_needs(package):
                 found.add(other)
                 todo.append(other)
     return found
@@ -114,7 +122,21 @@ def python():
     return venv if os.path.exists(venv) else '/usr/bin/python3'
 
 
-def _run_cmi(ws, selection, env, log_path, jobs):
+def cmi_command(ws, selection, others):
+    """catkin_make_isolated of `selection` and what it needs of ws.src; `others` (the rest of ws.src's packages: a
+    fetched repository's packages that racebot, Debian or another underlay provide) are ignored, or
+    --only-pkg-with-deps would build the source copy of one that a selected package depends on over the provider
+    the resolution chose (hector_gazebo's own hector_gazebo_plugins, which needs Gazebo's removed gazebo/math)."""
+    cmd = ['catkin_make_isolated', '-C', ws.root, '--source', ws.src, '--build', ws.build_space,
+           '--devel', ws.devel, '--merge', '--force-cmake', '--only-pkg-with-deps'] + sorted(selection)
+    ignored = sorted(set(others) - set(selection))
+    if ignored:
+        cmd += ['--ignore-pkg'] + ignored
+    return cmd + ['--cmake-args', '-DPYTHON_EXECUTABLE=%s' % python(), '-DCATKIN_ENABLE_TESTING=OFF',
+                  '-DCMAKE_BUILD_TYPE=Release']
+
+
+def _run_cmi(ws, selection, others, env, log_path, jobs):
     # configured from scratch: what the packages find below them has changed when they are built again (a build
     # folder's CMake cache keeps rosbag_storage_DIR at Debian's after racebot's overlay of it lands), and
     # --force-cmake, since with a Makefile there catkin_make_isolated would only re-check, without its arguments
@@ -122,10 +144,7 @@ def _run_cmi(ws, selection, env, log_path, jobs):
         cache = os.path.join(ws.build_space, name, 'CMakeCache.txt')
         if os.path.exists(cache):
             os.remove(cache)
-    cmd = ['catkin_make_isolated', '-C', ws.root, '--source', ws.src, '--build', ws.build_space,
-           '--devel', ws.devel, '--merge', '--force-cmake', '--only-pkg-with-deps'] + sorted(selection) + \
-        ['--cmake-args', '-DPYTHON_EXECUTABLE=%s' % python(), '-DCATKIN_ENABLE_TESTING=OFF',
-         '-DCMAKE_BUILD_TYPE=Release']
+    cmd = cmi_command(ws, selection, others)
     env = dict(env, ROS_PARALLEL_JOBS='-j%d -l%d' % (jobs, jobs))
     with open(log_path, 'w') as log:
         log.write('$ %s\n' % ' '.join(cmd))
@@ -148,7 +167,7 @@ def build(ws, selection, packages, env, jobs=2, say=print):
         log_path = os.path.join(ws.logs, 'build-%d.log' % attempt)
         started = time.time()
         say('racebot deps: catkin_make_isolated of %d package(s), log %s' % (len(remaining), log_path))
-        code, text = _run_cmi(ws, remaining, env, log_path, jobs)
+        code, text = _run_cmi(ws, remaining, packages, env, log_path, jobs)
         if code == 0:
             results.update({name: 'built' for name in remaining})
             say('racebot deps: built in %.0f s' % (time.time() - started))

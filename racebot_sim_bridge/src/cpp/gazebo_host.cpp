@@ -61,8 +61,9 @@ public:
                              "joint_set_velocity", "joint_set_force", "joint_set_position",
                              "joint_set_motor", "link_world_pose", "link_world_cog_pose", "link_world_linear_vel",
                              "link_world_cog_linear_vel", "link_world_angular_vel", "link_add_force",
-                             "link_add_torque", "link_mass", "link_world_force", "link_world_torque", "joint_wrench", "model_set_world_pose", "model_set_linear_vel",
-                             "model_set_angular_vel", "model_world_pose"})
+                             "link_add_torque", "link_mass", "link_inertial", "link_world_force", "link_world_torque",
+                             "joint_wrench", "model_set_world_pose", "model_set_linear_vel", "model_set_angular_vel",
+                             "model_world_pose"})
       this->methods[name] = this->adapter.attr(name);
   }
 
@@ -110,6 +111,13 @@ public:
     this->Call("link_add_torque", _l, Vec(_t.X(), _t.Y(), _t.Z()));
   }
   double LinkMass(int _l) override { return this->Get<double>("link_mass", _l); }
+  void LinkInertial(int _l, double &_mass, Pose3d &_pose, Vector3d &_principal) override
+  {
+    auto inertial = this->Get<std::tuple<double, PoseT, Vec>>("link_inertial", _l);
+    _mass = std::get<0>(inertial);
+    _pose = PoseOf(std::get<1>(inertial));
+    _principal = V(std::get<2>(inertial));
+  }
   Vector3d LinkWorldForce(int _l) override { return V(this->Get<Vec>("link_world_force", _l)); }
   Vector3d LinkWorldTorque(int _l) override { return V(this->Get<Vec>("link_world_torque", _l)); }
   void JointWrench(int _j, Vector3d &_force, Vector3d &_torque) override

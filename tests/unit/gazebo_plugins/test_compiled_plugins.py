@@ -82,6 +82,15 @@ def test_a_velocity_plugin_drives_its_joint_and_sees_gazebos_times(world, capfd)
     # Link::RelativePose: the rotor in the model's frame, the joint's origin 0.2 above the base (at rest, level)
     relative = [float(v) for v in loaded[0].split('child in model ')[1].split()]
     assert relative == pytest.approx([0.0, 0.0, 0.2, 0.0, 0.0, 0.0], abs=1e-6), loaded[0]
+    # Link::GetInertial: the base's <inertial> of spinner.urdf.in, its CoG in the link frame (on the joint axis, so
+    # that a lift at the CoG tilts nothing)
+    inertial = lines(out, 'JointDriver base inertial')
+    assert len(inertial) == 1, out
+    words = inertial[0].split('inertial: ')[1].split()
+    assert float(words[1]) == pytest.approx(5.0)
+    assert [float(v) for v in words[3:6]] == pytest.approx([0.0, 0.0, 0.03], abs=1e-9), inertial[0]
+    assert [float(v) for v in words[7:10]] == pytest.approx([0.05, 0.06, 0.07], abs=1e-9), inertial[0]
+    assert [float(v) for v in words[11:14]] == [0.0, 0.0, 0.0] and float(words[15]) == pytest.approx(0.07)
     updates = lines(out, 'JointDriver update')
     assert [int(line.split()[3]) for line in updates] == [500, 1000], out
     first = updates[0].split()

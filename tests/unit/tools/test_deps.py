@@ -287,3 +287,35 @@ def test_the_resolution_key_changes_when_a_launch_file_names_something_new(tmp_p
     assert key == deps_run.resolution_key(local, [], {})
     (tmp_path / 't' / 'launch' / 'a.launch').write_text('<launch><node pkg="amcl" type="amcl" name="a"/></launch>')
     assert key != deps_run.resolution_key(local, [], {})
+
+
+def test_the_build_ignores_the_fetched_packages_others_provide(tmp_path):
+    # hector_gazebo brings hector_gazebo_plugins (racebot's) beside hector_sensors_gazebo (taken): only-pkg-with-deps
+    # alone would build the source copy of the former, which needs Gazebo's removed gazebo/math headers
+    ws = underlay.Workspace(str(tmp_path / 'ws'))
+    cmd = underlay.cmi_command(ws, {'hector_sensors_gazebo'}, {'hector_sensors_gazebo': None,
+                                                               'hector_gazebo_plugins': None})
+    at = cmd.index('--only-pkg-with-deps')
+    assert cmd[at + 1:at + 4] == ['hector_sensors_gazebo', '--ignore-pkg', 'hector_gazebo_plugins']
+    assert '--ignore-pkg' not in underlay.cmi_command(ws, {'a'}, {'a': None})
+
+
+def test_a_cmake_package_racebot_configures_is_racebots(tmp_path, monkeypatch):
+    # `gazebo` (hector_quadrotor_gazebo_plugins' <depend>gazebo</depend>) is no ROS package and has no Debian rule:
+    # racebot's devel space answers its find_package
+    root = tmp_path / 'racebot'
+    config = root / 'devel' / 'lib' / 'cmake' / 'gazebo' / 'gazebo-config.cmake'
+    config.parent.mkdir(parents=True)
+    config.write_text('set(gazebo_FOUND TRUE)\n')
+    providers = provide.Providers.__new__(provide.Providers)
+    providers.racebot_root = os.path.realpath(str(root))
+    monkeypatch.setenv('CMAKE_PREFIX_PATH', os.pathsep.join(['/opt/other', str(root / 'devel')]))
+    assert providers.cmake_config('gazebo') == str(config)
+    assert providers.cmake_config('ignition-math6') is None
+
+
+def test_a_failed_exec_dependency_leaves_a_package_buildable(tmp_path):
+    write(tmp_path, {'a/package.xml': deps_fixture.package_xml('a'),
+                     'b/package.xml': deps_fixture.package_xml('b', exec_depends=['a']),
+                     'c/package.xml': deps_fixture.package_xml('c', ['a'])})
+    assert underlay.dependents('a', needs.local_packages(str(tmp_path))) == {'c'}

@@ -45,7 +45,7 @@ def project(tmp_path, cmake, sources=None, name='probe_pkg'):
 
 # a model plugin's includes, all in racebot's Gazebo plugin API
 PLUGIN = {'src/plugin.cc': ('#include <ros/ros.h>\n  #  include "gazebo/physics/physics.hh"\n'
-                            '#include <gazebo/gazebo.hh>\n')}
+                            '#include <gazebo/physics/PhysicsEngine.hh>\n#include <gazebo/gazebo.hh>\n')}
 # a ray sensor plugin's, all in it
 RAY_PLUGIN = {'src/plugin.cc': ('#include <gazebo/plugins/RayPlugin.hh>\n#include <gazebo/sensors/RaySensor.hh>\n'
                                 '#include <gazebo/transport/Node.hh>\n#include <gazebo/msgs/MessageTypes.hh>\n')}
@@ -100,6 +100,24 @@ def test_a_plugin_including_a_header_the_api_lacks_is_refused_naming_the_package
             'not have (src/plugin.cc: # include "gazebo/sensors/CameraSensor.hh")') in out
     assert 'docs/SUPPORTED.md' in out
     assert 'catkin_make -DCATKIN_BLACKLIST_PACKAGES="my_gazebo_plugins"' in out
+
+
+# hector_gazebo_plugins' sensor_model.h: Gazebo 7's header behind a version test Gazebo 11 does not take
+GUARDED = {'src/plugin.cc': ('#include <gazebo/gazebo.hh>\n#if (GAZEBO_MAJOR_VERSION < 8)\n'
+                             '#include <gazebo/math/Vector3.hh>\n#else\n#include <ignition/math/Vector3.hh>\n#endif\n'
+                             '#if GAZEBO_MAJOR_VERSION >= 9 // new\n#include <gazebo/physics/physics.hh>\n#else\n'
+                             '#include <gazebo/physics/PhysicsEngine7.hh>\n#endif\n')}
+
+
+def test_an_include_in_a_branch_gazebo_11_does_not_take_is_not_refused(tmp_path):
+    code, out, values = project(tmp_path, 'find_package(gazebo REQUIRED)\n' + REPORT, GUARDED)
+    assert code == 0 and values['gazebo_FOUND'] in ('1', 'TRUE'), out
+
+
+def test_an_include_under_a_condition_it_cannot_evaluate_is_refused(tmp_path):
+    sources = {'src/plugin.cc': '#ifdef WITH_CAMERA\n#include <gazebo/sensors/CameraSensor.hh>\n#endif\n'}
+    code, out, _ = project(tmp_path, 'find_package(gazebo REQUIRED)\n', sources)
+    assert code != 0 and 'gazebo/sensors/CameraSensor.hh' in flat(out), out
 
 
 def test_without_required_a_plugin_package_gets_gazebo_not_found(tmp_path):

@@ -241,6 +241,14 @@ void Link::AddForceAtWorldPosition(const Vector3d &_force, const Vector3d &_pos)
 }
 
 double Link::GetMass() const { return TheEngine().LinkMass(this->handle); }
+InertialPtr Link::GetInertial() const
+{
+  double mass = 0.0;
+  Pose3d pose;
+  Vector3d principal;
+  TheEngine().LinkInertial(this->handle, mass, pose, principal);
+  return boost::make_shared<Inertial>(mass, pose, principal);
+}
 Vector3d Link::WorldForce() const { return TheEngine().LinkWorldForce(this->handle); }
 Vector3d Link::WorldTorque() const { return TheEngine().LinkWorldTorque(this->handle); }
 Vector3d Link::RelativeForce() const { return this->WorldPose().Rot().RotateVectorReverse(this->WorldForce()); }

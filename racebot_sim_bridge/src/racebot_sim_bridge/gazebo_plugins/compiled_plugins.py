@@ -171,6 +171,11 @@ class EngineAdapter:
     def link_mass(self, k):
         return self.links[k].dynamics().mass
 
+    def link_inertial(self, k):
+        """Link::GetInertial: mass, the inertial frame in the link frame (x y z qx qy qz qw), principal moments."""
+        d = self.links[k].dynamics()
+        return d.mass, tuple(d.inertial_position) + tuple(d.inertial_orientation), tuple(d.inertia_diagonal)
+
     def link_world_force(self, k):
         return self.links[k].applied_wrench()[0]
 

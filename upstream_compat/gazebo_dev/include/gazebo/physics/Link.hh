@@ -8,6 +8,7 @@
 #include <ignition/math/Pose3.hh>
 #include <ignition/math/Vector3.hh>
 
+#include "gazebo/physics/Inertial.hh"
 #include "gazebo/physics/PhysicsTypes.hh"
 #include "gazebo/util/system.hh"
 
@@ -48,7 +49,9 @@ public:
   ignition::math::Vector3d WorldTorque() const;
   ignition::math::Vector3d RelativeForce() const;
   ignition::math::Vector3d RelativeTorque() const;
-  double GetMass() const;  // not Gazebo's (GetInertial()->Mass()): racebot has no Inertial class yet
+  // the link's mass properties now (a copy: racebot's engine holds them; Gazebo's object is the link's own)
+  InertialPtr GetInertial() const;
+  double GetMass() const;  // not Gazebo 11's: GetInertial()->Mass(); kept for plugins written against racebot
   int Handle() const { return this->handle; }
 
 private:

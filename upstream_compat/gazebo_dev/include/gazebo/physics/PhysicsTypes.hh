@@ -19,6 +19,7 @@ class Model;
 class Link;
 class Joint;
 class PhysicsEngine;
+class Inertial;
 class MultiRayShape;
 
 typedef boost::shared_ptr<World> WorldPtr;
@@ -26,6 +27,7 @@ typedef boost::shared_ptr<Model> ModelPtr;
 typedef boost::shared_ptr<Link> LinkPtr;
 typedef boost::shared_ptr<Joint> JointPtr;
 typedef boost::shared_ptr<PhysicsEngine> PhysicsEnginePtr;
+typedef boost::shared_ptr<Inertial> InertialPtr;
 typedef boost::shared_ptr<MultiRayShape> MultiRayShapePtr;
 
 typedef std::vector<ModelPtr> Model_V;

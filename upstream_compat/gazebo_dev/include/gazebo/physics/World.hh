@@ -9,6 +9,7 @@
 #include <ignition/math/Vector3.hh>
 
 #include "gazebo/common/Time.hh"
+#include "gazebo/physics/PhysicsEngine.hh"
 #include "gazebo/physics/PhysicsTypes.hh"
 #include "gazebo/util/system.hh"
 
@@ -16,14 +17,6 @@ namespace gazebo
 {
 namespace physics
 {
-class GZ_PHYSICS_VISIBLE PhysicsEngine
-{
-public:
-  double GetMaxStepSize() const;
-  double GetRealTimeUpdateRate() const;
-  ignition::math::Vector3d GetGravity() const;
-};
-
 class GZ_PHYSICS_VISIBLE World : public boost::enable_shared_from_this<World>
 {
 public:

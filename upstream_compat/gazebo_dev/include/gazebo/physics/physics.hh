@@ -3,8 +3,10 @@
 #define GAZEBO_PHYSICS_PHYSICS_HH_
 
 #include "gazebo/physics/PhysicsTypes.hh"
+#include "gazebo/physics/PhysicsEngine.hh"
 #include "gazebo/physics/World.hh"
 #include "gazebo/physics/Model.hh"
+#include "gazebo/physics/Inertial.hh"
 #include "gazebo/physics/Link.hh"
 #include "gazebo/physics/Joint.hh"
 #include "gazebo/physics/JointController.hh"

@@ -41,6 +41,9 @@ public:
   virtual void LinkAddForce(int _link, const ignition::math::Vector3d &_force) = 0;  // world frame, at the CoG
   virtual void LinkAddTorque(int _link, const ignition::math::Vector3d &_torque) = 0;
   virtual double LinkMass(int _link) = 0;
+  // mass, the inertial frame in the link frame, the principal moments in it
+  virtual void LinkInertial(int _link, double &_mass, ignition::math::Pose3d &_pose,
+                            ignition::math::Vector3d &_principal) = 0;
   // the force and torque (about the CoG) applied to the link for the coming step, world axes (Link::WorldForce)
   virtual ignition::math::Vector3d LinkWorldForce(int _link) = 0;
   virtual ignition::math::Vector3d LinkWorldTorque(int _link) = 0;
