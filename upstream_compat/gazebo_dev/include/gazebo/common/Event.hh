@@ -7,6 +7,7 @@
 #ifndef GAZEBO_COMMON_EVENT_HH_
 #define GAZEBO_COMMON_EVENT_HH_
 
+#include "gazebo/common/CommonTypes.hh"
 #include "gazebo/util/bind.hh"
 #include <functional>
 #include <memory>
@@ -83,7 +84,6 @@ private:
   int id;
 };
 
-typedef std::shared_ptr<Connection> ConnectionPtr;
 
 template<typename T>
 class EventT : public Event

@@ -5,6 +5,7 @@
 #ifndef GAZEBO_COMMON_PLUGIN_HH_
 #define GAZEBO_COMMON_PLUGIN_HH_
 
+#include "gazebo/common/CommonTypes.hh"
 #include <dlfcn.h>
 #include <sys/stat.h>
 

@@ -3,6 +3,7 @@
 #ifndef GAZEBO_PHYSICS_PHYSICSTYPES_HH_
 #define GAZEBO_PHYSICS_PHYSICSTYPES_HH_
 
+#include "gazebo/common/CommonTypes.hh"
 #include <vector>
 
 #include "gazebo/util/bind.hh"

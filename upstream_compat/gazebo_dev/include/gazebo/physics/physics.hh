@@ -2,6 +2,7 @@
 #ifndef GAZEBO_PHYSICS_PHYSICS_HH_
 #define GAZEBO_PHYSICS_PHYSICS_HH_
 
+#include "gazebo/common/Console.hh"  // Gazebo's physics headers bring the console macros (gzlog in a RobotHWSim)
 #include "gazebo/physics/PhysicsTypes.hh"
 #include "gazebo/physics/PhysicsEngine.hh"
 #include "gazebo/physics/World.hh"
