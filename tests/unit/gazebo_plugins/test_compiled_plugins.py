@@ -70,7 +70,13 @@ def joint_state(robot_):
 
 
 def test_a_velocity_plugin_drives_its_joint_and_sees_gazebos_times(world, capfd):
-    r = world.spawn('spinner', robot(driver('velocity', 2.5, report=500)), '/', (0.0, 0.0, 0.1))
+    # the base's CoG 0.03 above its origin, on the joint's axis (read back by Link::GetInertial below); its moments
+    # 0.05, 0.06, 0.07
+    urdf = robot(driver('velocity', 2.5, report=500)).replace(
+        '<inertial><mass value="5"/><inertia ixx="0.05" iyy="0.05" izz="0.05"',
+        '<inertial><origin xyz="0 0 0.03"/><mass value="5"/><inertia ixx="0.05" iyy="0.06" izz="0.07"', 1)
+    assert 'xyz="0 0 0.03"' in urdf
+    r = world.spawn('spinner', urdf, '/', (0.0, 0.0, 0.1))
     world.run(1.0)
     assert joint_state(r).velocity == pytest.approx(2.5, abs=1e-3)
     out = capfd.readouterr().out
@@ -82,8 +88,7 @@ def test_a_velocity_plugin_drives_its_joint_and_sees_gazebos_times(world, capfd)
     # Link::RelativePose: the rotor in the model's frame, the joint's origin 0.2 above the base (at rest, level)
     relative = [float(v) for v in loaded[0].split('child in model ')[1].split()]
     assert relative == pytest.approx([0.0, 0.0, 0.2, 0.0, 0.0, 0.0], abs=1e-6), loaded[0]
-    # Link::GetInertial: the base's <inertial> of spinner.urdf.in, its CoG in the link frame (on the joint axis, so
-    # that a lift at the CoG tilts nothing)
+    # Link::GetInertial: the base's <inertial> as spawned above, its CoG in the link frame
     inertial = lines(out, 'JointDriver base inertial')
     assert len(inertial) == 1, out
     words = inertial[0].split('inertial: ')[1].split()
