@@ -75,9 +75,11 @@ class CameraSensor(CameraUtils, libraries=('libgazebo_ros_camera.so',), sensor_t
         self.service = manager.rospy.Service(config.params['set_camera_info'], SetCameraInfo, self.set_camera_info)
 
     def _frame_failed(self, message):
-        # At shutdown rospy closes the topics while a frame may still be on its way: that frame is dropped, as
-        # Gazebo's publishers drop theirs once ROS is down, and nothing is logged (soak_short read it as an ERROR)
-        if not self.manager.rospy.is_shutdown():
+        # A frame may still be on its way when its topics close: the world server's shutdown closes the sensors
+        # (unregistering their publishers) before rospy's, and rospy's closes the topics. That frame is dropped,
+        # as Gazebo's publishers drop theirs once ROS is down, and nothing is logged (soak_short read both as an
+        # ERROR: "publish() to an unregistered() handle", "publish() to a closed topic")
+        if not (self.closed or self.manager.rospy.is_shutdown()):
             self.manager.rospy.logerr(message)
 
     def set_camera_info(self, req):
@@ -169,8 +171,8 @@ class CameraSensor(CameraUtils, libraries=('libgazebo_ros_camera.so',), sensor_t
         self.capture(time, stamp, {'image'}, want_depth=False)
 
     def close(self):
+        self.publisher.close()  # frames not yet published are dropped before their topics go
         super().close()
-        self.publisher.close()
         service, self.service = self.service, None
         if service is not None:
             service.shutdown()

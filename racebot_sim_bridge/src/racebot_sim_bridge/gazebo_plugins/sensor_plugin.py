@@ -134,6 +134,7 @@ class Sensor:
         self.meter = RateMeter(frames=self.counts_frames)
         self.publishers = {}
         self.failed = False
+        self.closed = False  # set by close(), before the topics are unregistered
 
     def advertise(self, role, msg_class, queue_size):
         self.publishers[role] = self.manager.rospy.Publisher(self.config.topics[role], msg_class,
@@ -161,6 +162,7 @@ class Sensor:
         raise NotImplementedError
 
     def close(self):
+        self.closed = True
         publishers, self.publishers = self.publishers, {}
         for p in publishers.values():
             p.unregister()
