@@ -5,9 +5,10 @@ tearDownClass, also when the start fails; a subclass says what to start and wait
 Commands go out at 20 Hz (Driver), waits are bounded in wall time and fail at once when roslaunch or one
 of its nodes died (catkin_overlay.LaunchWatch), and the ground truth is read with physics paused (`paused`).
 """
-import threading
-import time
+import subprocess
+import sys
 import unittest
+from pathlib import Path
 
 import rospy
 from controller_manager_msgs.srv import ListControllers
@@ -25,21 +26,35 @@ WALL_TIMEOUT = 30.0
 
 
 class Driver:
-    """Publishes the latest `command` on each of `topics` at 20 Hz (wall time) until stopped; None sends nothing."""
+    """The latest `command` (a Twist, or None to send nothing) published on each of `topics` at 20 Hz of wall time
+    until stopped, by a process of its own (twist_driver.py: why there)."""
 
     def __init__(self, *topics):
-        self.pubs = [rospy.Publisher(topic, Twist, queue_size=1) for topic in topics]
-        self.command = None
-        self.running = True
-        threading.Thread(target=self._loop, daemon=True).start()
+        self._proc = subprocess.Popen([sys.executable, str(Path(__file__).with_name('twist_driver.py'))]
+                                      + list(topics), stdin=subprocess.PIPE, stdout=subprocess.PIPE, text=True)
+        if self._proc.stdout.readline().strip() != 'ready':
+            raise RuntimeError('twist_driver.py did not start (exit code %s)' % self._proc.wait(timeout=10))
+        self._command = None
 
-    def _loop(self):
-        while self.running and not rospy.is_shutdown():
-            cmd = self.command
-            if cmd is not None:
-                for pub in self.pubs:
-                    pub.publish(cmd)
-            time.sleep(0.05)
+    @property
+    def command(self):
+        return self._command
+
+    @command.setter
+    def command(self, cmd):
+        self._command = cmd
+        line = 'none' if cmd is None else '%r %r %r' % (cmd.linear.x, cmd.linear.y, cmd.angular.z)
+        self._proc.stdin.write(line + '\n')
+        self._proc.stdin.flush()
+
+    def stop(self):
+        if self._proc.poll() is None:
+            self._proc.stdin.close()
+            try:
+                self._proc.wait(timeout=10)
+            except subprocess.TimeoutExpired:
+                self._proc.kill()
+                self._proc.wait()
 
 
 def twist(vx, vy, wz):
@@ -88,7 +103,7 @@ class FixtureRobotTest(unittest.TestCase):
     @classmethod
     def tearDownClass(cls):
         for driver in cls.drivers:
-            driver.running = False
+            driver.stop()
         if cls.launch is not None:
             cls.launch.stop()
 
