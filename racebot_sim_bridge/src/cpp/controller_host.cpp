@@ -301,7 +301,7 @@ public:
   }
 
   // gazebo_ros_control's Load with <robotSimType> `type`: the URDF from the parameter `robot_param` (searched up
-  // from the robot's namespace), its transmissions, the RobotHWSim made through pluginlib and its initSim. Its joints
+  // from the robot's namespace, else read in it; upstream waits for it, this fails at once), its transmissions, the RobotHWSim made through pluginlib and its initSim. Its joints
   // as [(name, [command interfaces])], every joint of its JointStateInterface; std::runtime_error saying why when it
   // cannot be made or initSim fails.
   std::vector<std::pair<std::string, std::vector<std::string>>> InitSim(const std::string& type,
@@ -313,8 +313,11 @@ public:
     {
       py::gil_scoped_release release;  // initSim calls the engine, which takes the lock per call
       ros::NodeHandle model_nh(robot_namespace);
+      // gazebo_ros_control's getURDF: searched up from the namespace, else read under it. NodeHandle("/"), the
+      // namespace spawn_model gives every plugin, has the namespace "" and its searchParam finds nothing.
       std::string found, urdf_xml;
-      if (!model_nh.searchParam(robot_param, found) || !model_nh.getParam(found, urdf_xml))
+      if (!(model_nh.searchParam(robot_param, found) && model_nh.getParam(found, urdf_xml)) &&
+          !model_nh.getParam(robot_param, urdf_xml))
         throw std::runtime_error("no URDF on the parameter server under '" + robot_param + "' (searched from '" +
                                  model_nh.getNamespace() + "'); set <robotParam> or load the robot's description");
       const std::vector<transmission_interface::TransmissionInfo> infos = ParseTransmissions(urdf_xml);
