@@ -14,7 +14,6 @@
 #include <numeric>
 #include <random>
 #include <string>
-#include <vector>
 
 #include <ignition/math/Vector3.hh>
 #include <sdf/sdf.hh>
@@ -42,9 +41,6 @@ inline double At(const double &_v, std::size_t) { return _v; }
 inline std::size_t Size(const ignition::math::Vector3d &) { return 3; }
 inline double &At(ignition::math::Vector3d &_v, std::size_t _i) { return _i == 0 ? _v.X() : _i == 1 ? _v.Y() : _v.Z(); }
 inline double At(const ignition::math::Vector3d &_v, std::size_t _i) { return _v[_i]; }
-template <typename V> std::size_t Size(const std::vector<V> &_v) { return _v.size(); }
-template <typename V> V &At(std::vector<V> &_v, std::size_t _i) { return _v[_i]; }
-template <typename V> V At(const std::vector<V> &_v, std::size_t _i) { return _v[_i]; }
 
 template <typename T> double Mean(const T &_v)
 {
