@@ -301,9 +301,9 @@ public:
   }
 
   // gazebo_ros_control's Load with <robotSimType> `type`: the URDF from the parameter `robot_param` (searched up
-  // from the robot's namespace, else read in it; upstream waits for it, this fails at once), its transmissions, the RobotHWSim made through pluginlib and its initSim. Its joints
-  // as [(name, [command interfaces])], every joint of its JointStateInterface; std::runtime_error saying why when it
-  // cannot be made or initSim fails.
+  // from the robot's namespace, else read in it; upstream waits for it, this fails at once), its transmissions, the
+  // RobotHWSim made through pluginlib and its initSim. Its joints as [(name, [command interfaces])], every joint of
+  // its JointStateInterface; std::runtime_error saying why when it cannot be made or initSim fails.
   std::vector<std::pair<std::string, std::vector<std::string>>> InitSim(const std::string& type,
                                                                        const std::string& robot_namespace,
                                                                        const std::string& robot_param,

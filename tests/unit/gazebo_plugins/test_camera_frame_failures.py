@@ -15,10 +15,9 @@ class Manager:
 
 
 def camera(down, closed=False):
-    sensor = CameraSensor.__new__(CameraSensor)  # only its frame-failure and publishing paths: no world, no worker
+    sensor = CameraSensor.__new__(CameraSensor)  # only its frame-failure path: no world, no worker
     sensor.manager = Manager(down)
     sensor.closed = closed
-    sensor.failed = False
     return sensor
 
 
@@ -38,14 +37,11 @@ def test_a_frame_on_its_way_when_the_sensor_closes_is_dropped_silently():
     """The race of soak_short's run: the publishing thread took the camera's publishers, then the world server's
     shutdown closed the sensor (rospy still up) and the frame's publish met an unregistered handle."""
     from sensor_msgs.msg import Image
-    sensor = camera(down=False)
-    sensor.publishers = {'image': rospy.Publisher('/racebot_unit/image', Image, queue_size=1)}
-    taken = sensor.publishers  # what publish_frame holds when the close comes
-    sensor.closed = True  # what Sensor.close() sets before it unregisters
-    for p in taken.values():
-        p.unregister()
+    taken = rospy.Publisher('/racebot_unit/image', Image, queue_size=1)  # what publish_frame holds
+    sensor = camera(down=False, closed=True)  # Sensor.close() sets closed, then unregisters
+    taken.unregister()
     try:
-        taken['image'].publish(Image())
+        taken.publish(Image())
     except rospy.ROSException as err:
         sensor._frame_failed('camera c: ROSException: %s' % err)
     else:
