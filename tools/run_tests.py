@@ -14,6 +14,7 @@ import argparse
 import glob
 import os
 import shutil
+import signal
 import subprocess
 import sys
 import threading
@@ -23,7 +24,12 @@ from concurrent.futures import ThreadPoolExecutor
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 OUT = os.path.join(ROOT, 'out', 'test-results')
-ROSTEST_TIMEOUT_S = 420
+# A hang guard around one rostest file, beyond the time-limits of its test nodes (rostest runs them one after another
+# and stops each at its own time-limit, default 60 s): its master, the launch of its nodes and their teardown.
+# Never tighter than the tests' own limits: a guard that fires first kills rostest before its test node has written
+# its results, and reports a slow test as "unreadable results" (bench_quick at a load of 8).
+ROSTEST_SLACK_S = 120
+ROSTEST_DEFAULT_TIME_LIMIT_S = 60.0
 # Rostest files run JOBS at a time: each brings up a master of its own on a free port (rostest's port 0), its own
 # Xvfb (-displayfd), temporary folders and render buffers, and most of a file's time is spent waiting for sim time,
 # so two at once on a 2-core machine take about 60 % of the serial time. Every test bounds its waits in wall time
@@ -116,6 +122,60 @@ def run_lint(python):
     return 0, 1, 0, ['lint: ruff reported %d finding(s) (run `make lint`; fix them)' % max(len(findings) - 1, 1)]
 
 
+def rostest_timeout(test_file):
+    """Wall seconds one rostest file may take: its test nodes' time-limits, one after another, and the slack."""
+    tests = ET.parse(test_file).getroot().iter('test')
+    return sum(float(t.get('time-limit', ROSTEST_DEFAULT_TIME_LIMIT_S)) for t in tests) + ROSTEST_SLACK_S
+
+
+# The process groups of the rostests under way: each runs in a session of its own (so that a timeout can end all of
+# it), which also keeps a Ctrl-C at the terminal from reaching it, so the runner passes an interrupt on itself.
+_RUNNING = set()
+_RUNNING_LOCK = threading.Lock()
+
+
+def end_group(proc, grace):
+    """SIGINT to proc's process group (roslaunch's and rostest's own teardown), then after at most `grace` s
+    SIGKILL to whatever is left of it."""
+    try:
+        os.killpg(proc.pid, signal.SIGINT)
+    except ProcessLookupError:
+        return
+    try:
+        proc.wait(timeout=grace)
+    except subprocess.TimeoutExpired:
+        pass
+    try:
+        os.killpg(proc.pid, signal.SIGKILL)  # what outlived the teardown (or rostest itself, if it hung)
+    except ProcessLookupError:
+        pass
+    proc.wait()
+
+
+def run_bounded(cmd, out, timeout, grace=15.0):
+    """Runs cmd in a session of its own with output to `out`; its exit code, or 'timeout after N s' when it ran
+    past `timeout` and its whole process group (rostest, its master, roslaunch and test nodes) was ended."""
+    proc = subprocess.Popen(cmd, stdout=out, stderr=subprocess.STDOUT, start_new_session=True)
+    with _RUNNING_LOCK:
+        _RUNNING.add(proc)
+    try:
+        return proc.wait(timeout=timeout)
+    except subprocess.TimeoutExpired:
+        end_group(proc, grace)
+        return 'timeout after %d s' % timeout
+    finally:
+        with _RUNNING_LOCK:
+            _RUNNING.discard(proc)
+
+
+def end_running(grace=15.0):
+    """Ends every rostest under way (the runner was interrupted)."""
+    with _RUNNING_LOCK:
+        running = list(_RUNNING)
+    for proc in running:
+        end_group(proc, grace)
+
+
 def rostest_cases(test_file):
     """Runs one rostest file; counts the test cases its test nodes report.
 
@@ -129,10 +189,7 @@ def rostest_cases(test_file):
     start = time.time()
     log = os.path.join(OUT, 'rostest-%s.log' % name)
     with open(log, 'w') as out:
-        try:
-            code = subprocess.call(cmd, stdout=out, stderr=subprocess.STDOUT, timeout=ROSTEST_TIMEOUT_S)
-        except subprocess.TimeoutExpired:
-            code = 'timeout after %d s' % ROSTEST_TIMEOUT_S
+        code = run_bounded(cmd, out, rostest_timeout(test_file))
     passed = failed = skipped = 0
     failures = []
     for xml in sorted(glob.glob(os.path.join(results_dir, '**', 'rosunit-*.xml'), recursive=True)):
@@ -144,7 +201,7 @@ def rostest_cases(test_file):
             _, f, _, names = count_junit(xml)
             failed += f
             failures += ['%s: %s' % (name, n) for n in names]
-    if (code != 0 and failed == 0) or passed + failed + skipped == 0:
+    if (code != 0 and failed == 0) or passed + failed + skipped == 0 or isinstance(code, str):
         failed += 1
         failures.append('%s: rostest exited %s' % (name, code))
     report.append('   %d passed, %d failed in %.0f s (log: %s)' % (passed, failed, time.time() - start,
@@ -178,8 +235,15 @@ def run_rostests(test_files, jobs, add):
             add(result)
 
     with ThreadPoolExecutor(max(1, jobs)) as pool:
-        for done in [pool.submit(run, f) for f in rostest_order(test_files)]:
-            done.result()
+        futures = [pool.submit(run, f) for f in rostest_order(test_files)]
+        try:
+            for done in futures:
+                done.result()
+        except BaseException:  # Ctrl-C or SIGTERM (main): the rostests run in sessions of their own (run_bounded)
+            for future in futures:
+                future.cancel()
+            end_running()
+            raise
 
 
 def failed_test(failure):
@@ -251,6 +315,8 @@ def main():
         parser.error('--repeat N needs N >= 1, got %d' % args.repeat)
     if args.jobs < 1:
         parser.error('--jobs N needs N >= 1, got %d (RACEBOT_TEST_JOBS?)' % args.jobs)
+    # SIGTERM as an exception in the main thread, as Ctrl-C is: run_rostests then ends the rostests under way
+    signal.signal(signal.SIGTERM, lambda signum, frame: sys.exit(128 + signum))
     if 'ROS_PACKAGE_PATH' not in os.environ or ROOT not in os.environ['ROS_PACKAGE_PATH']:
         sys.exit('racebot: source devel/setup.bash first (or use `make test`)')
     use_loopback_ros_networking(os.environ)
