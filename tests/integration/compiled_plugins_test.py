@@ -62,7 +62,7 @@ COMMAND_TIMEOUT = 60.0
 
 
 class CompiledPluginsTest(unittest.TestCase):
-    launch = workspace = turntable = rover = ranger = None
+    launch = workspace = turntable = rover = hover = ranger = None
 
     @classmethod
     def setUpClass(cls):
@@ -88,6 +88,8 @@ class CompiledPluginsTest(unittest.TestCase):
         rospy.Subscriber('/turntable/arm_controller/watched_position', Float64, lambda m: cls.watched.append(m.data))
         cls.rover_joints = {}
         rospy.Subscriber('/rover/joint_states', JointState, cls._on_rover_joints, queue_size=10)
+        cls.hover_joints = {}
+        rospy.Subscriber('/joint_states', JointState, cls._on_hover_joints, queue_size=10)
         cls.left_cmd = rospy.Publisher('/rover/left_controller/command', Float64, queue_size=1, latch=True)
         cls.right_cmd = rospy.Publisher('/rover/right_controller/command', Float64, queue_size=1, latch=True)
         cls.wheel_cmd = rospy.Publisher('/turntable/wheel_controller/command', Float64, queue_size=1, latch=True)
@@ -118,10 +120,17 @@ class CompiledPluginsTest(unittest.TestCase):
         cls.rover_joints = {name: (p, v) for name, p, v in zip(msg.name, msg.position, msg.velocity)}
 
     @classmethod
+    def _on_hover_joints(cls, msg):
+        cls.hover_joints = {name: (p, v) for name, p, v in zip(msg.name, msg.position, msg.velocity)}
+
+    @classmethod
     def tearDownClass(cls):
         if cls.ranger is not None:
             cls.ranger.stop()
             sys.stdout.write('--- ranger roslaunch output ---\n%s\n' % cls.ranger.output()[-4000:])
+        if cls.hover is not None:
+            cls.hover.stop()
+            sys.stdout.write('--- hover roslaunch output ---\n%s\n' % cls.hover.output()[-4000:])
         if cls.rover is not None:
             cls.rover.stop()
             sys.stdout.write('--- rover roslaunch output ---\n%s\n' % cls.rover.output()[-4000:])
@@ -298,6 +307,26 @@ class CompiledPluginsTest(unittest.TestCase):
                       and abs(self.rover_joints['right_wheel_joint'][1] + 1.0) < 1e-6
                       and abs(self.rover_joints['mean_wheel'][1] - 0.5) < 1e-6,
                       'left wheel at 2 rad/s, right at -1 rad/s, their mean at 0.5', COMMAND_TIMEOUT)
+
+    def test_9a_a_robot_hw_sim_at_the_root_namespace_reads_a_relative_robot_param(self):
+        # hector_quadrotor's case: no robotNamespace (spawn_model gives the plugin "/", whose NodeHandle searches
+        # from ''), a relative robotParam, no <transmission> (the RobotHWSim has interfaces of its own: Gazebo
+        # warns of no missing transmission, nor do we)
+        rospy.wait_for_service('/gazebo/spawn_urdf_model', timeout=STARTUP_TIMEOUT)
+        type(self).hover = ShellCommand('source %s && exec roslaunch fixture_robot_hw_sim hover.launch'
+                                        % self.workspace.setup, user_environment(),
+                                        os.path.join(self.workspace.root, 'hover.log'), login=True)
+        self.launched(lambda: 'WheelHWSim in /: 0 driven wheels, 1 joints reported, on model hover'
+                      in self.launch.output(), "the root RobotHWSim's ROS_INFO from its initSim")
+        rospy.wait_for_service('/controller_manager/list_controllers', timeout=STARTUP_TIMEOUT)
+        listed = rospy.ServiceProxy('/controller_manager/list_controllers', ListControllers)
+        LaunchWatch(self.hover).wait(lambda: [(c.name, c.state) for c in listed().controller]
+                                     == [('hover_state_controller', 'running')],
+                                     'the hover_state_controller to run at the root namespace', STARTUP_TIMEOUT)
+        self.launched(lambda: set(self.hover_joints) == {'rotor_joint', 'mean_wheel'},
+                      "the root RobotHWSim's joints on /joint_states", COMMAND_TIMEOUT)
+        said = self.launch.output() + '\n'.join(m.msg for m in self.log)
+        self.assertNotIn('has no <transmission>', said)
 
     # -- a lab's compiled ray sensor plugins (fixture_ray_sensor_plugins) ----------------------------------------
     @classmethod

@@ -319,7 +319,7 @@ public:
       if (!(model_nh.searchParam(robot_param, found) && model_nh.getParam(found, urdf_xml)) &&
           !model_nh.getParam(robot_param, urdf_xml))
         throw std::runtime_error("no URDF on the parameter server under '" + robot_param + "' (searched from '" +
-                                 model_nh.getNamespace() + "'); set <robotParam> or load the robot's description");
+                                 robot_namespace + "'); set <robotParam> or load the robot's description");
       const std::vector<transmission_interface::TransmissionInfo> infos = ParseTransmissions(urdf_xml);
       sim_loader = Shared<SimLoader>("gazebo_ros_control", "gazebo_ros_control::RobotHWSim");
       try

@@ -76,10 +76,6 @@ class GazeboRosControlPlugin(ControlHook):
                           "Fix the URDF, delete the model and spawn it again" % (name, err))
             self._warn_model(sim, robot)
             return
-        if not model.transmissions:
-            sim.log.warn("%s: the %s plugin is declared but the URDF has no <transmission>: its "
-                         "controller manager under %s has no joints to control; add a <transmission> "
-                         "per actuated joint" % (name, self.filename, self.ns or '/'))
         self._warn_model(sim, robot)
         for other in sim.robots.values():
             if other.control is not None and other.control.ns == self.ns:
@@ -92,6 +88,10 @@ class GazeboRosControlPlugin(ControlHook):
                                                    model_capsule)
             if compiled is not None:  # loaded (robot.control set), or failed as gazebo_ros_control fails
                 return
+        if not model.transmissions:  # DefaultRobotHWSim's joints are the transmissions' (a package's own has its own)
+            sim.log.warn("%s: the %s plugin is declared but the URDF has no <transmission>: its "
+                         "controller manager under %s has no joints to control; add a <transmission> "
+                         "per actuated joint" % (name, self.filename, self.ns or '/'))
         self.hw = DefaultRobotHWSim(model, robot.body, joints, pid_gains(sim.get_params, sim.log, name, self.ns,
                                                                          joints))
         for w in self.hw.warnings:
