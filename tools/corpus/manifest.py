@@ -31,13 +31,15 @@ CHECK_KEYS = {
     'map': ('world', 'cmd_topic', 'route', 'map_topic', 'base_frame', 'height', 'tolerance', 'on_walls', 'explored'),
     'navigation': navigation.KEYS,
     'plugin_output': ('text', 'count'),
+    'flight': ('cmd_topic', 'climb', 'climb_seconds', 'hold_seconds', 'hold_drift', 'command_timeout',
+               'estop_seconds', 'estop_deceleration', 'tolerance'),
 }
 # the numbers a kind is judged by: at least one must be in a row
 NUMERIC = {'drive': ('expect_speed', 'tolerance'), 'joint_position': ('target', 'tolerance'),
            'trajectory': ('tolerance',), 'gripper': ('position', 'tolerance'), 'sensors': ('count',),
            'controllers': (), 'world': ('min_models',), 'floor': ('tolerance',),
            'map': ('on_walls', 'explored'), 'navigation': ('localisation_tolerance', 'xy_goal_tolerance'),
-           'plugin_output': ('count',)}
+           'plugin_output': ('count',), 'flight': ('climb', 'tolerance')}
 FILE_NAME = re.compile(r'^[A-Za-z0-9_][A-Za-z0-9_.-]*$')
 
 

@@ -74,6 +74,7 @@ class Commander:
             self.pub = rospy.Publisher(check['cmd_topic'], Twist, queue_size=1)
             self.msg, self.zero = Twist(), Twist()
             self.msg.linear.x, self.msg.linear.y = check.get('vx', 0.0), check.get('vy', 0.0)
+            self.msg.linear.z = check.get('vz', 0.0)
             self.msg.angular.z = check.get('wz', 0.0)
         self.running = True
         self.thread = threading.Thread(target=self._loop, daemon=True)
@@ -85,6 +86,10 @@ class Commander:
                 self.msg.header.stamp = rospy.get_rostime()
             self.pub.publish(self.msg)
             time.sleep(0.05)
+
+    def hold(self):
+        """From now on the zero command, still at 20 Hz (a robot that stops without commands must not)."""
+        self.msg = self.zero
 
     def stop(self):
         self.running = False
