@@ -106,9 +106,7 @@ class CompiledPluginsTest(unittest.TestCase):
         log = build.output()
         build.stop()
         assert built == 0, 'catkin_make of the plugin package failed (%s):\n%s' % (built, log[-3000:])
-        cls.launch = ShellCommand('source %s && exec roslaunch fixture_ros_gazebo_plugins spinner_world.launch'
-                                  % cls.workspace.setup, env, os.path.join(cls.workspace.root, 'roslaunch.log'),
-                                  login=True)
+        cls.launch = cls.roslaunch('fixture_ros_gazebo_plugins spinner_world.launch', 'roslaunch.log')
         cls.watch = LaunchWatch(cls.launch)
 
     @classmethod
@@ -125,23 +123,22 @@ class CompiledPluginsTest(unittest.TestCase):
 
     @classmethod
     def tearDownClass(cls):
-        if cls.ranger is not None:
-            cls.ranger.stop()
-            sys.stdout.write('--- ranger roslaunch output ---\n%s\n' % cls.ranger.output()[-4000:])
-        if cls.hover is not None:
-            cls.hover.stop()
-            sys.stdout.write('--- hover roslaunch output ---\n%s\n' % cls.hover.output()[-4000:])
-        if cls.rover is not None:
-            cls.rover.stop()
-            sys.stdout.write('--- rover roslaunch output ---\n%s\n' % cls.rover.output()[-4000:])
-        if cls.turntable is not None:
-            cls.turntable.stop()
-            sys.stdout.write('--- turntable roslaunch output ---\n%s\n' % cls.turntable.output()[-4000:])
+        for name in ('ranger', 'hover', 'rover', 'turntable'):  # the launches into the world, newest first
+            launch = getattr(cls, name)
+            if launch is not None:
+                launch.stop()
+                sys.stdout.write('--- %s roslaunch output ---\n%s\n' % (name, launch.output()[-4000:]))
         if cls.launch is not None:
             cls.launch.stop()
             sys.stdout.write('--- roslaunch output ---\n%s\n' % cls.launch.output()[-6000:])
         if cls.workspace is not None:
             cls.workspace.remove()
+
+    @classmethod
+    def roslaunch(cls, args, log):
+        """`roslaunch ARGS` from a login shell with the built workspace sourced, as a user types it; output in LOG."""
+        return ShellCommand('source %s && exec roslaunch %s' % (cls.workspace.setup, args), user_environment(),
+                            os.path.join(cls.workspace.root, log), login=True)
 
     def launched(self, condition, what, timeout=STARTUP_TIMEOUT):
         return self.watch.wait(condition, what, timeout)
@@ -181,9 +178,7 @@ class CompiledPluginsTest(unittest.TestCase):
         controllers to run."""
         if cls.turntable is None:
             rospy.wait_for_service('/gazebo/spawn_urdf_model', timeout=STARTUP_TIMEOUT)
-            cls.turntable = ShellCommand('source %s && exec roslaunch fixture_cpp_controllers turntable.launch'
-                                         % cls.workspace.setup, user_environment(),
-                                         os.path.join(cls.workspace.root, 'turntable.log'), login=True)
+            cls.turntable = cls.roslaunch('fixture_cpp_controllers turntable.launch', 'turntable.log')
             rospy.wait_for_service(CM + 'list_controllers', timeout=STARTUP_TIMEOUT)
             LaunchWatch(cls.turntable).wait(lambda: len(cls.running()) == 4, 'the four controllers to run',
                                             STARTUP_TIMEOUT)
@@ -288,9 +283,7 @@ class CompiledPluginsTest(unittest.TestCase):
     # -- a lab's C++ RobotHWSim (fixture_robot_hw_sim) ----------------------------------------------------------
     def test_9_a_packages_robot_hw_sim_carries_cpp_and_python_controllers(self):
         rospy.wait_for_service('/gazebo/spawn_urdf_model', timeout=STARTUP_TIMEOUT)
-        type(self).rover = ShellCommand('source %s && exec roslaunch fixture_robot_hw_sim rover.launch'
-                                        % self.workspace.setup, user_environment(),
-                                        os.path.join(self.workspace.root, 'rover.log'), login=True)
+        type(self).rover = self.roslaunch('fixture_robot_hw_sim rover.launch', 'rover.log')
         self.launched(lambda: 'WheelHWSim in /rover: 2 driven wheels, 1 joints reported, on model rover'
                       in self.launch.output(), "the RobotHWSim's ROS_INFO from its initSim")
         rospy.wait_for_service('/rover/controller_manager/list_controllers', timeout=STARTUP_TIMEOUT)
@@ -313,9 +306,7 @@ class CompiledPluginsTest(unittest.TestCase):
         # from ''), a relative robotParam, no <transmission> (the RobotHWSim has interfaces of its own: Gazebo
         # warns of no missing transmission, nor do we)
         rospy.wait_for_service('/gazebo/spawn_urdf_model', timeout=STARTUP_TIMEOUT)
-        type(self).hover = ShellCommand('source %s && exec roslaunch fixture_robot_hw_sim hover.launch'
-                                        % self.workspace.setup, user_environment(),
-                                        os.path.join(self.workspace.root, 'hover.log'), login=True)
+        type(self).hover = self.roslaunch('fixture_robot_hw_sim hover.launch', 'hover.log')
         self.launched(lambda: 'WheelHWSim in /: 0 driven wheels, 1 joints reported, on model hover'
                       in self.launch.output(), "the root RobotHWSim's ROS_INFO from its initSim")
         rospy.wait_for_service('/controller_manager/list_controllers', timeout=STARTUP_TIMEOUT)
@@ -341,9 +332,7 @@ class CompiledPluginsTest(unittest.TestCase):
             rospy.Subscriber('/ranger/nearest', Float64,
                              lambda m: cls.nearest.append((cls.clock[-1] if cls.clock else None, m.data)))
             rospy.Subscriber('/ranger/nearest_raw', Float64, lambda m: cls.nearest_raw.append(m.data))
-            cls.ranger = ShellCommand('source %s && exec roslaunch fixture_ray_sensor_plugins ranger.launch'
-                                      % cls.workspace.setup, user_environment(),
-                                      os.path.join(cls.workspace.root, 'ranger.log'), login=True)
+            cls.ranger = cls.roslaunch('fixture_ray_sensor_plugins ranger.launch', 'ranger.log')
             LaunchWatch(cls.launch).wait(lambda: 'scan relay on gpu_laser' in cls.launch.output(),
                                          "the sensor plugins' ROS_INFO from their Load", STARTUP_TIMEOUT)
             # the walls come from spawners of their own, which may finish after the ranger's (and roslaunch ends

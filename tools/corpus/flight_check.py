@@ -62,6 +62,7 @@ def check_flight(check, row):
     want, tol = float(check['climb']), float(check['tolerance'])
     climb_s, hold_s = float(check['climb_seconds']), float(check['hold_seconds'])
     timeout, estop_s = float(check['command_timeout']), float(check['estop_seconds'])
+    drift_max = float(check['hold_drift'])
     log = HeightLog(getter, model)
     cmd = Commander({'cmd_topic': check['cmd_topic'], 'vz': want})
     try:
@@ -93,9 +94,9 @@ def check_flight(check, row):
     problems = []
     if abs(climb - want) > tol * abs(want):
         problems.append('climb rate %.3f m/s, commanded %.3f' % (climb, want))
-    if abs(drift) > float(check['hold_drift']):
-        problems.append('drifted %+.3f m/s under a zero command (at most %.3f)' % (drift, float(check['hold_drift'])))
-    if abs(z_silent - z_timeout) > float(check['hold_drift']) * timeout:
+    if abs(drift) > drift_max:
+        problems.append('drifted %+.3f m/s under a zero command (at most %.3f)' % (drift, drift_max))
+    if abs(z_silent - z_timeout) > drift_max * timeout:
         problems.append('moved %.3f m before the command timeout' % (z_silent - z_timeout))
     if abs(drop - expected) > 3 * tol * expected:  # drag and the motors' lag: a looser bound than the climb's
         problems.append('fell %.3f m in the estop, expected %.3f' % (drop, expected))
