@@ -94,12 +94,14 @@ def _git(args, cwd):
 
 
 def at_version(path, version):
-    """True when the checkout at `path` has `version` (a tag, branch or commit) checked out."""
+    """True when the checkout at `path` has `version` (a tag, branch or commit) checked out, every tracked file
+    there (a clone whose checkout failed has HEAD at the version and files missing)."""
     if not os.path.isdir(os.path.join(path, '.git')):
         return False
     head = _git(['rev-parse', 'HEAD'], path).stdout.strip()
     want = _git(['rev-parse', '--verify', '-q', version + '^{commit}'], path).stdout.strip()
-    return bool(head) and head == want
+    return bool(head) and head == want and \
+        not _git(['status', '--porcelain', '--untracked-files=no'], path).stdout.strip()
 
 
 def vcs():
@@ -109,18 +111,42 @@ def vcs():
 
 
 def _vcs_errors(output):
-    """{local name: first error line} from `vcs import` output."""
-    errors, current = {}, None
+    """{local name: its error in one line} from `vcs import` output: vcstool's summary of the failed step
+    ("Could not clone repository '...'"), followed by git's own first `error:` or `fatal:` line where the summary
+    does not hold it (a clone whose checkout failed prints "Cloning into '.'..." first)."""
+    sections, current = {}, None
     for line in output.splitlines():
         found = VCS_SECTION.match(line.strip())
         if found:
             current = os.path.basename(found.group(1))
+            sections.setdefault(current, [])
+        elif current and line.strip():
+            sections[current].append(line.strip())
+    errors = {}
+    for name, lines in sections.items():
+        first = next((text for text in lines
+                      if any(word in text.lower() for word in ('error', 'fatal', 'could not', 'failed'))), None)
+        if first is None:
             continue
-        text = line.strip()
-        if current and current not in errors and text and \
-                any(word in text.lower() for word in ('error', 'fatal', 'could not', 'failed')):
-            errors[current] = text
+        if not re.search(r'(^|: )(error|fatal):', first):
+            cause = next((text for text in lines if text.startswith(('error:', 'fatal:'))), None)
+            if cause:
+                first = '%s %s' % (first.split(': ', 1)[0] + ':', cause)
+        errors[name] = first
     return errors
+
+
+def _vcs_import(wanted, src, work, log):
+    """`vcs import` of `wanted` into `src` without vcstool's retries: a retry of a clone whose checkout failed
+    clones into the half-written folder and reports only "destination path '.' already exists", hiding git's
+    error (a missing object, a path the filesystem refuses). Returns {local name: one-line error}."""
+    listing = os.path.join(work, 'import.repos')
+    with open(listing, 'w') as f:
+        yaml.safe_dump({'repositories': wanted}, f, default_flow_style=False)
+    done = subprocess.run([vcs(), 'import', '--force', '--retry', '0', '--input', listing, src],
+                          stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+    log.write(done.stdout)
+    return _vcs_errors(done.stdout)
 
 
 def checkout(repos, src, work, clones=None, mirrors=None):
@@ -131,14 +157,15 @@ def checkout(repos, src, work, clones=None, mirrors=None):
     if not wanted:
         return {}
     os.makedirs(src, exist_ok=True)
-    listing = os.path.join(work, 'import.repos')
-    with open(listing, 'w') as f:
-        yaml.safe_dump({'repositories': wanted}, f, default_flow_style=False)
-    done = subprocess.run([vcs(), 'import', '--force', '--input', listing, src], stdout=subprocess.PIPE,
-                          stderr=subprocess.STDOUT, text=True)
-    with open(os.path.join(work, 'vcs-import.log'), 'w') as f:
-        f.write(done.stdout)
-    errors = _vcs_errors(done.stdout)
+    with open(os.path.join(work, 'vcs-import.log'), 'w') as log:
+        errors = _vcs_import(wanted, src, work, log)
+        # a remote repository gets one more try (the network), from an empty folder, as vcstool's retry meant to
+        again = {name: entry for name, entry in wanted.items() if name in errors and not os.path.isdir(entry['url'])
+                 and not at_version(os.path.join(src, name), str(entry['version']))}
+        for name in again:
+            shutil.rmtree(os.path.join(src, name), ignore_errors=True)
+        if again:
+            errors.update(_vcs_import(again, src, work, log))
     failed = {}
     for name, entry in wanted.items():
         if not at_version(os.path.join(src, name), str(entry['version'])):

@@ -103,8 +103,42 @@ def test_local_copies_are_found_as_make_corpus_finds_them(tmp_path):
 
 def test_vcs_import_output_gives_each_repository_its_first_error():
     output = ('=== src/a (git) ===\nCloning into \'.\'...\n=== src/b (git) ===\n'
-              'Could not checkout ref \'9.9\': error: pathspec \'9.9\' did not match\nmore\n')
-    assert repos._vcs_errors(output) == {'b': "Could not checkout ref '9.9': error: pathspec '9.9' did not match"}
+              'Could not checkout ref \'9.9\': error: pathspec \'9.9\' did not match\nmore\n'
+              '=== src/c (git) ===\nCould not clone repository \'/m\': Cloning into \'.\'...\ndone.\n'
+              'error: unable to read sha1 file of x.stl (ab12)\nfatal: unable to checkout working tree\n')
+    assert repos._vcs_errors(output) == {
+        'b': "Could not checkout ref '9.9': error: pathspec '9.9' did not match",
+        'c': "Could not clone repository '/m': error: unable to read sha1 file of x.stl (ab12)"}
+
+
+def test_a_clone_whose_checkout_fails_is_reported_with_gits_error_not_vcstools_retry(tmp_path):
+    """A copy lacking a blob (a snapshot that left large files out) clones but cannot check out; vcstool's retry
+    then cloned into the half-written folder and said only "destination path '.' already exists"."""
+    import subprocess
+
+    def git(*args, cwd=None):
+        subprocess.run(['git', '-c', 'user.email=t@t', '-c', 'user.name=t'] + list(args), cwd=cwd, check=True,
+                       capture_output=True)
+    work = tmp_path / 'source'
+    work.mkdir()
+    (work / 'small.txt').write_text('a\n')
+    (work / 'mesh.stl').write_bytes(b'solid x\n' * 100)
+    git('init', '-q', cwd=work)
+    git('add', '.', cwd=work)
+    git('commit', '-qm', 'one', cwd=work)
+    git('tag', '0.5.2', cwd=work)
+    mirror = tmp_path / 'mirror.git'
+    git('clone', '-q', '--mirror', str(work), str(mirror))
+    blob = subprocess.run(['git', 'rev-parse', 'HEAD:mesh.stl'], cwd=work, capture_output=True, text=True,
+                          check=True).stdout.strip()
+    (mirror / 'objects' / blob[:2] / blob[2:]).unlink()
+    (tmp_path / 'build').mkdir()
+    failed = repos.checkout({'models': {'type': 'git', 'url': str(mirror), 'version': '0.5.2'}},
+                            str(tmp_path / 'src'), str(tmp_path / 'build'))
+    assert list(failed) == ['models']
+    assert 'mesh.stl' in failed['models'] and 'unable to read' in failed['models'], failed
+    assert 'already exists' not in failed['models']
+    assert not (tmp_path / 'src' / 'models').exists()  # nothing half checked out is left to build
 
 
 @pytest.fixture(scope='module')
