@@ -247,10 +247,14 @@ def sensor_table(sens):
                      _fmt(sens[k].get('first_message_s'), '%.1f')) for k in paths))
     rows_.append(('the same through a plain subscriber (as rostopic hz), RTF',) + tuple(
         _fmt((sens[k].get('plain') or {}).get('rtf'), '%.3f') for k in paths))
+    hz = lambda window, topic: _fmt(((window or {}).get('topics') or {}).get(topic, {}).get('wall_hz'), '%.1f')
     for label, topic, declared, _ in SENSOR_ROWS:
-        rows_.append(('%s, plain subscriber, wall Hz' % label,) + tuple(
-            _fmt(((sens[k].get('plain') or {}).get('topics') or {}).get(topic, {}).get('wall_hz'), '%.1f')
-            for k in paths))
+        rows_.append(('%s, plain subscriber before / after the above, wall Hz' % label,) + tuple(
+            '%s / %s' % (hz(sens[k].get('plain'), topic), hz(sens[k].get('plain_after'), topic)) for k in paths))
+    for label, topic, declared, _ in SENSOR_ROWS[2:]:  # the cameras: did the frames go unmade, or unreceived?
+        rows_.append(('%s, published by the world server (plain / above / plain after), wall Hz' % label,) + tuple(
+            ' / '.join(hz({'topics': (w or {}).get('published')}, topic)
+                       for w in (sens[k].get('plain'), sens[k], sens[k].get('plain_after'))) for k in paths))
     rows_.append(('CPU: world server / render worker (one core = 100 %)',) + tuple(
         '%.0f %% / %.0f %%' % (100 * sens[k]['cpu_world_server'], 100 * sens[k]['cpu_children']) for k in paths))
     rows_.append(('renderer',) + tuple(str(sens[k].get('renderer') or '-') for k in paths))

@@ -202,9 +202,20 @@ SENSOR_PATHS = {
 }
 
 
-def _plain_subscriber_rates(world, topics, p):
+def _published(master):
+    """{topic: {wall_hz, skipped_per_s}} the world server itself counted over its last report period (5 s): the
+    frames it made and handed to its publisher, whoever then received them; {} before its first report."""
+    try:
+        rates = master.getParam(WORLD_SERVER + '/sensors/rates')
+    except Exception:  # no report yet
+        return {}
+    return {r['topic']: {'wall_hz': r['wall_hz'], 'skipped_per_s': r['skipped'] / 5.0}
+            for r in rates.get('topics', [])}
+
+
+def _plain_subscriber_rates(world, topics, p, master):
     """Every sensor topic subscribed as `rostopic hz` does (SUBSCRIBERS['plain']) for a window: the real-time
-    factor and each topic's messages per wall and per sim second."""
+    factor, each topic's messages per wall and per sim second, and what the world server published meanwhile."""
     counts, subs = subscribe_counting(topics, 'plain')
     try:
         first_s = wait_first_messages(counts)
@@ -212,20 +223,22 @@ def _plain_subscriber_rates(world, topics, p):
         before, s0, w0 = dict(counts), world.time(), time.perf_counter()
         time.sleep(p['window_s'])
         after, s1, w1 = dict(counts), world.time(), time.perf_counter()
+        published = _published(master)
     finally:
         for s in subs:
             s.unregister()
     wall, sim = w1 - w0, s1 - s0
-    return {'rtf': sim / wall, 'first_message_s': first_s, 'topics': {t: {'wall_hz': (after[t] - before[t]) / wall,
-                                              'sim_hz': (after[t] - before[t]) / sim if sim > 0 else None}
-                                          for t in sorted(topics)}}
+    return {'rtf': sim / wall, 'first_message_s': first_s, 'published': published,
+            'topics': {t: {'wall_hz': (after[t] - before[t]) / wall,
+                           'sim_hz': (after[t] - before[t]) / sim if sim > 0 else None} for t in sorted(topics)}}
 
 
 def sensors_realtime(p, out):
     """racebot.launch in real time with every sensor topic subscribed, rendering the `path` way:
     the real-time factor, each topic's messages per wall second, the CPU of the world server and
-    of its render worker, and the load average; before those, the same topics through a plain subscriber
-    (`plain`: as `rostopic hz` subscribes), one window of its own."""
+    of its render worker, and the load average; before and after those, the same topics through a plain
+    subscriber (`plain`, `plain_after`: as `rostopic hz` subscribes), a window of its own each, so that a gap
+    between the two subscribers is not the order they were measured in (the render worker's first minute)."""
     import rosgraph
     port, path = p['port'], p['path']
     result = {'path': path}
@@ -244,7 +257,7 @@ def sensors_realtime(p, out):
         pid = node_pid(WORLD_SERVER, port)
         world = GazeboClient()
         topics = sensor_topics()
-        result['plain'] = _plain_subscriber_rates(world, topics, p)
+        result['plain'] = _plain_subscriber_rates(world, topics, p, master)
         counts, subs = subscribe_counting(topics)
         result['first_message_s'] = wait_first_messages(counts)
         time.sleep(p['settle_s'])
@@ -259,16 +272,15 @@ def sensors_realtime(p, out):
                       topics={t: {'type': topics[t], 'wall_hz': (after[t] - before[t]) / wall} for t in sorted(topics)},
                       cpu_world_server=(c1[pid] - c0[pid]) / wall,
                       cpu_children=sum(c1[q] - c0[q] for q in c1 if q != pid) / wall)
-        try:  # the world server's own count over its last report period (5 s): frames made, frames skipped
-            rates = master.getParam(WORLD_SERVER + '/sensors/rates')
-            result['renderer'] = rates.get('renderer')
-            result['published'] = {r['topic']: {'wall_hz': r['wall_hz'], 'skipped_per_s': r['skipped'] / 5.0}
-                                   for r in rates.get('topics', [])}
+        result['published'] = _published(master)  # frames made, frames skipped
+        try:
+            result['renderer'] = master.getParam(WORLD_SERVER + '/sensors/rates').get('renderer')
         except Exception:  # no report yet
             result['renderer'] = None
         result['cpu_subscriber'] = (time.process_time() - p0) / (time.perf_counter() - pw0)
         for s in subs:
             s.unregister()
+        result['plain_after'] = _plain_subscriber_rates(world, topics, p, master)
     return result
 
 

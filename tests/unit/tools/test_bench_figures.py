@@ -221,6 +221,7 @@ def _sensor_run(rtf, camera_hz, plain_camera_hz=None):
            'topics': {'/rrbot/camera1/image_raw': {'wall_hz': camera_hz}}}
     if plain_camera_hz is not None:
         run['plain'] = {'rtf': rtf, 'topics': {'/rrbot/camera1/image_raw': {'wall_hz': plain_camera_hz}}}
+        run['plain_after'] = {'rtf': rtf, 'topics': {'/rrbot/camera1/image_raw': {'wall_hz': plain_camera_hz + 1.5}}}
     return run
 
 
@@ -228,10 +229,21 @@ def test_the_sensor_table_and_the_kept_figures_carry_the_plain_subscribers_rates
     sens = {'old': _sensor_run(0.9, 20.0), 'new': _sensor_run(1.0, 30.0, plain_camera_hz=27.6)}
     table = report.sensor_table(sens)
     row = [line for line in table.splitlines() if line.startswith('| camera 800x800, plain subscriber')][0]
-    assert row.split('|')[2].strip() == '-' and row.split('|')[3].strip() == '27.6'  # old: not measured then
+    # old: not measured then; new: before and after the bench's own window
+    assert row.split('|')[2].strip() == '- / -' and row.split('|')[3].strip() == '27.6 / 29.1'
     figures = kept_figures.key_figures({'sensors': sens})
     assert figures['sensors.plain_hz./rrbot/camera1/image_raw']['median'] == 27.6
     assert figures['sensors.hz./rrbot/camera1/image_raw']['median'] == 30.0
+
+
+def test_the_sensor_table_says_what_the_world_server_published_in_each_window():
+    run = _sensor_run(1.0, 30.0, plain_camera_hz=27.0)
+    camera = '/rrbot/camera1/image_raw'
+    run['plain']['published'] = {camera: {'wall_hz': 29.5, 'skipped_per_s': 0.0}}
+    run['published'] = {camera: {'wall_hz': 30.0, 'skipped_per_s': 0.0}}  # plain_after: no report yet
+    row = [line for line in report.sensor_table({'new': run}).splitlines()
+           if line.startswith('| camera 800x800, published by the world server')][0]
+    assert row.split('|')[2].strip() == '29.5 / 30.0 / -'
 
 
 def test_the_sensor_table_says_how_long_the_first_messages_took():
