@@ -12,7 +12,9 @@ Run it from a shell where `devel/setup.bash` is sourced (the Makefile does that)
 """
 import argparse
 import glob
+import html
 import os
+import re
 import shutil
 import signal
 import subprocess
@@ -210,7 +212,29 @@ def rostest_cases(test_file):
         with open(log) as f:
             tail = f.read()[-4000:]
         report.append('   --- last lines of the log ---\n' + tail)
+        for path in died_node_logs(results_dir, log):
+            with open(path, errors='replace') as f:
+                report.append('   --- last lines of %s ---\n%s' % (os.path.relpath(path, ROOT), f.read()[-3000:]))
     return (passed, failed, skipped, failures), '\n'.join(report)
+
+
+DIED_LOG = re.compile(r'process has died \[[^\]]*\]\.\s+log file: (\S+?\.log)')
+
+
+def died_node_logs(results_dir, log):
+    """The log files of the nodes roslaunch saw die (its "process has died [...]. log file: PATTERN", in rostest's
+    output or its summary XML): a test node's traceback is there, not in rostest's output, and the run's ROS_LOG_DIR
+    may be gone with its clone by the time anybody reads the report."""
+    texts = []
+    for path in [log] + glob.glob(os.path.join(results_dir, '**', 'rostest-*.xml'), recursive=True):
+        with open(path, errors='replace') as f:
+            texts.append(html.unescape(f.read()))
+    found = []
+    for pattern in DIED_LOG.findall('\n'.join(texts)):
+        for path in sorted(glob.glob(pattern)):
+            if path not in found and os.path.getsize(path):
+                found.append(path)
+    return found
 
 
 def test_name(test_file):
