@@ -202,15 +202,19 @@ SENSOR_PATHS = {
 }
 
 
-def _published(master):
-    """{topic: {wall_hz, skipped_per_s}} the world server itself counted over its last report period (5 s): the
-    frames it made and handed to its publisher, whoever then received them; {} before its first report."""
+def _sensor_report(master):
+    """The world server's last sensor report (~sensors/rates), or {} before its first."""
     try:
-        rates = master.getParam(WORLD_SERVER + '/sensors/rates')
+        return master.getParam(WORLD_SERVER + '/sensors/rates')
     except Exception:  # no report yet
         return {}
+
+
+def _published(report):
+    """{topic: {wall_hz, skipped_per_s}} the world server itself counted over its last report period (5 s): the
+    frames it made and handed to its publisher, whoever then received them."""
     return {r['topic']: {'wall_hz': r['wall_hz'], 'skipped_per_s': r['skipped'] / 5.0}
-            for r in rates.get('topics', [])}
+            for r in report.get('topics', [])}
 
 
 def _plain_subscriber_rates(world, topics, p, master):
@@ -223,7 +227,7 @@ def _plain_subscriber_rates(world, topics, p, master):
         before, s0, w0 = dict(counts), world.time(), time.perf_counter()
         time.sleep(p['window_s'])
         after, s1, w1 = dict(counts), world.time(), time.perf_counter()
-        published = _published(master)
+        published = _published(_sensor_report(master))
     finally:
         for s in subs:
             s.unregister()
@@ -272,11 +276,9 @@ def sensors_realtime(p, out):
                       topics={t: {'type': topics[t], 'wall_hz': (after[t] - before[t]) / wall} for t in sorted(topics)},
                       cpu_world_server=(c1[pid] - c0[pid]) / wall,
                       cpu_children=sum(c1[q] - c0[q] for q in c1 if q != pid) / wall)
-        result['published'] = _published(master)  # frames made, frames skipped
-        try:
-            result['renderer'] = master.getParam(WORLD_SERVER + '/sensors/rates').get('renderer')
-        except Exception:  # no report yet
-            result['renderer'] = None
+        report = _sensor_report(master)
+        result['published'] = _published(report)  # frames made, frames skipped
+        result['renderer'] = report.get('renderer')
         result['cpu_subscriber'] = (time.process_time() - p0) / (time.perf_counter() - pw0)
         for s in subs:
             s.unregister()

@@ -131,7 +131,7 @@ def _vcs_errors(output):
         if not re.search(r'(^|: )(error|fatal):', first):
             cause = next((text for text in lines if text.startswith(('error:', 'fatal:'))), None)
             if cause:
-                first = '%s %s' % (first.split(': ', 1)[0] + ':', cause)
+                first = '%s: %s' % (first.split(': ', 1)[0], cause)
         errors[name] = first
     return errors
 
