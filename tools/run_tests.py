@@ -12,7 +12,6 @@ Run it from a shell where `devel/setup.bash` is sourced (the Makefile does that)
 """
 import argparse
 import glob
-import html
 import os
 import re
 import shutil
@@ -228,7 +227,7 @@ def died_node_logs(results_dir, log):
     texts = []
     for path in [log] + glob.glob(os.path.join(results_dir, '**', 'rostest-*.xml'), recursive=True):
         with open(path, errors='replace') as f:
-            texts.append(html.unescape(f.read()))
+            texts.append(f.read())
     found = []
     for pattern in DIED_LOG.findall('\n'.join(texts)):
         for path in sorted(glob.glob(pattern)):

@@ -1,5 +1,6 @@
 """tools/run_tests.py: a failed rostest's report carries the logs of the nodes roslaunch saw die, found from the
-"log file:" pattern rostest writes (escaped, with colour codes) into its summary XML."""
+"log file:" pattern rostest writes into its summary XML (escaped twice, a colour code after the pattern, which
+itself holds nothing escaped)."""
 import importlib.util
 import os
 
