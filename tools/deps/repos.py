@@ -22,6 +22,7 @@ GITHUB = re.compile(r'^https://github\.com/([^/]+)/([^/]+?)(?:\.git)?/?$')
 UNRELEASED = re.compile(r'following unreleased packages/stacks will be ignored: (.*)')
 CHECKOUT_FAILED = 'cannot check out'
 VCS_SECTION = re.compile(r'^=== (\S+) \((\w+)\) ===$')
+UNREADABLE = re.compile(r'unable to read ([0-9a-f]{40})\b(?! \()')  # a fetch names the object only
 
 
 def generate(names, env, upstream=True):
@@ -137,16 +138,31 @@ def _vcs_errors(output):
 
 
 def _vcs_import(wanted, src, work, log):
-    """`vcs import` of `wanted` into `src` without vcstool's retries: a retry of a clone whose checkout failed
-    clones into the half-written folder and reports only "destination path '.' already exists", hiding git's
-    error (a missing object, a path the filesystem refuses). Returns {local name: one-line error}."""
+    """`vcs import --shallow` of `wanted` into `src` without vcstool's retries: a retry of a clone whose checkout
+    failed clones into the half-written folder and reports only "destination path '.' already exists", hiding
+    git's error (a missing object, a path the filesystem refuses). Shallow, because the underlay builds one
+    release and never reads history, and because a full clone first checks out the default branch: a copy whose
+    branch lacks objects the release tag does not need (a snapshot that left large files out) would fail there.
+    Returns {local name: one-line error}."""
     listing = os.path.join(work, 'import.repos')
     with open(listing, 'w') as f:
         yaml.safe_dump({'repositories': wanted}, f, default_flow_style=False)
-    done = subprocess.run([vcs(), 'import', '--force', '--retry', '0', '--input', listing, src],
+    done = subprocess.run([vcs(), 'import', '--force', '--shallow', '--retry', '0', '--input', listing, src],
                           stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
     log.write(done.stdout)
     return _vcs_errors(done.stdout)
+
+
+def _name_object(error, url, version):
+    """`error` with the path of the object git could not read (a shallow fetch names only its hash), looked up in
+    the version's tree of a local copy: which file the copy lacks is what its user can act on."""
+    found = UNREADABLE.search(error)
+    if not found or not os.path.isdir(url):
+        return error
+    listing = _git(['ls-tree', '-r', version], url).stdout
+    path = next((line.split('\t', 1)[1] for line in listing.splitlines()
+                 if '\t' in line and line.split()[2] == found.group(1)), None)
+    return error if path is None else error[:found.end()] + ' (%s)' % path + error[found.end():]
 
 
 def checkout(repos, src, work, clones=None, mirrors=None):
@@ -168,6 +184,8 @@ def checkout(repos, src, work, clones=None, mirrors=None):
             errors.update(_vcs_import(again, src, work, log))
     failed = {}
     for name, entry in wanted.items():
+        if name in errors:
+            errors[name] = _name_object(errors[name], entry['url'], str(entry['version']))
         if not at_version(os.path.join(src, name), str(entry['version'])):
             shutil.rmtree(os.path.join(src, name), ignore_errors=True)  # never build another version than the pinned
             failed[name] = '%s %s at %s from %s: %s' % (CHECKOUT_FAILED,

@@ -57,6 +57,20 @@ def build_key(repos, packages, below):
 ANSI = re.compile(r'\x1b\[[0-9;?]*[A-Za-z]|\x1b\][^\x07]*\x07')  # colours and window titles (catkin, gcc on a tty)
 
 
+def _package_reason(block):
+    """The reason a package configuration gave when it set <name>_FOUND to FALSE (CMake prints it after "Reason
+    given by package:", up to a blank line): the one part of that error saying what to do."""
+    for i, line in enumerate(block):
+        if 'Reason given by package:' in line:
+            reason = []
+            for rest in block[i + 1:]:
+                if not rest.strip() and reason:
+                    break
+                reason.append(rest.strip())
+            return ' '.join(x for x in reason if x)
+    return ''
+
+
 def first_error(text, package_folder=None):
     """The first cause in a package's build output, one line."""
     lines = ANSI.sub('', text).splitlines()
@@ -77,7 +91,8 @@ def first_error(text, package_folder=None):
             if found:
                 detail = found.group(1).strip()
                 if detail.startswith('CMake Error'):
-                    detail += ' ' + ' '.join(x.strip() for x in lines[i + 1:i + 4] if x.strip())
+                    detail += ' ' + (_package_reason(lines[i + 1:i + 12]) or
+                                     ' '.join(x.strip() for x in lines[i + 1:i + 4] if x.strip()))
                 return detail[:300]
     tail = [x.strip() for x in lines if x.strip()][-1:] or ['(no output)']
     return tail[0][:300]

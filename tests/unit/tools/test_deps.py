@@ -141,6 +141,36 @@ def test_a_clone_whose_checkout_fails_is_reported_with_gits_error_not_vcstools_r
     assert not (tmp_path / 'src' / 'models').exists()  # nothing half checked out is left to build
 
 
+def test_a_copy_missing_objects_only_outside_the_release_still_checks_the_release_out(tmp_path):
+    """hector_models' snapshot lacks meshes its default branch added after 0.5.2: a full clone checks that branch
+    out first and fails; the shallow import takes the tag's commit alone."""
+    import subprocess
+
+    def git(*args, cwd=None):
+        return subprocess.run(['git', '-c', 'user.email=t@t', '-c', 'user.name=t'] + list(args), cwd=cwd,
+                              check=True, capture_output=True, text=True).stdout.strip()
+    work = tmp_path / 'source'
+    work.mkdir()
+    (work / 'small.txt').write_text('a\n')
+    git('init', '-q', cwd=work)
+    git('add', '.', cwd=work)
+    git('commit', '-qm', 'one', cwd=work)
+    git('tag', '0.5.2', cwd=work)
+    (work / 'mesh.stl').write_bytes(b'solid later\n' * 100)
+    git('add', '.', cwd=work)
+    git('commit', '-qm', 'two', cwd=work)
+    mirror = tmp_path / 'mirror.git'
+    git('clone', '-q', '--mirror', str(work), str(mirror))
+    blob = git('rev-parse', 'HEAD:mesh.stl', cwd=work)
+    (mirror / 'objects' / blob[:2] / blob[2:]).unlink()
+    (tmp_path / 'build').mkdir()
+    failed = repos.checkout({'models': {'type': 'git', 'url': str(mirror), 'version': '0.5.2'}},
+                            str(tmp_path / 'src'), str(tmp_path / 'build'))
+    assert failed == {}
+    assert repos.at_version(str(tmp_path / 'src' / 'models'), '0.5.2')
+    assert (tmp_path / 'src' / 'models' / 'small.txt').read_text() == 'a\n'
+
+
 @pytest.fixture(scope='module')
 def world(tmp_path_factory):
     root = tmp_path_factory.mktemp('deps_world')
@@ -291,6 +321,14 @@ def test_the_first_error_of_a_package_build_is_one_line():
         'src/amcl.cpp:31: fatal error: pluginlib/class_list_macros.h: No such file or directory'
     cmake = 'CMake Error at CMakeLists.txt:5 (message):\n  something is wrong\n\n'
     assert underlay.first_error(cmake) == 'CMake Error at CMakeLists.txt:5 (message): something is wrong'
+    refused = ('CMake Error at /x/gazebo_dev-extras.cmake:5 (find_package):\n  Found package configuration file:\n\n'
+               '    /x/gazebo-config.cmake\n\n'
+               '  but it set gazebo_FOUND to FALSE so package "gazebo" is considered to be\n'
+               '  NOT FOUND.  Reason given by package:\n\n'
+               '  racebot: package \'cam\' includes a Gazebo header\n'
+               '  that racebot does not have.\n\nCall Stack (most recent call first):\n')
+    assert underlay.first_error(refused) == ('CMake Error at /x/gazebo_dev-extras.cmake:5 (find_package): racebot: '
+                                             "package 'cam' includes a Gazebo header that racebot does not have.")
 
 
 def test_the_log_section_of_a_package_starts_at_its_processing_line():
