@@ -22,7 +22,7 @@ GITHUB = re.compile(r'^https://github\.com/([^/]+)/([^/]+?)(?:\.git)?/?$')
 UNRELEASED = re.compile(r'following unreleased packages/stacks will be ignored: (.*)')
 CHECKOUT_FAILED = 'cannot check out'
 VCS_SECTION = re.compile(r'^=== (\S+) \((\w+)\) ===$')
-UNREADABLE = re.compile(r'unable to read ([0-9a-f]{40})\b(?! \()')  # a fetch names the object only
+UNREADABLE = re.compile(r'unable to read ([0-9a-f]{40})\b')  # a fetch names the object only
 
 
 def generate(names, env, upstream=True):
@@ -184,10 +184,9 @@ def checkout(repos, src, work, clones=None, mirrors=None):
             errors.update(_vcs_import(again, src, work, log))
     failed = {}
     for name, entry in wanted.items():
-        if name in errors:
-            errors[name] = _name_object(errors[name], entry['url'], str(entry['version']))
         if not at_version(os.path.join(src, name), str(entry['version'])):
             shutil.rmtree(os.path.join(src, name), ignore_errors=True)  # never build another version than the pinned
-            failed[name] = '%s %s at %s from %s: %s' % (CHECKOUT_FAILED,
-                name, entry['version'], entry['url'], errors.get(name, 'see %s' % os.path.join(work, 'vcs-import.log')))
+            error = _name_object(errors[name], entry['url'], str(entry['version'])) if name in errors else \
+                'see %s' % os.path.join(work, 'vcs-import.log')
+            failed[name] = '%s %s at %s from %s: %s' % (CHECKOUT_FAILED, name, entry['version'], entry['url'], error)
     return failed
