@@ -32,6 +32,7 @@
 #include <gazebo/physics/physics.hh>
 #include <gazebo/racebot/Engine.hh>
 #include <gazebo/sensors/GpuRaySensor.hh>
+#include <gazebo/sensors/ImuSensor.hh>
 #include <gazebo/sensors/RaySensor.hh>
 #include <gazebo/transport/Node.hh>
 #include <racebot_sim_bridge/fatal_signals.h>
@@ -256,6 +257,9 @@ std::vector<double> ToVector(const Doubles &_array)
 
 class Host
 {
+  using Vec = std::tuple<double, double, double>;
+  static Vector3d V(const Vec &_v) { return Vector3d(std::get<0>(_v), std::get<1>(_v), std::get<2>(_v)); }
+
 public:
   // `_notify(kind, value)`: called (rarely) with ('failures', [(id, label, message)]) when plugins' callbacks threw
   // and were unloaded, and with ('wants_end', bool) when worldUpdateEnd gains its first or loses its last callback.
@@ -341,7 +345,7 @@ public:
     return this->LoadPlugin(_kind, _path, _filename, _name, _model, _xml, 0);
   }
 
-  // Loads a sensor plugin of the sensor `_sensor` (an AddRaySensor id), as Load loads a model's: Load(sensor,
+  // Loads a sensor plugin of the sensor `_sensor` (an AddRaySensor or AddImuSensor id), as Load loads a model's: Load(sensor,
   // <plugin> element), Init().
   int LoadSensorPlugin(int _sensor, const std::string &_path, const std::string &_filename, const std::string &_name,
                        const std::string &_xml)
@@ -362,16 +366,7 @@ public:
                    const std::tuple<int, double, double, double, int, double, double, double, double, double,
                                     double> &_geometry)
   {
-    gazebo::sensors::Sensor::Description description;
-    description.name = _name;
-    description.type = _type;
-    description.parentName = _model + "::" + _link;
-    description.worldName = this->world->Name();
-    description.id = static_cast<uint32_t>(this->lastSensorId + 1);
-    description.pose = PoseOf(_pose);
-    description.updateRate = _updateRate;
-    description.alwaysOn = _alwaysOn;
-    description.visualize = _visualize;
+    const auto description = this->Describe(_type, _name, _model, _link, _pose, _updateRate, _alwaysOn, _visualize);
     gazebo::physics::MultiRayShape::Geometry geometry;
     std::tie(geometry.samples, geometry.resolution, geometry.minAngle, geometry.maxAngle, geometry.verticalSamples,
              geometry.verticalResolution, geometry.verticalMinAngle, geometry.verticalMaxAngle, geometry.minRange,
@@ -383,6 +378,21 @@ public:
       sensor = std::make_shared<gazebo::sensors::RaySensor>(description, geometry);
     else
       throw std::runtime_error("racebot hosts compiled plugins of ray and gpu_ray sensors, not of type " + _type);
+    const int id = ++this->lastSensorId;
+    this->sensors[id] = sensor;
+    return id;
+  }
+
+  // A <sensor type="imu"> of model `_model`'s link `_link` (already added) for compiled sensor plugins: its id.
+  int AddImuSensor(const std::string &_name, const std::string &_model, const std::string &_link, const PoseT &_pose,
+                   double _updateRate, bool _alwaysOn, bool _visualize)
+  {
+    const auto description = this->Describe("imu", _name, _model, _link, _pose, _updateRate, _alwaysOn, _visualize);
+    std::shared_ptr<gazebo::sensors::Sensor> sensor;
+    {
+      py::gil_scoped_release unlocked;  // its reference orientation is read from the engine
+      sensor = std::make_shared<gazebo::sensors::ImuSensor>(description);
+    }
     const int id = ++this->lastSensorId;
     this->sensors[id] = sensor;
     return id;
@@ -403,7 +413,9 @@ public:
   void MeasureRay(int _sensor, double _time, const PoseT &_worldPose, const Doubles &_ranges,
                   const Doubles &_intensities, const Doubles &_rawRanges, const Doubles &_rawRetro)
   {
-    auto sensor = this->sensors.at(_sensor);
+    auto sensor = std::dynamic_pointer_cast<gazebo::sensors::racebot::RayScan>(this->sensors.at(_sensor));
+    if (!sensor)
+      throw std::runtime_error("sensor " + std::to_string(_sensor) + " is not a ray sensor");
     std::vector<double> ranges = ToVector(_ranges), intensities = ToVector(_intensities);
     std::vector<double> raw = ToVector(_rawRanges), retro = ToVector(_rawRetro);
     {
@@ -414,7 +426,41 @@ public:
     this->AfterEvents();
   }
 
+  // One measurement of an IMU at sim time `_time` (ImuSensor::Measure): the sensor frame's world pose, the angular
+  // velocity and linear acceleration in it without and with the sensor's noise.
+  void MeasureImu(int _sensor, double _time, const PoseT &_worldPose, const Vec &_angularVel, const Vec &_linearAcc,
+                  const Vec &_noisyAngularVel, const Vec &_noisyLinearAcc)
+  {
+    auto sensor = std::dynamic_pointer_cast<gazebo::sensors::ImuSensor>(this->sensors.at(_sensor));
+    if (!sensor)
+      throw std::runtime_error("sensor " + std::to_string(_sensor) + " is not an imu sensor");
+    {
+      py::gil_scoped_release unlocked;
+      sensor->Measure(gazebo::common::Time(_time), PoseOf(_worldPose), V(_angularVel), V(_linearAcc),
+                      V(_noisyAngularVel), V(_noisyLinearAcc));
+    }
+    this->AfterEvents();
+  }
+
 private:
+  gazebo::sensors::Sensor::Description Describe(const std::string &_type, const std::string &_name,
+                                                const std::string &_model, const std::string &_link,
+                                                const PoseT &_pose, double _updateRate, bool _alwaysOn,
+                                                bool _visualize) const
+  {
+    gazebo::sensors::Sensor::Description description;
+    description.name = _name;
+    description.type = _type;
+    description.parentName = _model + "::" + _link;
+    description.worldName = this->world->Name();
+    description.id = static_cast<uint32_t>(this->lastSensorId + 1);
+    description.pose = PoseOf(_pose);
+    description.updateRate = _updateRate;
+    description.alwaysOn = _alwaysOn;
+    description.visualize = _visualize;
+    return description;
+  }
+
   int LoadPlugin(const std::string &_kind, const std::string &_path, const std::string &_filename,
                  const std::string &_name, const std::string &_model, const std::string &_xml, int _sensor)
   {
@@ -661,7 +707,7 @@ private:
   gazebo::common::UpdateInfo info;
   std::map<int, Loaded> plugins;
   int lastId = 0;
-  std::map<int, std::shared_ptr<gazebo::sensors::racebot::RayScan>> sensors;
+  std::map<int, std::shared_ptr<gazebo::sensors::Sensor>> sensors;
   int lastSensorId = 0;
 };
 std::unique_ptr<ros::AsyncSpinner> spinner;
@@ -712,9 +758,12 @@ PYBIND11_MODULE(gazebo_host, m)
          py::arg("geometry"))
     .def("load_sensor_plugin", &Host::LoadSensorPlugin, py::arg("sensor"), py::arg("path"), py::arg("filename"),
          py::arg("name"), py::arg("xml"), py::call_guard<py::gil_scoped_release>())
+    .def("add_imu_sensor", &Host::AddImuSensor, py::arg("name"), py::arg("model"), py::arg("link"), py::arg("pose"),
+         py::arg("update_rate"), py::arg("always_on"), py::arg("visualize"))
     .def("remove_sensor", &Host::RemoveSensor)
     .def("sensor_state", &Host::SensorState)
-    .def("measure_ray", &Host::MeasureRay)  // releases it itself, around the plugins' callbacks
+    .def("measure_ray", &Host::MeasureRay)  // these release it themselves, around the plugins' callbacks
+    .def("measure_imu", &Host::MeasureImu)
     .def("update_begin", &Host::UpdateBegin)  // these release it themselves, around the events
     .def("update_end", &Host::UpdateEnd)
     .def("idle", &Host::Idle)

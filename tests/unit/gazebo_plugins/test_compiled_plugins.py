@@ -280,6 +280,17 @@ def test_the_element_a_plugin_reads_has_sdformats_rewrites():
     text = plugin_xml(spec)
     assert re.search(r'<bodyName>base_link</bodyName>', text)
     assert '<nested><a>1</a></nested>' in text
+    assert 'robotNamespace' not in text
+
+
+def test_the_spawn_requests_namespace_goes_into_a_compiled_plugin_without_one_as_gazebo_ros_walks_it():
+    import xml.etree.ElementTree as ET
+    bare = urdf_model.GazeboPlugin('p', 'libp.so', {}, element=ET.fromstring('<plugin name="p" filename="libp.so"/>'))
+    own = urdf_model.GazeboPlugin('q', 'libq.so', {'robotNamespace': 'mine'}, element=ET.fromstring(
+        '<plugin name="q" filename="libq.so"><robotNamespace>mine</robotNamespace></plugin>'))
+    assert ET.fromstring(plugin_xml(bare, '/')).findtext('robotNamespace') == '/'  # spawn_model's default
+    assert ET.fromstring(plugin_xml(bare, '')).find('robotNamespace') is None  # an empty request adds nothing
+    assert [e.text for e in ET.fromstring(plugin_xml(own, '/uav1')).iter('robotNamespace')] == ['mine']
 
 
 def test_every_engine_call_gazebo_host_makes_is_a_method_of_the_adapter():
@@ -402,4 +413,99 @@ def test_a_model_plugin_in_a_sensor_is_refused_and_a_camera_plugin_is_not_hosted
     camera = probe().replace('type="ray"', 'type="camera"')
     sensor_world.spawn('spinner', camera, '/', (0.0, 0.0, 0.1))
     warnings = sensor_world.warnings('libscan_probe.so')
-    assert len(warnings) == 1 and 'racebot hosts the compiled plugins of ray and gpu_ray sensors only' in warnings[0]
+    assert len(warnings) == 1 and 'racebot hosts the compiled plugins of ray, gpu_ray, imu sensors only' in warnings[0]
+
+
+# -- compiled IMU sensor plugins (imu_probe.cc: a SensorPlugin on an ImuSensor) ----------------------------------
+def imu_probe(link='base_link', yaw=0.0, always_on=True, update_rate=50, noise='', extra='', **params):
+    """The spinner with an imu sensor on `link` (yawed by `yaw` there, at `update_rate`) carrying imu_probe (its
+    <plugin> params: `params`); `noise`: the <imu> element's body; `extra`: more <gazebo> (a joint driver)."""
+    body = ''.join('<%s>%s</%s>' % (k, v, k) for k, v in params.items())
+    return SPINNER % {'mass': ROTOR_MASS, 'izz': ROTOR_IZZ, 'effort': 3.0, 'velocity': 40.0, 'extra': (
+        '<gazebo reference="%s"><sensor type="imu" name="probe_imu"><pose>0 0 0 0 0 %r</pose>'
+        '<always_on>%s</always_on><update_rate>%g</update_rate><imu>%s</imu>'
+        '<plugin name="imu_probe" filename="libimu_probe.so">%s</plugin></sensor></gazebo>%s'
+        % (link, yaw, 'true' if always_on else 'false', update_rate, noise, body, extra))}
+
+
+def imu_updates(out):
+    """ImuProbe's updated lines as (time, orientation xyzw, angular, angular noise-free, linear, linear noise-free)."""
+    rows = []
+    for line in lines(out, 'ImuProbe updated at'):
+        f = line.split()
+        values = [float(v) for v in f[3:4] + f[5:9] + f[10:13] + f[14:17] + f[18:21] + f[22:25]]
+        rows.append((values[0], values[1:5], values[5:8], values[8:11], values[11:14], values[14:17]))
+    return rows
+
+
+def test_an_imu_plugin_reads_gazebos_measurement_of_a_resting_sensor(sensor_world, capfd):
+    sensor_world.spawn('spinner', imu_probe(yaw=0.5), '/', (0.0, 0.0, 0.1))
+    sensor_world.run(1.0)
+    out = capfd.readouterr().out
+    assert 'ImuProbe loaded probe_imu type imu parent spinner::base_link category 2 rate 50 active 1' in out, out
+    updates = imu_updates(out)
+    assert 49 <= len(updates) <= 51, out  # 50 Hz
+    assert updates[1][0] - updates[0][0] == pytest.approx(0.02, abs=sensor_world.sim.step_size + 1e-9)
+    _, q, w, w0, a, a0 = updates[-1]
+    # Gazebo's default reference: the sensor's own orientation when it was made, so a resting sensor reads identity
+    assert q == pytest.approx([0.0, 0.0, 0.0, 1.0], abs=1e-3)
+    assert w0 == pytest.approx([0.0, 0.0, 0.0], abs=1e-3) and w == w0  # no <noise>: the same values
+    # at rest an accelerometer reads minus gravity, whatever its yaw: +9.8 up
+    assert a0 == pytest.approx([0.0, 0.0, 9.8], abs=0.02) and a == a0
+    assert any("imu sensor 'probe_imu' on base_link at 50 Hz with compiled plugins, Gazebo topic "
+               '/gazebo/default/spinner/base_link/probe_imu/imu' in m for _, m in sensor_world.fake.logs), \
+        sensor_world.fake.logs
+
+
+def test_an_imu_with_the_world_as_reference_reads_its_yaw_and_set_reference_pose_rezeroes_it(sensor_world, capfd):
+    sensor_world.spawn('spinner', imu_probe(yaw=0.5, world_reference='true'), '/', (0.0, 0.0, 0.1))
+    sensor_world.run(0.5)
+    q = imu_updates(capfd.readouterr().out)[-1][1]
+    assert q == pytest.approx([0.0, 0.0, math.sin(0.25), math.cos(0.25)], abs=1e-3)
+    sensor_world.sim.delete_model('spinner')
+    sensor_world.spawn('spinner', imu_probe(yaw=0.5, world_reference='true', reference_at=3), '/', (0.0, 0.0, 0.1))
+    sensor_world.run(0.5)
+    updates = imu_updates(capfd.readouterr().out)
+    # the 3rd update's callback set the reference after that measurement: from the 4th on, identity
+    assert updates[2][1] == pytest.approx([0.0, 0.0, math.sin(0.25), math.cos(0.25)], abs=1e-3)
+    assert updates[3][1] == pytest.approx([0.0, 0.0, 0.0, 1.0], abs=1e-3)
+
+
+def test_an_imu_on_a_spinning_rotor_reads_its_rate_and_in_free_fall_reads_no_acceleration(sensor_world, capfd):
+    sensor_world.spawn('spinner', imu_probe(link='rotor', extra='<gazebo>%s</gazebo>' % driver('velocity', 3.0)),
+                       '/', (0.0, 0.0, 5.0))
+    sensor_world.run(0.4)  # falling from 5 m: on the ground after about 1 s
+    _, q, w, w0, a, a0 = imu_updates(capfd.readouterr().out)[-1]
+    assert w0[2] == pytest.approx(3.0, abs=0.05)
+    assert a0 == pytest.approx([0.0, 0.0, 0.0], abs=0.05)  # gravity and the fall cancel, as Gazebo differences
+    # its yaw has turned with the rotor since it was made: the reference is where it started
+    yaw = 2.0 * math.atan2(q[2], q[3])
+    assert abs(yaw) > 0.3
+
+
+def test_an_imus_noise_is_on_what_a_plugin_reads_and_the_noise_free_values_are_kept(sensor_world, capfd):
+    noise = ('<angular_velocity><z><noise type="gaussian"><mean>0.5</mean><stddev>0</stddev></noise></z>'
+             '</angular_velocity><linear_acceleration><x><noise type="gaussian"><mean>-0.25</mean><stddev>0'
+             '</stddev></noise></x></linear_acceleration>')
+    sensor_world.spawn('spinner', imu_probe(noise=noise), '/', (0.0, 0.0, 0.1))
+    sensor_world.run(0.5)
+    _, _, w, w0, a, a0 = imu_updates(capfd.readouterr().out)[-1]
+    assert w[2] == pytest.approx(w0[2] + 0.5, abs=1e-5) and w0[2] == pytest.approx(0.0, abs=1e-3)
+    assert a[0] == pytest.approx(a0[0] - 0.25, abs=1e-5) and a[2] == a0[2]
+
+
+def test_an_inactive_imu_is_not_measured_until_a_transport_subscriber_comes(sensor_world, capfd):
+    sensor_world.spawn('spinner', imu_probe(always_on=False), '/', (0.0, 0.0, 0.1))
+    sensor_world.run(0.3)
+    out = capfd.readouterr().out
+    assert 'active 0' in lines(out, 'ImuProbe loaded')[0] and imu_updates(out) == [], out
+    sensor_world.sim.delete_model('spinner')
+    sensor_world.spawn('spinner', imu_probe(always_on=False, update_rate=10, subscribe='true'), '/', (0.0, 0.0, 0.1))
+    sensor_world.run(1.0)
+    out = capfd.readouterr().out
+    assert 'ImuProbe subscribed to /gazebo/default/spinner/base_link/probe_imu/imu active 1' in out, out
+    messages = lines(out, 'ImuProbe msg ')
+    assert 9 <= len(messages) <= 11, out
+    f = messages[-1].split()  # ImuProbe msg N entity E stamp T linear_z Z orientation_w W
+    assert f[4] == 'spinner::base_link' and float(f[8]) == pytest.approx(9.8, abs=0.02)
+    assert float(f[6]) == pytest.approx(imu_updates(out)[-1][0])

@@ -211,6 +211,14 @@ Pose3d Link::RelativePose() const
 
 Pose3d Link::WorldCoGPose() const { return TheEngine().LinkWorldCoGPose(this->handle); }
 Vector3d Link::WorldLinearVel() const { return TheEngine().LinkWorldLinearVel(this->handle); }
+Vector3d Link::WorldLinearVel(const Vector3d &_offset) const
+{
+  return this->WorldLinearVel(_offset, this->WorldPose().Rot());
+}
+Vector3d Link::WorldLinearVel(const Vector3d &_offset, const ignition::math::Quaterniond &_q) const
+{
+  return this->WorldLinearVel() + this->WorldAngularVel().Cross(_q.RotateVector(_offset));
+}
 Vector3d Link::WorldCoGLinearVel() const { return TheEngine().LinkWorldCoGLinearVel(this->handle); }
 Vector3d Link::WorldAngularVel() const { return TheEngine().LinkWorldAngularVel(this->handle); }
 Vector3d Link::RelativeLinearVel() const { return this->WorldPose().Rot().RotateVectorReverse(this->WorldLinearVel()); }

@@ -1,15 +1,21 @@
 // racebot's Gazebo 11 plugin API: the sensor classes. Their data comes from racebot's host (Measure), which casts
-// the rays in racebot's simulator; what they fire and report follows gazebo/sensors/RaySensor.cc and Sensor.cc.
+// the rays and measures the IMUs in racebot's simulator; what they fire and report follows
+// gazebo/sensors/RaySensor.cc, ImuSensor.cc and Sensor.cc.
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
 #include <utility>
 
 #include <boost/make_shared.hpp>
 
 #include "gazebo/common/Console.hh"
+#include "gazebo/physics/Link.hh"
+#include "gazebo/physics/Model.hh"
 #include "gazebo/physics/MultiRayShape.hh"
+#include "gazebo/physics/World.hh"
 #include "gazebo/sensors/GpuRaySensor.hh"
+#include "gazebo/sensors/ImuSensor.hh"
 #include "gazebo/sensors/RaySensor.hh"
 #include "gazebo/sensors/Sensor.hh"
 #include "gazebo/transport/Node.hh"
@@ -137,6 +143,15 @@ void Sensor::Measured(const common::Time &_time)
 
 namespace racebot
 {
+// "~/<parent, :: as />/<name>/<leaf>", as Gazebo's sensors name their topics
+std::string SensorTopic(const std::string &_parent, const std::string &_name, const std::string &_leaf)
+{
+  std::string topic = "~/" + _parent + "/" + _name + "/" + _leaf;
+  for (std::string::size_type at = topic.find("::"); at != std::string::npos; at = topic.find("::", at))
+    topic.replace(at, 2, "/");
+  return topic;
+}
+
 RayScan::RayScan(const Description &_description, const physics::MultiRayShape::Geometry &_geometry)
   : Sensor(_description, RAY), geometry(_geometry),
     scanTopic(transport::racebot::DecodeTopicName(this->Topic(), _description.worldName))
@@ -144,13 +159,7 @@ RayScan::RayScan(const Description &_description, const physics::MultiRayShape::
   this->laserMsg.mutable_scan()->set_frame(_description.parentName);
 }
 
-std::string RayScan::Topic() const
-{
-  std::string topic = "~/" + this->ParentName() + "/" + this->Name() + "/scan";
-  for (std::string::size_type at = topic.find("::"); at != std::string::npos; at = topic.find("::", at))
-    topic.replace(at, 2, "/");
-  return topic;
-}
+std::string RayScan::Topic() const { return SensorTopic(this->ParentName(), this->Name(), "scan"); }
 
 bool RayScan::IsActive() const
 {
@@ -271,6 +280,93 @@ void GpuRaySensor::Cast(std::vector<double> _rawRanges, std::vector<double> _raw
   }
   this->newLaserFrame(this->frame.data(), static_cast<unsigned int>(this->RayCount()),
                       static_cast<unsigned int>(this->VerticalRayCount()), 3u, std::string("BLAH"));
+}
+
+namespace
+{
+physics::LinkPtr ParentLink(const Sensor::Description &_description)
+{
+  const std::string &scoped = _description.parentName;
+  const std::string::size_type at = scoped.find("::");
+  physics::WorldPtr world = physics::get_world();
+  physics::ModelPtr model = world && at != std::string::npos ? world->ModelByName(scoped.substr(0, at)) : nullptr;
+  physics::LinkPtr link = model ? model->GetLink(scoped.substr(at + 2)) : nullptr;
+  if (!link)
+    throw std::runtime_error("IMU has invalid parent[" + scoped + "]. Must be a link");
+  return link;
+}
+}  // namespace
+
+ImuSensor::ImuSensor(const Description &_description)
+  : Sensor(_description, OTHER), parent(ParentLink(_description)),
+    imuTopic(transport::racebot::DecodeTopicName(racebot::SensorTopic(_description.parentName, _description.name,
+                                                                      "imu"), _description.worldName))
+{
+  msgs::Set(this->imuMsg.mutable_orientation(), ignition::math::Quaterniond::Identity);
+  // Gazebo's Load: the reference is the sensor's own frame as it was made
+  this->worldToReference = this->WorldPose().Rot();
+}
+
+ignition::math::Pose3d ImuSensor::WorldPose() const { return this->Pose() + this->parent->WorldPose(); }
+
+msgs::IMU ImuSensor::ImuMessage() const
+{
+  std::lock_guard<std::mutex> lock(this->mutex);
+  return this->imuMsg;
+}
+
+ignition::math::Vector3d ImuSensor::AngularVelocity(const bool _noiseFree) const
+{
+  std::lock_guard<std::mutex> lock(this->mutex);
+  return _noiseFree ? this->angularVel : msgs::ConvertIgn(this->imuMsg.angular_velocity());
+}
+
+ignition::math::Vector3d ImuSensor::LinearAcceleration(const bool _noiseFree) const
+{
+  std::lock_guard<std::mutex> lock(this->mutex);
+  return _noiseFree ? this->linearAcc : msgs::ConvertIgn(this->imuMsg.linear_acceleration());
+}
+
+ignition::math::Quaterniond ImuSensor::Orientation() const
+{
+  std::lock_guard<std::mutex> lock(this->mutex);
+  return msgs::ConvertIgn(this->imuMsg.orientation());
+}
+
+void ImuSensor::SetReferencePose() { this->SetWorldToReferenceOrientation(this->WorldPose().Rot()); }
+
+void ImuSensor::SetWorldToReferenceOrientation(const ignition::math::Quaterniond &_orientation)
+{
+  std::lock_guard<std::mutex> lock(this->mutex);
+  this->worldToReference = _orientation;
+}
+
+bool ImuSensor::IsActive() const
+{
+  return Sensor::IsActive() || transport::racebot::HasSubscribers(this->imuTopic);
+}
+
+void ImuSensor::Measure(const common::Time &_time, const ignition::math::Pose3d &_worldPose,
+                        const ignition::math::Vector3d &_angularVel, const ignition::math::Vector3d &_linearAcc,
+                        const ignition::math::Vector3d &_noisyAngularVel,
+                        const ignition::math::Vector3d &_noisyLinearAcc)
+{
+  boost::shared_ptr<msgs::IMU> copy;  // for the subscribers, made only when there are some
+  {
+    std::lock_guard<std::mutex> lock(this->mutex);
+    this->imuMsg.set_entity_name(this->description.parentName);
+    msgs::Set(this->imuMsg.mutable_stamp(), _time);
+    this->angularVel = _angularVel;
+    this->linearAcc = _linearAcc;
+    msgs::Set(this->imuMsg.mutable_angular_velocity(), _noisyAngularVel);
+    msgs::Set(this->imuMsg.mutable_linear_acceleration(), _noisyLinearAcc);
+    msgs::Set(this->imuMsg.mutable_orientation(), this->worldToReference.Inverse() * _worldPose.Rot());
+    if (transport::racebot::HasSubscribers(this->imuTopic))
+      copy = boost::make_shared<msgs::IMU>(this->imuMsg);
+  }
+  if (copy)
+    transport::racebot::Deliver<msgs::IMU>(this->imuTopic, copy);
+  this->Measured(_time);
 }
 }  // namespace sensors
 }  // namespace gazebo

@@ -47,22 +47,27 @@ def roscpp_remappings(argv):
     return remappings
 
 
-def plugin_xml(spec):
+def plugin_xml(spec, spawn_namespace=''):
     """The <plugin> element as sdformat reads it from the URDF: as written, with the values sdformat's fixed-joint
-    reduction rewrote (spec.params holds them: <bodyName> of a lumped link names the link it went into)."""
+    reduction rewrote (spec.params holds them: <bodyName> of a lumped link names the link it went into), and, as
+    gazebo_ros's spawn walks the model before Gazebo loads it (walkChildAddRobotNamespace), a <robotNamespace> of
+    the spawn request's non-empty `spawn_namespace` (spawn_model's default: its own namespace, "/") in a plugin that
+    has none."""
     element = spec.element
     if element is None:
-        element = ET.Element('plugin', {'name': spec.name, 'filename': spec.filename})
+        copy = ET.Element('plugin', {'name': spec.name, 'filename': spec.filename})
         for tag, text in spec.params.items():
-            ET.SubElement(element, tag).text = text
-        return ET.tostring(element, encoding='unicode')
-    copy = ET.fromstring(ET.tostring(element, encoding='unicode'))
-    seen = set()
-    for child in copy:
-        if child.tag in spec.params and child.tag not in seen:
-            seen.add(child.tag)
-            if (child.text or '') != spec.params[child.tag] and len(child) == 0:
-                child.text = spec.params[child.tag]
+            ET.SubElement(copy, tag).text = text
+    else:
+        copy = ET.fromstring(ET.tostring(element, encoding='unicode'))
+        seen = set()
+        for child in copy:
+            if child.tag in spec.params and child.tag not in seen:
+                seen.add(child.tag)
+                if (child.text or '') != spec.params[child.tag] and len(child) == 0:
+                    child.text = spec.params[child.tag]
+    if spawn_namespace and copy.find('robotNamespace') is None:
+        ET.SubElement(copy, 'robotNamespace').text = spawn_namespace
     return ET.tostring(copy, encoding='unicode')
 
 
@@ -253,7 +258,7 @@ class CompiledPlugins:
         self._add_model(robot)
         self.host.set_iterations(self.sim.steps)
         plugin_id = self._load_one(robot.name, robot.name, label, path, without, fallback, lambda: self.host.load(
-            'model', path, spec.filename, spec.name, robot.name, plugin_xml(spec)))
+            'model', path, spec.filename, spec.name, robot.name, plugin_xml(spec, robot.spawn_namespace)))
         if plugin_id is None:
             return False
         self._refresh()
@@ -295,20 +300,29 @@ class CompiledPlugins:
 
     def load_sensor(self, manager, robot, spec, plugins, fallbacks=()):
         """Hosts the compiled `plugins` (GazeboPlugin specs whose library find_library found) of the <sensor> `spec`
-        (a ray or gpu_ray sensor, compiled_sensors.HOSTED_TYPES) of `robot`: a C++ sensor, and each plugin loaded
-        on it. Returns (the CompiledRaySensor for `manager` to step, or None when no plugin loaded; the plugins
+        (a ray, gpu_ray or imu sensor, compiled_sensors.HOSTED_TYPES) of `robot`: a C++ sensor, and each plugin
+        loaded on it. Returns (the CompiledSensor for `manager` to step, or None when no plugin loaded; the plugins
         that loaded). `fallbacks`: the filenames racebot also simulates (its class runs when this one fails)."""
-        from racebot_sim_bridge.gazebo_plugins.compiled_sensors import CompiledRaySensor, ray_geometry
+        from racebot_sim_bridge.gazebo_plugins.compiled_sensors import (CompiledImuSensor, CompiledRaySensor,
+                                                                        CompiledSensor, ray_geometry)
         where = "%s: sensor '%s'" % (robot.name, spec.name)
         if not self._ensure_host():
             self.rospy.logerr('%s: %s. It runs without its compiled plugins' % (where, self.unavailable))
             return None, []
         self._add_model(robot)
         self.host.set_iterations(self.sim.steps)
-        mount = CompiledRaySensor.mount_of(self.sim, robot, spec)  # KeyError: not on a link of the body
-        sensor_id = self.host.add_ray_sensor(spec.type, spec.name, robot.name, mount.link,
-                                             tuple(mount.offset[0]) + tuple(mount.offset[1]), float(spec.update_rate),
-                                             bool(spec.always_on), bool(spec.visualize), ray_geometry(spec.ray))
+        mount = CompiledSensor.mount_of(self.sim, robot, spec)  # KeyError: not on a link of the body
+        common = (spec.name, robot.name, mount.link, tuple(mount.offset[0]) + tuple(mount.offset[1]),
+                  float(spec.update_rate), bool(spec.always_on), bool(spec.visualize))
+        if spec.type == 'imu':
+            kind = CompiledImuSensor
+            try:
+                sensor_id = self.host.add_imu_sensor(*common)
+            except RuntimeError as err:  # Gazebo's "IMU has invalid parent"
+                raise ValueError(str(err)) from None
+        else:
+            kind = CompiledRaySensor
+            sensor_id = self.host.add_ray_sensor(spec.type, *common, ray_geometry(spec.ray))
         loaded = []
         for plugin in plugins:
             path = find_library(plugin.filename)
@@ -317,15 +331,14 @@ class CompiledPlugins:
             plugin_id = self._load_one(
                 robot.name, where, "%s: plugin '%s' (%s)" % (where, plugin.name, plugin.filename), path, without,
                 fallback, lambda: self.host.load_sensor_plugin(sensor_id, path, plugin.filename, plugin.name,
-                                                               plugin_xml(plugin)))
+                                                               plugin_xml(plugin, robot.spawn_namespace)))
             if plugin_id is not None:
                 loaded.append((plugin_id, plugin))
         self._refresh()
         if not loaded:
             self.host.remove_sensor(sensor_id)
             return None, []
-        sensor = CompiledRaySensor(manager, robot, spec, mount, self.host, sensor_id, [i for i, _ in loaded],
-                                   self.unload)
+        sensor = kind(manager, robot, spec, mount, self.host, sensor_id, [i for i, _ in loaded], self.unload)
         return sensor, [plugin for _, plugin in loaded]
 
     def unload(self, plugin_id):

@@ -12,19 +12,28 @@ rays its MultiRayShape holds (../sensors/ray_shape.py). The C++ side then fires 
 fires, in its order (newLaserScans, the LaserScanStamped to subscribers, the updated event), with the plugins'
 callbacks running without the interpreter lock. A plugin whose Load, Init or callback throws is reported and
 unloaded (gazebo_host), the world goes on.
+
+A <sensor type="imu"> with such a plugin gets a sensors::ImuSensor (CompiledImuSensor here): at its update rate,
+while it IsActive() (<always_on>, SetActive, a transport subscriber of its imu topic), one measurement with
+Gazebo's ImuSensor::UpdateImpl arithmetic: the link's world angular velocity in the sensor frame; the world velocity
+of the sensor point differenced since the previous measurement (the first: since the sensor was made, from the
+velocity it had then, as Gazebo's Load records it), minus gravity, in the sensor frame; then the <imu> element's
+per-axis noise (../sensors/noise.py's AxisNoise: Gazebo's GaussianNoiseModel). The C++ sensor keeps both the noisy
+and the noise-free values and turns the orientation into its reference frame (SetWorldToReferenceOrientation).
 """
 import numpy as np
 
-from racebot_sim_bridge.sensors.imu_reading import quaternion_to_matrix
+from racebot_sim_bridge.description.urdf_model import ImuSpec
+from racebot_sim_bridge.sensors.imu_reading import ImuKinematics, quaternion_to_matrix
 from racebot_sim_bridge.sensors.mount import SensorMount
-from racebot_sim_bridge.sensors.noise import make_noise
+from racebot_sim_bridge.sensors.noise import AxisNoise, make_noise
 from racebot_sim_bridge.sensors.ray import ScanGeometry
 from racebot_sim_bridge.sensors.ray_shape import RayShape
 from racebot_sim_bridge.sensors.raycast import cast_with_retro
 from racebot_sim_bridge.sensors.schedule import RateMeter, UpdateSchedule
 
 # the <sensor> types whose compiled plugins racebot hosts
-HOSTED_TYPES = ('ray', 'gpu_ray')
+HOSTED_TYPES = ('ray', 'gpu_ray', 'imu')
 
 
 def ray_geometry(ray):
@@ -34,19 +43,24 @@ def ray_geometry(ray):
             float(ray.vertical_max_angle), float(ray.range_min), float(ray.range_max), float(ray.range_resolution))
 
 
+def sensor_topic(world_name, model, link, sensor, leaf):
+    """A sensor's Gazebo topic as Gazebo decodes it ("~/model/link/sensor/scan": RaySensor::Topic(); .../imu)."""
+    return '/gazebo/%s/%s/%s/%s/%s' % (world_name, model, link, sensor, leaf)
+
+
 def scan_topic(world_name, model, link, sensor):
-    """The sensor's scan topic as Gazebo decodes RaySensor::Topic() ("~/model/link/sensor/scan")."""
-    return '/gazebo/%s/%s/%s/%s/scan' % (world_name, model, link, sensor)
+    return sensor_topic(world_name, model, link, sensor, 'scan')
 
 
-class CompiledRaySensor:
-    """A ray or gpu_ray sensor whose plugins are compiled: racebot measures, the plugins read the C++ sensor.
+class CompiledSensor:
+    """A sensor whose plugins are compiled: racebot measures, the plugins read the C++ sensor.
 
     `mount`: where it is (mount_of); `host`: the gazebo_host.Host; `sensor_id`: its sensor; `plugin_ids`: the
     plugins loaded on it (unloaded with close()). What the SensorManager asks of a sensor: step, wake_time, meter,
-    topic, failed, spec, robot_name."""
+    topic, failed, spec, robot_name. A subclass measures (`measure`) at the sensor's update rate while it is active."""
+    topic_leaf = None
 
-    def __init__(self, manager, robot, spec, mount, host, sensor_id, plugin_ids, unload, rng=None):
+    def __init__(self, manager, robot, spec, mount, host, sensor_id, plugin_ids, unload):
         self.manager = manager
         self.sim = manager.sim
         self.robot_name = robot.name
@@ -56,19 +70,11 @@ class CompiledRaySensor:
         self.plugin_ids = list(plugin_ids)
         self.unload = unload  # CompiledPlugins.unload(plugin id)
         self.mount = mount  # mount_of's
-        ray = spec.ray
-        self.geometry = ScanGeometry(ray)
-        self.shape = RayShape(ray)
-        # Gazebo casts one ray per sample and interpolates the scan from them; racebot casts each scan range as a
-        # ray of its own (ray.py), so a resolution other than 1 needs the raw rays cast too
-        self.one_cast = self.shape.directions.shape == self.geometry.directions.shape and \
-            np.allclose(self.shape.directions, self.geometry.directions)
-        self.noise = make_noise(ray.noise_type, ray.noise_mean, ray.noise_stddev, manager.noise_enabled, rng=rng)
         self.rate = float(spec.update_rate)
         self.schedule = UpdateSchedule(self.rate, start=self.sim.time)
         self.meter = RateMeter()
         self.failed = False
-        self.topic = scan_topic(self.sim.spec.name, robot.name, self.mount.link, spec.name)
+        self.topic = sensor_topic(self.sim.spec.name, robot.name, self.mount.link, spec.name, self.topic_leaf)
 
     @staticmethod
     def mount_of(sim, robot, spec):
@@ -79,10 +85,6 @@ class CompiledRaySensor:
     def wake_time(self):
         return self.schedule.next
 
-    def _cast(self, directions_of, position, rotation):
-        """(fractions, hit, retro per ray) of one set of rays: directions_of is the ScanGeometry or RayShape."""
-        return cast_with_retro(self.sim.world, *directions_of.endpoints(position, rotation))
-
     def step(self, time):
         if not self.schedule.due(time):
             return
@@ -91,8 +93,39 @@ class CompiledRaySensor:
             self.rate = rate
             self.schedule = UpdateSchedule(rate, start=time)
         self.schedule.advance(time)
-        if not active:
-            return
+        if active:
+            self.measure(time)
+
+    def measure(self, time):
+        raise NotImplementedError
+
+    def close(self):
+        for plugin_id in self.plugin_ids:
+            self.unload(plugin_id)
+        self.plugin_ids = []
+        self.host.remove_sensor(self.sensor_id)
+
+
+class CompiledRaySensor(CompiledSensor):
+    """A ray or gpu_ray sensor whose plugins are compiled."""
+    topic_leaf = 'scan'
+
+    def __init__(self, manager, robot, spec, mount, host, sensor_id, plugin_ids, unload, rng=None):
+        super().__init__(manager, robot, spec, mount, host, sensor_id, plugin_ids, unload)
+        ray = spec.ray
+        self.geometry = ScanGeometry(ray)
+        self.shape = RayShape(ray)
+        # Gazebo casts one ray per sample and interpolates the scan from them; racebot casts each scan range as a
+        # ray of its own (ray.py), so a resolution other than 1 needs the raw rays cast too
+        self.one_cast = self.shape.directions.shape == self.geometry.directions.shape and \
+            np.allclose(self.shape.directions, self.geometry.directions)
+        self.noise = make_noise(ray.noise_type, ray.noise_mean, ray.noise_stddev, manager.noise_enabled, rng=rng)
+
+    def _cast(self, directions_of, position, rotation):
+        """(fractions, hit, retro per ray) of one set of rays: directions_of is the ScanGeometry or RayShape."""
+        return cast_with_retro(self.sim.world, *directions_of.endpoints(position, rotation))
+
+    def measure(self, time):
         position, orientation = self.mount.pose()
         rotation = quaternion_to_matrix(orientation)
         fractions, hit, intensities = self._cast(self.geometry, position, rotation)
@@ -106,8 +139,29 @@ class CompiledRaySensor:
         self.host.measure_ray(self.sensor_id, time, pose, ranges, intensities, raw, retro)
         self.meter.tick()
 
-    def close(self):
-        for plugin_id in self.plugin_ids:
-            self.unload(plugin_id)
-        self.plugin_ids = []
-        self.host.remove_sensor(self.sensor_id)
+
+class CompiledImuSensor(CompiledSensor):
+    """An imu sensor whose plugins are compiled: Gazebo's ImuSensor::UpdateImpl measurement (the module's doc)."""
+    topic_leaf = 'imu'
+
+    def __init__(self, manager, robot, spec, mount, host, sensor_id, plugin_ids, unload, rng=None):
+        super().__init__(manager, robot, spec, mount, host, sensor_id, plugin_ids, unload)
+        imu = spec.imu if spec.imu is not None else ImuSpec()
+        self.gyro_noise = AxisNoise.make(imu.angular_velocity_noise, manager.noise_enabled, rng)
+        self.accel_noise = AxisNoise.make(imu.linear_acceleration_noise, manager.noise_enabled, rng)
+        self.kinematics = ImuKinematics(self.sim.world.gravity)
+        # Gazebo's Load records the sensor point's velocity: the first measurement differences from it
+        self.kinematics.prime(self.sim.time, self.mount.motion()[2])
+
+    def measure(self, time):
+        position, orientation, velocity, omega = self.mount.motion()
+        m = self.kinematics.measure(time, orientation, velocity, omega)
+        if m is None:  # no time passed since the last one (Gazebo's dt > 0)
+            return
+        gyro, accel = m.angular_velocity, m.linear_acceleration
+        noisy_gyro = gyro if self.gyro_noise is None else self.gyro_noise.apply(gyro)
+        noisy_accel = accel if self.accel_noise is None else self.accel_noise.apply(accel)
+        pose = tuple(float(v) for v in position) + tuple(float(v) for v in orientation)
+        self.host.measure_imu(self.sensor_id, time, pose, *(tuple(float(v) for v in vector) for vector in
+                                                            (gyro, accel, noisy_gyro, noisy_accel)))
+        self.meter.tick()

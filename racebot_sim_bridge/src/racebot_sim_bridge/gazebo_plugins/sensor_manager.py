@@ -139,7 +139,7 @@ class SensorManager:
                 self.rospy.logwarn("%s: sensor '%s' (type %s): plugin '%s' (%s) is compiled, and racebot hosts the "
                                    'compiled plugins of %s sensors only: %s; see %s'
                                    % (robot.name, spec.name, spec.type, plugin.name, plugin.filename,
-                                      ' and '.join(HOSTED_TYPES), 'racebot simulates it instead' if simulated
+                                      ', '.join(HOSTED_TYPES), 'racebot simulates it instead' if simulated
                                       else 'it publishes nothing', SUPPORTED_TABLE))
                 if not simulated:
                     unsimulated.append(plugin)
@@ -161,7 +161,7 @@ class SensorManager:
             compiled, spec = self._host_compiled(robot, spec)
             if compiled is not None:
                 created.append(compiled)
-                self.rospy.loginfo("%s: %s sensor '%s' on %s at %s with compiled plugins, scan %s" % (
+                self.rospy.loginfo("%s: %s sensor '%s' on %s at %s with compiled plugins, Gazebo topic %s" % (
                     robot.name, spec.type, spec.name, spec.reference,
                     '%g Hz' % spec.update_rate if spec.update_rate > 0 else 'every update', compiled.topic))
                 if not spec.plugins:

@@ -1,6 +1,6 @@
 // racebot's Gazebo 11 plugin API (upstream_compat/gazebo_dev): the Gazebo messages a sensor plugin reads, with the
 // field names and accessors of Gazebo's .proto files (time, vector3d, quaternion, pose, laserscan,
-// laserscan_stamped) as protobuf generates them (`scan().ranges(i)`, `ranges_size()`, `mutable_scan()`,
+// laserscan_stamped, imu) as protobuf generates them (`scan().ranges(i)`, `ranges_size()`, `mutable_scan()`,
 // `set_count(n)`, ...), and gazebo/msgs/msgs.hh's Set and Convert for them. Plain C++ classes, not protobuf: racebot
 // has no Gazebo transport process, so nothing is serialized (transport/Node.hh delivers them in the world server).
 #ifndef GAZEBO_MSGS_MSGS_HH_
@@ -143,6 +143,21 @@ class GZ_UTIL_VISIBLE LaserScanStamped
 {
   RACEBOT_MSG_MESSAGE(Time, time)
   RACEBOT_MSG_MESSAGE(LaserScan, scan)
+};
+
+// imu.proto: what an ImuSensor publishes on its topic (~/<model>/<link>/<sensor>/imu) and ImuMessage() returns
+class GZ_UTIL_VISIBLE IMU
+{
+public:
+  const std::string &entity_name() const { return this->entity_name_; }
+  void set_entity_name(const std::string &_name) { this->entity_name_ = _name; }
+  RACEBOT_MSG_MESSAGE(Time, stamp)
+  RACEBOT_MSG_MESSAGE(Quaternion, orientation)
+  RACEBOT_MSG_MESSAGE(Vector3d, angular_velocity)
+  RACEBOT_MSG_MESSAGE(Vector3d, linear_acceleration)
+
+private:
+  std::string entity_name_;
 };
 
 #undef RACEBOT_MSG_FIELD

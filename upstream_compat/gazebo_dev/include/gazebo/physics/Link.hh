@@ -31,6 +31,11 @@ public:
   // in its model's frame (Entity::RelativePose: a link's parent is its model)
   ignition::math::Pose3d RelativePose() const;
   ignition::math::Vector3d WorldLinearVel() const;
+  // of the point at `_offset` from the link frame's origin, in the link frame; with `_q`, the offset's frame is
+  // `_q` in the world
+  ignition::math::Vector3d WorldLinearVel(const ignition::math::Vector3d &_offset) const;
+  ignition::math::Vector3d WorldLinearVel(const ignition::math::Vector3d &_offset,
+                                          const ignition::math::Quaterniond &_q) const;
   ignition::math::Vector3d WorldCoGLinearVel() const;
   ignition::math::Vector3d WorldAngularVel() const;
   ignition::math::Vector3d RelativeLinearVel() const;

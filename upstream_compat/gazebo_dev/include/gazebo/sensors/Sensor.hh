@@ -13,9 +13,14 @@
 #include <string>
 
 #include <ignition/math/Pose3.hh>
+#include <sdf/sdf.hh>
 
+// what Gazebo's Sensor.hh brings: a sensor plugin that includes only ImuSensor.hh and World.hh connects to
+// event::Events (gazebo_ros_imu_sensor)
 #include "gazebo/common/Event.hh"
+#include "gazebo/common/Events.hh"
 #include "gazebo/common/Time.hh"
+#include "gazebo/msgs/msgs.hh"
 #include "gazebo/physics/PhysicsTypes.hh"
 #include "gazebo/sensors/SensorTypes.hh"
 #include "gazebo/util/system.hh"

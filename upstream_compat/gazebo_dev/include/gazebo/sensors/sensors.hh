@@ -4,6 +4,7 @@
 #define GAZEBO_SENSORS_SENSORS_HH_
 
 #include "gazebo/sensors/GpuRaySensor.hh"
+#include "gazebo/sensors/ImuSensor.hh"
 #include "gazebo/sensors/RaySensor.hh"
 #include "gazebo/sensors/Sensor.hh"
 #include "gazebo/sensors/SensorTypes.hh"
