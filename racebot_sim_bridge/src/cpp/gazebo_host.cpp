@@ -31,6 +31,7 @@
 #include <gazebo/common/Plugin.hh>
 #include <gazebo/physics/physics.hh>
 #include <gazebo/racebot/Engine.hh>
+#include <gazebo/sensors/ContactSensor.hh>
 #include <gazebo/sensors/GpuRaySensor.hh>
 #include <gazebo/sensors/ImuSensor.hh>
 #include <gazebo/sensors/RaySensor.hh>
@@ -345,7 +346,7 @@ public:
     return this->LoadPlugin(_kind, _path, _filename, _name, _model, _xml, 0);
   }
 
-  // Loads a sensor plugin of the sensor `_sensor` (an AddRaySensor or AddImuSensor id), as Load loads a model's: Load(sensor,
+  // Loads a sensor plugin of the sensor `_sensor` (an AddRaySensor, AddImuSensor or AddContactSensor id), as Load loads a model's: Load(sensor,
   // <plugin> element), Init().
   int LoadSensorPlugin(int _sensor, const std::string &_path, const std::string &_filename, const std::string &_name,
                        const std::string &_xml)
@@ -398,6 +399,19 @@ public:
     return id;
   }
 
+  // A <sensor type="contact"> of model `_model`'s link `_link` for compiled sensor plugins, watching the
+  // collisions `_collisions` (its <contact><collision> names): its id.
+  int AddContactSensor(const std::string &_name, const std::string &_model, const std::string &_link,
+                       const PoseT &_pose, double _updateRate, bool _alwaysOn, bool _visualize,
+                       const std::vector<std::string> &_collisions)
+  {
+    const auto description =
+        this->Describe("contact", _name, _model, _link, _pose, _updateRate, _alwaysOn, _visualize);
+    const int id = ++this->lastSensorId;
+    this->sensors[id] = std::make_shared<gazebo::sensors::ContactSensor>(description, _collisions);
+    return id;
+  }
+
   void RemoveSensor(int _sensor) { this->sensors.erase(_sensor); }
 
   // Whether the sensor measures now (Sensor::IsActive: SetActive, <always_on>, a subscriber of its scan topic)
@@ -438,6 +452,50 @@ public:
       py::gil_scoped_release unlocked;
       sensor->Measure(gazebo::common::Time(_time), PoseOf(_worldPose), V(_angularVel), V(_linearAcc),
                       V(_noisyAngularVel), V(_noisyLinearAcc));
+    }
+    this->AfterEvents();
+  }
+
+  // One update of a contact sensor at sim time `_time` (ContactSensor::Measure): `_contacts`, every contact of the
+  // steps since the last update: (collision1, collision2, the step's time, positions, normals, depths, and the force
+  // and torque on collision1's link per point, in its frame about its centre of mass).
+  using ContactT = std::tuple<std::string, std::string, double, std::vector<Vec>, std::vector<Vec>,
+                              std::vector<double>, std::vector<Vec>, std::vector<Vec>>;
+  void MeasureContacts(int _sensor, double _time, const std::vector<ContactT> &_contacts)
+  {
+    auto sensor = std::dynamic_pointer_cast<gazebo::sensors::ContactSensor>(this->sensors.at(_sensor));
+    if (!sensor)
+      throw std::runtime_error("sensor " + std::to_string(_sensor) + " is not a contact sensor");
+    std::vector<gazebo::msgs::Contact> contacts(_contacts.size());
+    for (size_t i = 0; i < _contacts.size(); ++i)
+    {
+      const ContactT &c = _contacts[i];
+      gazebo::msgs::Contact &contact = contacts[i];
+      contact.set_collision1(std::get<0>(c));
+      contact.set_collision2(std::get<1>(c));
+      gazebo::msgs::Set(contact.mutable_time(), gazebo::common::Time(std::get<2>(c)));
+      contact.set_world(this->world->Name());
+      for (const Vec &p : std::get<3>(c))
+        gazebo::msgs::Set(contact.add_position(), V(p));
+      for (const Vec &n : std::get<4>(c))
+        gazebo::msgs::Set(contact.add_normal(), V(n));
+      for (double d : std::get<5>(c))
+        contact.add_depth(d);
+      const auto &forces = std::get<6>(c);
+      const auto &torques = std::get<7>(c);
+      for (size_t j = 0; j < forces.size(); ++j)
+      {
+        gazebo::msgs::JointWrench *wrench = contact.add_wrench();
+        wrench->set_body_1_name(std::get<0>(c));
+        wrench->set_body_2_name(std::get<1>(c));
+        gazebo::msgs::Set(wrench->mutable_body_1_wrench()->mutable_force(), V(forces[j]));
+        gazebo::msgs::Set(wrench->mutable_body_1_wrench()->mutable_torque(),
+                          j < torques.size() ? V(torques[j]) : Vector3d::Zero);
+      }
+    }
+    {
+      py::gil_scoped_release unlocked;
+      sensor->Measure(gazebo::common::Time(_time), std::move(contacts));
     }
     this->AfterEvents();
   }
@@ -760,10 +818,13 @@ PYBIND11_MODULE(gazebo_host, m)
          py::arg("name"), py::arg("xml"), py::call_guard<py::gil_scoped_release>())
     .def("add_imu_sensor", &Host::AddImuSensor, py::arg("name"), py::arg("model"), py::arg("link"), py::arg("pose"),
          py::arg("update_rate"), py::arg("always_on"), py::arg("visualize"))
+    .def("add_contact_sensor", &Host::AddContactSensor, py::arg("name"), py::arg("model"), py::arg("link"),
+         py::arg("pose"), py::arg("update_rate"), py::arg("always_on"), py::arg("visualize"), py::arg("collisions"))
     .def("remove_sensor", &Host::RemoveSensor)
     .def("sensor_state", &Host::SensorState)
     .def("measure_ray", &Host::MeasureRay)  // these release it themselves, around the plugins' callbacks
     .def("measure_imu", &Host::MeasureImu)
+    .def("measure_contacts", &Host::MeasureContacts)
     .def("update_begin", &Host::UpdateBegin)  // these release it themselves, around the events
     .def("update_end", &Host::UpdateEnd)
     .def("idle", &Host::Idle)

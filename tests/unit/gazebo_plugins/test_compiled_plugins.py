@@ -509,3 +509,56 @@ def test_an_inactive_imu_is_not_measured_until_a_transport_subscriber_comes(sens
     f = messages[-1].split()  # ImuProbe msg N entity E stamp T linear_z Z orientation_w W
     assert f[4] == 'spinner::base_link' and float(f[8]) == pytest.approx(9.8, abs=0.02)
     assert float(f[6]) == pytest.approx(imu_updates(out)[-1][0])
+
+
+# -- compiled contact sensor plugins (contact_probe.cc: a SensorPlugin on a ContactSensor) ------------------------
+def contact_probe(update_rate=10, collision='base_link_collision', **params):
+    """The spinner with a contact sensor on its base (at `update_rate`) watching `collision`, carrying
+    contact_probe."""
+    body = ''.join('<%s>%s</%s>' % (k, v, k) for k, v in params.items())
+    return SPINNER % {'mass': ROTOR_MASS, 'izz': ROTOR_IZZ, 'effort': 3.0, 'velocity': 40.0, 'extra': (
+        '<gazebo reference="base_link"><sensor type="contact" name="bumper"><update_rate>%g</update_rate>'
+        '<contact><collision>%s</collision></contact>'
+        '<plugin name="contact_probe" filename="libcontact_probe.so">%s</plugin></sensor></gazebo>'
+        % (update_rate, collision, body))}
+
+
+def contact_updates(out):
+    return [line.split() for line in lines(out, 'ContactProbe updated at')]
+
+
+def test_a_contact_plugin_reads_every_steps_contacts_since_the_last_update_as_gazebo_keeps_them(sensor_world, capfd):
+    sensor_world.spawn('spinner', contact_probe(), '/', (0.0, 0.0, 0.1))
+    sensor_world.run(1.0)
+    out = capfd.readouterr().out
+    assert ('ContactProbe loaded bumper type contact collisions 1 first spinner::base_link::base_link_collision '
+            'beyond []') in out, out
+    updates = contact_updates(out)
+    # 10 Hz; the first update it is active at subscribes and has no steps yet, as Gazebo's
+    assert 8 <= len(updates) <= 10, out
+    f = updates[-1]
+    # ContactProbe updated at T time T contacts N first C1 with C2 points P depth D force_z F step_time S
+    #   points_of_own Q others O other_count K other_name X
+    assert f[3] == f[5]  # the Contacts message's time is the update's
+    assert int(f[7]) == 100  # one contact (the base on the ground) of each of the 100 steps since the last update
+    assert f[9] == 'spinner::base_link::base_link_collision' and f[11] == 'ground_plane::link::collision'
+    points = int(f[13])
+    assert points >= 1
+    # the ground holds the whole robot: (5 + 0.5) kg * 9.8 up, on the base's link in its frame
+    assert float(f[17]) == pytest.approx(5.5 * 9.8, rel=0.02)
+    assert float(f[19]) < float(f[3])  # the first contact is the oldest step's
+    assert int(f[21]) == 100 * points  # GetCollisionContactCount: every point of every contact
+    # Contacts(collision): one physics::Contact per other collision (the last step's), its points counted
+    assert f[23] == '1' and int(f[25]) == points and f[27] == 'ground_plane::link::collision'
+
+
+def test_a_contact_sensor_in_the_air_reads_no_contacts_and_a_transport_subscriber_gets_each_update(sensor_world,
+                                                                                                   capfd):
+    sensor_world.spawn('spinner', contact_probe(update_rate=20, subscribe='true'), '/', (0.0, 0.0, 3.0))
+    sensor_world.run(0.3)  # falling: 0.44 m in 0.3 s
+    out = capfd.readouterr().out
+    assert 'ContactProbe subscribed to /gazebo/default/spinner/base_link/bumper' in out, out
+    updates = contact_updates(out)
+    assert updates and all(int(f[7]) == 0 for f in updates), out
+    messages = lines(out, 'ContactProbe msg ')
+    assert len(messages) == len(updates) and messages[-1].endswith('contacts 0')

@@ -1,7 +1,10 @@
 // racebot's Gazebo 11 plugin API: the physics classes, each call passed to the Engine the plugin host installs.
+#include <algorithm>
+#include <sstream>
 #include <stdexcept>
 
 #include "gazebo/common/Console.hh"
+#include "gazebo/physics/Contact.hh"
 #include "gazebo/physics/Joint.hh"
 #include "gazebo/physics/Link.hh"
 #include "gazebo/physics/Model.hh"
@@ -446,6 +449,91 @@ double Joint::GetParam(const std::string &_key, unsigned int _index)
     return this->motorVel;
   gzerr << "Unable to get joint attribute[" << _key << "] (racebot has the joint motor's fmax and vel)\n";
   return 0.0;
+}
+
+// -- Contact ----------------------------------------------------------------------------------------------------
+Contact::Contact() { this->Reset(); }
+
+Contact &Contact::operator=(const msgs::Contact &_contact)
+{
+  this->Reset();
+  try
+  {
+    this->world = get_world(_contact.world());
+  }
+  catch (const std::exception &)
+  {
+    this->world.reset();
+  }
+  this->count = std::min(_contact.position_size(), MAX_CONTACT_JOINTS);
+  for (int j = 0; j < this->count; ++j)
+  {
+    this->positions[j] = msgs::ConvertIgn(_contact.position(j));
+    this->normals[j] = j < _contact.normal_size() ? msgs::ConvertIgn(_contact.normal(j)) : Vector3d::Zero;
+    this->depths[j] = j < _contact.depth_size() ? _contact.depth(j) : 0.0;
+    if (j < _contact.wrench_size())
+    {
+      const msgs::JointWrench &w = _contact.wrench(j);
+      this->wrench[j].body1Force = msgs::ConvertIgn(w.body_1_wrench().force());
+      this->wrench[j].body1Torque = msgs::ConvertIgn(w.body_1_wrench().torque());
+      this->wrench[j].body2Force = msgs::ConvertIgn(w.body_2_wrench().force());
+      this->wrench[j].body2Torque = msgs::ConvertIgn(w.body_2_wrench().torque());
+    }
+  }
+  this->time = msgs::Convert(_contact.time());
+  return *this;
+}
+
+void Contact::FillMsg(msgs::Contact &_msg) const
+{
+  _msg.set_world(this->world ? this->world->Name() : "");
+  _msg.clear_position();
+  _msg.clear_normal();
+  _msg.clear_depth();
+  _msg.clear_wrench();
+  for (int j = 0; j < this->count; ++j)
+  {
+    msgs::Set(_msg.add_position(), this->positions[j]);
+    msgs::Set(_msg.add_normal(), this->normals[j]);
+    _msg.add_depth(this->depths[j]);
+    msgs::JointWrench *w = _msg.add_wrench();
+    msgs::Set(w->mutable_body_1_wrench()->mutable_force(), this->wrench[j].body1Force);
+    msgs::Set(w->mutable_body_1_wrench()->mutable_torque(), this->wrench[j].body1Torque);
+    msgs::Set(w->mutable_body_2_wrench()->mutable_force(), this->wrench[j].body2Force);
+    msgs::Set(w->mutable_body_2_wrench()->mutable_torque(), this->wrench[j].body2Torque);
+  }
+  msgs::Set(_msg.mutable_time(), this->time);
+}
+
+std::string Contact::DebugString() const
+{
+  std::ostringstream stream;
+  stream << "Depths:\n";
+  for (int i = 0; i < this->count; ++i)
+    stream << "\t[" << i << "] " << this->depths[i] << "\n";
+  stream << "\nPositions:\n";
+  for (int i = 0; i < this->count; ++i)
+    stream << "\t[" << i << "] " << this->positions[i] << "\n";
+  stream << "\nNormals:\n";
+  for (int i = 0; i < this->count; ++i)
+    stream << "\t[" << i << "] " << this->normals[i] << "\n";
+  stream << "\nTime[" << this->time << "]\n";
+  return stream.str();
+}
+
+void Contact::Reset()
+{
+  this->count = 0;
+  this->collision1 = nullptr;
+  this->collision2 = nullptr;
+  for (int j = 0; j < MAX_CONTACT_JOINTS; ++j)
+  {
+    this->wrench[j] = JointWrench();
+    this->positions[j] = Vector3d::Zero;
+    this->normals[j] = Vector3d::Zero;
+    this->depths[j] = 0.0;
+  }
+  this->time = common::Time();
 }
 }  // namespace physics
 }  // namespace gazebo

@@ -14,6 +14,7 @@
 #include "gazebo/physics/Model.hh"
 #include "gazebo/physics/MultiRayShape.hh"
 #include "gazebo/physics/World.hh"
+#include "gazebo/sensors/ContactSensor.hh"
 #include "gazebo/sensors/GpuRaySensor.hh"
 #include "gazebo/sensors/ImuSensor.hh"
 #include "gazebo/sensors/RaySensor.hh"
@@ -143,10 +144,10 @@ void Sensor::Measured(const common::Time &_time)
 
 namespace racebot
 {
-// "~/<parent, :: as />/<name>/<leaf>", as Gazebo's sensors name their topics
+// "~/<parent, :: as />/<name>/<leaf>" ("" : no leaf), as Gazebo's sensors name their topics
 std::string SensorTopic(const std::string &_parent, const std::string &_name, const std::string &_leaf)
 {
-  std::string topic = "~/" + _parent + "/" + _name + "/" + _leaf;
+  std::string topic = "~/" + _parent + "/" + _name + (_leaf.empty() ? "" : "/" + _leaf);
   for (std::string::size_type at = topic.find("::"); at != std::string::npos; at = topic.find("::", at))
     topic.replace(at, 2, "/");
   return topic;
@@ -366,6 +367,91 @@ void ImuSensor::Measure(const common::Time &_time, const ignition::math::Pose3d 
   }
   if (copy)
     transport::racebot::Deliver<msgs::IMU>(this->imuTopic, copy);
+  this->Measured(_time);
+}
+
+ContactSensor::ContactSensor(const Description &_description, const std::vector<std::string> &_collisions)
+  : Sensor(_description, OTHER),
+    topic(transport::racebot::DecodeTopicName(racebot::SensorTopic(_description.parentName, _description.name, ""),
+                                              _description.worldName))
+{
+  for (const auto &name : _collisions)
+    this->collisions.push_back(_description.parentName + "::" + name);
+}
+
+unsigned int ContactSensor::GetCollisionCount() const { return static_cast<unsigned int>(this->collisions.size()); }
+
+std::string ContactSensor::GetCollisionName(const unsigned int _index) const
+{
+  return _index < this->collisions.size() ? this->collisions[_index] : std::string();
+}
+
+unsigned int ContactSensor::GetCollisionContactCount(const std::string &_collisionName) const
+{
+  std::lock_guard<std::mutex> lock(this->mutex);
+  unsigned int result = 0;
+  for (int i = 0; i < this->contactsMsg.contact_size(); ++i)
+  {
+    const msgs::Contact &contact = this->contactsMsg.contact(i);
+    if (contact.collision1() == _collisionName || contact.collision2() == _collisionName)
+      result += static_cast<unsigned int>(contact.position_size());
+  }
+  return result;
+}
+
+msgs::Contacts ContactSensor::Contacts() const
+{
+  std::lock_guard<std::mutex> lock(this->mutex);
+  return this->contactsMsg;
+}
+
+std::map<std::string, physics::Contact> ContactSensor::Contacts(const std::string &_collisionName) const
+{
+  std::lock_guard<std::mutex> lock(this->mutex);
+  std::map<std::string, physics::Contact> result;
+  for (int i = 0; i < this->contactsMsg.contact_size(); ++i)
+  {
+    const msgs::Contact &contact = this->contactsMsg.contact(i);
+    std::string other;
+    if (contact.collision1() == _collisionName)
+      other = contact.collision2();
+    else if (contact.collision2() == _collisionName)
+      other = contact.collision1();
+    if (!other.empty())
+      result[other] = contact;
+  }
+  return result;
+}
+
+bool ContactSensor::IsActive() const
+{
+  return Sensor::IsActive() || transport::racebot::HasSubscribers(this->topic);
+}
+
+std::string ContactSensor::ContactsTopic() const { return racebot::SensorTopic(this->ParentName(), this->Name(), ""); }
+
+void ContactSensor::Measure(const common::Time &_time, std::vector<msgs::Contact> _contacts)
+{
+  boost::shared_ptr<msgs::Contacts> copy;
+  {
+    std::lock_guard<std::mutex> lock(this->mutex);
+    this->contactsMsg.clear_contact();
+    for (auto &contact : _contacts)
+    {
+      const int count = contact.position_size();
+      if (count != contact.normal_size() || count != contact.wrench_size() || count != contact.depth_size())
+      {
+        gzerr << "Contact message has invalid array sizes\n";
+        continue;
+      }
+      *this->contactsMsg.add_contact() = std::move(contact);
+    }
+    msgs::Set(this->contactsMsg.mutable_time(), _time);
+    if (transport::racebot::HasSubscribers(this->topic))
+      copy = boost::make_shared<msgs::Contacts>(this->contactsMsg);
+  }
+  if (copy)
+    transport::racebot::Deliver<msgs::Contacts>(this->topic, copy);
   this->Measured(_time);
 }
 }  // namespace sensors

@@ -20,10 +20,20 @@ of the sensor point differenced since the previous measurement (the first: since
 velocity it had then, as Gazebo's Load records it), minus gravity, in the sensor frame; then the <imu> element's
 per-axis noise (../sensors/noise.py's AxisNoise: Gazebo's GaussianNoiseModel). The C++ sensor keeps both the noisy
 and the noise-free values and turns the orientation into its reference frame (SetWorldToReferenceOrientation).
+
+A <sensor type="contact"> gets a sensors::ContactSensor (CompiledContactSensor): once an update finds it active,
+the contacts of its <contact><collision>s are read after every physics step (../sensors/contact_points.py and
+contact.py, as gazebo_ros_bumper.py reads them), as Gazebo's contact manager hands the sensor one message a step;
+each update hands the C++ sensor every contact of the steps since the last one (at most 100 steps, Gazebo's limit).
+The first update after it became active has no steps yet and does nothing, as in Gazebo.
 """
+import collections
+
 import numpy as np
 
 from racebot_sim_bridge.description.urdf_model import ImuSpec
+from racebot_sim_bridge.sensors.contact import group_contacts, urdf_collision_shapes
+from racebot_sim_bridge.sensors.contact_points import CollisionKinds, CollisionNames, link_com, read_contacts
 from racebot_sim_bridge.sensors.imu_reading import ImuKinematics, quaternion_to_matrix
 from racebot_sim_bridge.sensors.mount import SensorMount
 from racebot_sim_bridge.sensors.noise import AxisNoise, make_noise
@@ -33,7 +43,8 @@ from racebot_sim_bridge.sensors.raycast import cast_with_retro
 from racebot_sim_bridge.sensors.schedule import RateMeter, UpdateSchedule
 
 # the <sensor> types whose compiled plugins racebot hosts
-HOSTED_TYPES = ('ray', 'gpu_ray', 'imu')
+HOSTED_TYPES = ('ray', 'gpu_ray', 'imu', 'contact')
+CONTACT_STEPS_KEPT = 100  # Gazebo's ContactSensor keeps the last 100 contact messages (steps) between updates
 
 
 def ray_geometry(ray):
@@ -44,8 +55,9 @@ def ray_geometry(ray):
 
 
 def sensor_topic(world_name, model, link, sensor, leaf):
-    """A sensor's Gazebo topic as Gazebo decodes it ("~/model/link/sensor/scan": RaySensor::Topic(); .../imu)."""
-    return '/gazebo/%s/%s/%s/%s/%s' % (world_name, model, link, sensor, leaf)
+    """A sensor's Gazebo topic as Gazebo decodes it ("~/model/link/sensor/scan": RaySensor::Topic(); .../imu; a
+    contact sensor's has no leaf)."""
+    return '/gazebo/%s/%s/%s/%s' % (world_name, model, link, sensor) + ('/' + leaf if leaf else '')
 
 
 def scan_topic(world_name, model, link, sensor):
@@ -165,3 +177,64 @@ class CompiledImuSensor(CompiledSensor):
         self.host.measure_imu(self.sensor_id, time, pose, *(tuple(float(v) for v in vector) for vector in
                                                             (gyro, accel, noisy_gyro, noisy_accel)))
         self.meter.tick()
+
+
+class CompiledContactSensor(CompiledSensor):
+    """A contact sensor whose plugins are compiled: the contacts of every step since the last update (module doc)."""
+    topic_leaf = ''
+
+    def __init__(self, manager, robot, spec, mount, host, sensor_id, plugin_ids, unload, rng=None):
+        super().__init__(manager, robot, spec, mount, host, sensor_id, plugin_ids, unload)
+        world = self.sim.world
+        self.body_id = robot.body.id
+        self.model_name = robot.name
+        self.shapes = urdf_collision_shapes(robot.model, mount.link)
+        self.wanted = set(spec.contact_collisions)
+        self.names = CollisionNames(world)
+        self.kinds = CollisionKinds(world.client)
+        self.bodies_seen = None
+        self.steps = collections.deque(maxlen=CONTACT_STEPS_KEPT)  # per step since the last update: its contacts
+        self.collecting = False  # active at an update: every step's contacts are read from then on
+        self.next_wake = self.schedule.next
+
+    def wake_time(self):
+        return self.next_wake
+
+    def step(self, time):
+        if self.collecting:
+            if self.host.sensor_state(self.sensor_id)[0]:
+                self.steps.append(self._contacts(time))
+            else:  # switched off between updates: Gazebo's ContactSensor drops its subscription at the next one
+                self.collecting = False
+                self.steps.clear()
+        if self.schedule.due(time):
+            super().step(time)
+        self.next_wake = time + self.sim.step_size if self.collecting else self.schedule.next
+
+    def measure(self, time):
+        if not self.collecting:  # the first update it is active at subscribes; the steps after it come in
+            self.collecting = True
+            return
+        if not self.steps:
+            return
+        contacts = [contact for step in self.steps for contact in step]
+        self.steps.clear()
+        self.host.measure_contacts(self.sensor_id, time, contacts)
+        self.meter.tick()
+
+    def _contacts(self, time):
+        """This step's contacts of the sensor's collisions, as measure_contacts takes them."""
+        world = self.sim.world
+        bodies = tuple(id(b) for b in world.bodies.values())
+        if bodies != self.bodies_seen:  # a body came or went: PyBullet ids may have been reused
+            self.names.forget()
+            self.kinds.forget()
+            self.bodies_seen = bodies
+        index = self.mount.index
+        points = read_contacts(world, self.names, self.body_id, index, self.shapes, self.model_name, self.mount.link,
+                               self.wanted, self.kinds)
+        if not points:
+            return []
+        com, orientation = link_com(world.client, self.body_id, index)
+        return [(g.collision1, g.collision2, time, g.positions, g.normals, g.depths, g.forces, g.torques)
+                for g in group_contacts(points, com, orientation)]

@@ -16,11 +16,13 @@ typedef boost::shared_ptr<Pose> PosePtr;
 typedef boost::shared_ptr<LaserScan> LaserScanPtr;
 typedef boost::shared_ptr<LaserScanStamped> LaserScanStampedPtr;
 typedef boost::shared_ptr<IMU> IMUPtr;
+typedef boost::shared_ptr<Contacts> ContactsPtr;
 typedef const boost::shared_ptr<const Time> ConstTimePtr;
 typedef const boost::shared_ptr<const Pose> ConstPosePtr;
 typedef const boost::shared_ptr<const LaserScan> ConstLaserScanPtr;
 typedef const boost::shared_ptr<const LaserScanStamped> ConstLaserScanStampedPtr;
 typedef const boost::shared_ptr<const IMU> ConstIMUPtr;
+typedef const boost::shared_ptr<const Contacts> ConstContactsPtr;
 }  // namespace msgs
 // Gazebo's MessageTypes.hh puts the Const...Ptr types in namespace gazebo too
 typedef msgs::ConstTimePtr ConstTimePtr;
@@ -28,6 +30,7 @@ typedef msgs::ConstPosePtr ConstPosePtr;
 typedef msgs::ConstLaserScanPtr ConstLaserScanPtr;
 typedef msgs::ConstLaserScanStampedPtr ConstLaserScanStampedPtr;
 typedef msgs::ConstIMUPtr ConstIMUPtr;
+typedef msgs::ConstContactsPtr ConstContactsPtr;
 }  // namespace gazebo
 
 #endif

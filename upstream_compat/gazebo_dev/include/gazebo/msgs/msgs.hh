@@ -1,6 +1,6 @@
 // racebot's Gazebo 11 plugin API (upstream_compat/gazebo_dev): the Gazebo messages a sensor plugin reads, with the
 // field names and accessors of Gazebo's .proto files (time, vector3d, quaternion, pose, laserscan,
-// laserscan_stamped, imu) as protobuf generates them (`scan().ranges(i)`, `ranges_size()`, `mutable_scan()`,
+// laserscan_stamped, imu, wrench, joint_wrench, contact, contacts) as protobuf generates them (`scan().ranges(i)`, `ranges_size()`, `mutable_scan()`,
 // `set_count(n)`, ...), and gazebo/msgs/msgs.hh's Set and Convert for them. Plain C++ classes, not protobuf: racebot
 // has no Gazebo transport process, so nothing is serialized (transport/Node.hh delivers them in the world server).
 #ifndef GAZEBO_MSGS_MSGS_HH_
@@ -56,6 +56,15 @@ private: \
   type name##_ = initial; \
   bool has_##name##_ = false;
 
+// One string field: `name()`, `set_name(v)`, `mutable_name()`.
+#define RACEBOT_MSG_STRING(name) \
+public: \
+  const std::string &name() const { return this->name##_; } \
+  void set_##name(const std::string &_value) { this->name##_ = _value; } \
+  std::string *mutable_##name() { return &this->name##_; } \
+private: \
+  std::string name##_;
+
 // One message field: `name()`, `mutable_name()`, `has_name()`.
 #define RACEBOT_MSG_MESSAGE(type, name) \
 public: \
@@ -76,6 +85,18 @@ public: \
   RepeatedField<type> *mutable_##name() { return &this->name##_; } \
   void add_##name(type _value) { this->name##_.Add(_value); } \
   void set_##name(int _index, type _value) { this->name##_.Set(_index, _value); } \
+  void clear_##name() { this->name##_.Clear(); } \
+private: \
+  RepeatedField<type> name##_;
+
+// One repeated message field: `name(i)`, `name_size()`, `name()`, `add_name()`, `mutable_name(i)`, `clear_name()`.
+#define RACEBOT_MSG_REPEATED_MESSAGE(type, name) \
+public: \
+  const type &name(int _index) const { return this->name##_.Get(_index); } \
+  int name##_size() const { return this->name##_.size(); } \
+  const RepeatedField<type> &name() const { return this->name##_; } \
+  type *add_##name() { this->name##_.Add(type()); return this->name##_.Mutable(this->name##_.size() - 1); } \
+  type *mutable_##name(int _index) { return this->name##_.Mutable(_index); } \
   void clear_##name() { this->name##_.Clear(); } \
 private: \
   RepeatedField<type> name##_;
@@ -160,7 +181,49 @@ private:
   std::string entity_name_;
 };
 
+// wrench.proto
+class GZ_UTIL_VISIBLE Wrench
+{
+  RACEBOT_MSG_MESSAGE(Vector3d, force)
+  RACEBOT_MSG_MESSAGE(Vector3d, torque)
+  RACEBOT_MSG_MESSAGE(Vector3d, force_offset)
+};
+
+// joint_wrench.proto: a contact point's wrench on each body (body_1: the collision1 side)
+class GZ_UTIL_VISIBLE JointWrench
+{
+  RACEBOT_MSG_STRING(body_1_name)
+  RACEBOT_MSG_FIELD(uint32_t, body_1_id, 0)
+  RACEBOT_MSG_STRING(body_2_name)
+  RACEBOT_MSG_FIELD(uint32_t, body_2_id, 0)
+  RACEBOT_MSG_MESSAGE(Wrench, body_1_wrench)
+  RACEBOT_MSG_MESSAGE(Wrench, body_2_wrench)
+};
+
+// contact.proto: the contact points of two collisions (scoped names, model::link::collision), one entry each in
+// position, normal, depth and wrench
+class GZ_UTIL_VISIBLE Contact
+{
+  RACEBOT_MSG_STRING(collision1)
+  RACEBOT_MSG_STRING(collision2)
+  RACEBOT_MSG_REPEATED_MESSAGE(Vector3d, position)
+  RACEBOT_MSG_REPEATED_MESSAGE(Vector3d, normal)
+  RACEBOT_MSG_REPEATED(double, depth)
+  RACEBOT_MSG_REPEATED_MESSAGE(JointWrench, wrench)
+  RACEBOT_MSG_MESSAGE(Time, time)
+  RACEBOT_MSG_STRING(world)
+};
+
+// contacts.proto: what a ContactSensor publishes on its topic and Contacts() returns
+class GZ_UTIL_VISIBLE Contacts
+{
+  RACEBOT_MSG_REPEATED_MESSAGE(Contact, contact)
+  RACEBOT_MSG_MESSAGE(Time, time)
+};
+
 #undef RACEBOT_MSG_FIELD
+#undef RACEBOT_MSG_STRING
+#undef RACEBOT_MSG_REPEATED_MESSAGE
 #undef RACEBOT_MSG_MESSAGE
 #undef RACEBOT_MSG_REPEATED
 

@@ -9,6 +9,7 @@
 #include <boost/any.hpp>
 #include <ignition/math/Vector3.hh>
 
+#include "gazebo/physics/JointWrench.hh"
 #include "gazebo/physics/PhysicsTypes.hh"
 #include "gazebo/util/system.hh"
 
@@ -16,17 +17,6 @@ namespace gazebo
 {
 namespace physics
 {
-// Gazebo's physics::JointWrench: the forces and torques through a joint. racebot measures body2 (what the parent
-// applies to the child link, in the child link's frame, the torque about its origin); body1 is its opposite.
-class JointWrench
-{
-public:
-  ignition::math::Vector3d body1Force;
-  ignition::math::Vector3d body2Force;
-  ignition::math::Vector3d body1Torque;
-  ignition::math::Vector3d body2Torque;
-};
-
 struct JointLimits
 {
   double lower = 0.0;

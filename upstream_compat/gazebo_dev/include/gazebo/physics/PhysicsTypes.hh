@@ -22,6 +22,8 @@ class Joint;
 class PhysicsEngine;
 class Inertial;
 class MultiRayShape;
+class Collision;  // declared only: racebot has no collision objects (physics/Contact.hh)
+class Contact;
 
 typedef boost::shared_ptr<World> WorldPtr;
 typedef boost::shared_ptr<Model> ModelPtr;
@@ -30,6 +32,7 @@ typedef boost::shared_ptr<Joint> JointPtr;
 typedef boost::shared_ptr<PhysicsEngine> PhysicsEnginePtr;
 typedef boost::shared_ptr<Inertial> InertialPtr;
 typedef boost::shared_ptr<MultiRayShape> MultiRayShapePtr;
+typedef boost::shared_ptr<Collision> CollisionPtr;
 
 typedef std::vector<ModelPtr> Model_V;
 typedef std::vector<LinkPtr> Link_V;

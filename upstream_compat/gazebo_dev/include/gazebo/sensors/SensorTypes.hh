@@ -1,5 +1,5 @@
 // racebot's Gazebo 11 plugin API (upstream_compat/gazebo_dev): the sensor pointer types (std::shared_ptr, as Gazebo
-// 11's) and categories. What racebot hosts: Sensor.hh, RaySensor.hh, GpuRaySensor.hh, ImuSensor.hh (docs/SUPPORTED.md).
+// 11's) and categories. What racebot hosts: Sensor.hh, RaySensor.hh, GpuRaySensor.hh, ImuSensor.hh, ContactSensor.hh (docs/SUPPORTED.md).
 #ifndef GAZEBO_SENSORS_SENSORTYPES_HH_
 #define GAZEBO_SENSORS_SENSORTYPES_HH_
 
@@ -37,6 +37,9 @@ typedef std::shared_ptr<ForceTorqueSensor> ForceTorqueSensorPtr;
 typedef std::shared_ptr<MagnetometerSensor> MagnetometerSensorPtr;
 typedef std::shared_ptr<AltimeterSensor> AltimeterSensorPtr;
 typedef std::vector<SensorPtr> Sensor_V;
+
+// Gazebo's: a plugin writes `GAZEBO_SENSORS_USING_DYNAMIC_POINTER_CAST; dynamic_pointer_cast<...>(_parent)`
+#define GAZEBO_SENSORS_USING_DYNAMIC_POINTER_CAST using std::dynamic_pointer_cast
 
 enum SensorCategory
 {
