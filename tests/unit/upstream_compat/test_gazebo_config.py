@@ -207,3 +207,17 @@ def test_a_standin_with_cpp_api_refuses_only_headers_it_lacks(tmp_path, standin,
             "have (src/my_controller.cpp: %s)" % (standin, include)) in out
     assert 'catkin_make -DCATKIN_BLACKLIST_PACKAGES="my_controllers"' in out
 
+
+
+@pytest.mark.parametrize('components, flags', [
+    ('gazebo_ros_control hardware_interface', ''),  # upstream's gazebo_ros_control hands no gazebo_dev on
+    ('gazebo_ros roscpp', ''),
+    ('gazebo_dev roscpp', ' -std=c++17'),  # upstream's gazebo_dev-extras appends Gazebo's flags
+])
+def test_only_a_package_naming_gazebo_dev_gets_gazebos_flags_in_cmake_cxx_flags(tmp_path, components, flags):
+    # AgileX hunter's steer_drive_controller: list(APPEND CMAKE_CXX_FLAGS "${CMAKE_CXX_FLAGS} ${GAZEBO_CXX_FLAGS}")
+    # after naming gazebo_ros_control, which a non-empty CMAKE_CXX_FLAGS turns into "...;..." (a broken command)
+    code, out, _ = project(tmp_path, 'enable_language(CXX)\nfind_package(catkin REQUIRED COMPONENTS %s)\n'
+                                     'message(STATUS "probe flags=[${CMAKE_CXX_FLAGS}]")\n' % components)
+    assert code == 0, out
+    assert 'probe flags=[%s]' % flags in out, out
