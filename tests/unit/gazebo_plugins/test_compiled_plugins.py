@@ -413,7 +413,8 @@ def test_a_model_plugin_in_a_sensor_is_refused_and_a_camera_plugin_is_not_hosted
     camera = probe().replace('type="ray"', 'type="camera"')
     sensor_world.spawn('spinner', camera, '/', (0.0, 0.0, 0.1))
     warnings = sensor_world.warnings('libscan_probe.so')
-    assert len(warnings) == 1 and 'racebot hosts the compiled plugins of ray, gpu_ray, imu, contact sensors only' in warnings[0]
+    assert len(warnings) == 1
+    assert 'racebot hosts the compiled plugins of ray, gpu_ray, imu, contact sensors only' in warnings[0]
 
 
 # -- compiled IMU sensor plugins (imu_probe.cc: a SensorPlugin on an ImuSensor) ----------------------------------
