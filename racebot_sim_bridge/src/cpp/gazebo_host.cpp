@@ -31,6 +31,8 @@
 #include <gazebo/common/Plugin.hh>
 #include <gazebo/physics/physics.hh>
 #include <gazebo/racebot/Engine.hh>
+#include <gazebo/rendering/Camera.hh>
+#include <gazebo/sensors/CameraSensor.hh>
 #include <gazebo/sensors/ContactSensor.hh>
 #include <gazebo/sensors/GpuRaySensor.hh>
 #include <gazebo/sensors/ImuSensor.hh>
@@ -346,7 +348,7 @@ public:
     return this->LoadPlugin(_kind, _path, _filename, _name, _model, _xml, 0);
   }
 
-  // Loads a sensor plugin of the sensor `_sensor` (an AddRaySensor, AddImuSensor or AddContactSensor id), as Load loads a model's: Load(sensor,
+  // Loads a sensor plugin of the sensor `_sensor` (an Add*Sensor id), as Load loads a model's: Load(sensor,
   // <plugin> element), Init().
   int LoadSensorPlugin(int _sensor, const std::string &_path, const std::string &_filename, const std::string &_name,
                        const std::string &_xml)
@@ -410,6 +412,60 @@ public:
     const int id = ++this->lastSensorId;
     this->sensors[id] = std::make_shared<gazebo::sensors::ContactSensor>(description, _collisions);
     return id;
+  }
+
+  // A <sensor type="camera"> of model `_model`'s link `_link` for compiled sensor plugins: its id. `_camera`:
+  // (width, height, format, horizontal fov, near clip, far clip); `_distortion`: (k1, k2, k3, p1, p2, cx, cy), or
+  // empty for none.
+  int AddCameraSensor(const std::string &_name, const std::string &_model, const std::string &_link,
+                      const PoseT &_pose, double _updateRate, bool _alwaysOn, bool _visualize,
+                      const std::tuple<unsigned int, unsigned int, std::string, double, double, double> &_camera,
+                      const std::vector<double> &_distortion)
+  {
+    const auto description =
+        this->Describe("camera", _name, _model, _link, _pose, _updateRate, _alwaysOn, _visualize);
+    gazebo::rendering::DistortionPtr distortion;
+    if (_distortion.size() == 7)
+      distortion = std::make_shared<gazebo::rendering::Distortion>(
+          _distortion[0], _distortion[1], _distortion[2], _distortion[3], _distortion[4],
+          ignition::math::Vector2d(_distortion[5], _distortion[6]));
+    auto camera = std::make_shared<gazebo::rendering::Camera>(
+        _name, this->world->Name() + "::" + description.parentName + "::" + _name, std::get<0>(_camera),
+        std::get<1>(_camera), std::get<2>(_camera), std::get<3>(_camera), std::get<4>(_camera), std::get<5>(_camera),
+        distortion);
+    const int id = ++this->lastSensorId;
+    this->sensors[id] = std::make_shared<gazebo::sensors::CameraSensor>(description, camera);
+    return id;
+  }
+
+  // A camera's (width, height, format, horizontal fov, render rate) now: a plugin may have changed the fov or rate
+  std::tuple<unsigned int, unsigned int, std::string, double> CameraState(int _sensor)
+  {
+    auto sensor = std::dynamic_pointer_cast<gazebo::sensors::CameraSensor>(this->sensors.at(_sensor));
+    if (!sensor)
+      throw std::runtime_error("sensor " + std::to_string(_sensor) + " is not a camera sensor");
+    auto camera = sensor->Camera();
+    return std::make_tuple(camera->ImageWidth(), camera->ImageHeight(), camera->ImageFormat(),
+                           camera->HFOV().Radian());
+  }
+
+  // One frame of a camera at sim time `_time` (CameraSensor::Measure), `_data` ImageByteSize() bytes in its format.
+  void MeasureCamera(int _sensor, double _time, const PoseT &_worldPose, const py::bytes &_data)
+  {
+    auto sensor = std::dynamic_pointer_cast<gazebo::sensors::CameraSensor>(this->sensors.at(_sensor));
+    if (!sensor)
+      throw std::runtime_error("sensor " + std::to_string(_sensor) + " is not a camera sensor");
+    const std::string bytes = _data;
+    const unsigned int size = sensor->Camera()->ImageByteSize();
+    if (bytes.size() != size)
+      throw std::runtime_error("a frame of " + std::to_string(bytes.size()) + " bytes for a camera of " +
+                               std::to_string(size));
+    std::vector<unsigned char> frame(bytes.begin(), bytes.end());
+    {
+      py::gil_scoped_release unlocked;
+      sensor->Measure(gazebo::common::Time(_time), PoseOf(_worldPose), std::move(frame));
+    }
+    this->AfterEvents();
   }
 
   void RemoveSensor(int _sensor) { this->sensors.erase(_sensor); }
@@ -820,11 +876,16 @@ PYBIND11_MODULE(gazebo_host, m)
          py::arg("update_rate"), py::arg("always_on"), py::arg("visualize"))
     .def("add_contact_sensor", &Host::AddContactSensor, py::arg("name"), py::arg("model"), py::arg("link"),
          py::arg("pose"), py::arg("update_rate"), py::arg("always_on"), py::arg("visualize"), py::arg("collisions"))
+    .def("add_camera_sensor", &Host::AddCameraSensor, py::arg("name"), py::arg("model"), py::arg("link"),
+         py::arg("pose"), py::arg("update_rate"), py::arg("always_on"), py::arg("visualize"), py::arg("camera"),
+         py::arg("distortion"))
+    .def("camera_state", &Host::CameraState)
     .def("remove_sensor", &Host::RemoveSensor)
     .def("sensor_state", &Host::SensorState)
     .def("measure_ray", &Host::MeasureRay)  // these release it themselves, around the plugins' callbacks
     .def("measure_imu", &Host::MeasureImu)
     .def("measure_contacts", &Host::MeasureContacts)
+    .def("measure_camera", &Host::MeasureCamera)
     .def("update_begin", &Host::UpdateBegin)  // these release it themselves, around the events
     .def("update_end", &Host::UpdateEnd)
     .def("idle", &Host::Idle)

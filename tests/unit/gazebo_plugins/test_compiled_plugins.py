@@ -404,17 +404,17 @@ def test_a_sensor_plugin_that_throws_in_its_subscriber_is_unloaded_and_the_world
     assert r.name in sensor_world.sim.robots
 
 
-def test_a_model_plugin_in_a_sensor_is_refused_and_a_camera_plugin_is_not_hosted(sensor_world):
+def test_a_model_plugin_in_a_sensor_is_refused_and_a_depth_cameras_plugin_is_not_hosted(sensor_world):
     urdf = probe().replace('libscan_probe.so', 'libjoint_driver.so')
     sensor_world.spawn('spinner', urdf, '/', (0.0, 0.0, 0.1))
     errors = sensor_world.errors('libjoint_driver.so')
     assert len(errors) == 1 and 'is not a sensor plugin' in errors[0], sensor_world.fake.logs
     sensor_world.sim.delete_model('spinner')
-    camera = probe().replace('type="ray"', 'type="camera"')
-    sensor_world.spawn('spinner', camera, '/', (0.0, 0.0, 0.1))
+    depth = probe().replace('type="ray"', 'type="depth"')
+    sensor_world.spawn('spinner', depth, '/', (0.0, 0.0, 0.1))
     warnings = sensor_world.warnings('libscan_probe.so')
     assert len(warnings) == 1
-    assert 'racebot hosts the compiled plugins of ray, gpu_ray, imu, contact sensors only' in warnings[0]
+    assert 'racebot hosts the compiled plugins of ray, gpu_ray, imu, contact, camera sensors only' in warnings[0]
 
 
 # -- compiled IMU sensor plugins (imu_probe.cc: a SensorPlugin on an ImuSensor) ----------------------------------
@@ -563,3 +563,73 @@ def test_a_contact_sensor_in_the_air_reads_no_contacts_and_a_transport_subscribe
     assert updates and all(int(f[7]) == 0 for f in updates), out
     messages = lines(out, 'ContactProbe msg ')
     assert len(messages) == len(updates) and messages[-1].endswith('contacts 0')
+
+
+# -- compiled camera sensor plugins (camera_probe.cc: a CameraPlugin) --------------------------------------------
+WALL = """<robot name="wall"><link name="wall"><inertial><mass value="50"/><inertia ixx="1" iyy="1" izz="1" ixy="0"
+ixz="0" iyz="0"/></inertial><visual><geometry><box size="0.5 4 0.9"/></geometry><material name="red"><color
+rgba="0.9 0.1 0.1 1"/></material></visual><collision><geometry><box size="0.5 4 0.9"/></geometry></collision></link>
+</robot>"""
+
+
+def camera_probe(image_format='R8G8B8', update_rate=10, distortion='', **params):
+    """The spinner with a camera 0.5 m above its base looking ahead, carrying camera_probe (a red wall 0.8 m ahead,
+    whose top edge crosses its image, fills the image's bottom row: camera_world)."""
+    body = ''.join('<%s>%s</%s>' % (k, v, k) for k, v in params.items())
+    return SPINNER % {'mass': ROTOR_MASS, 'izz': ROTOR_IZZ, 'effort': 3.0, 'velocity': 40.0, 'extra': (
+        '<gazebo reference="base_link"><sensor type="camera" name="probe_camera"><pose>0 0 0.5 0 0 0</pose>'
+        '<update_rate>%g</update_rate><camera><horizontal_fov>1.2</horizontal_fov><image><width>64</width>'
+        '<height>48</height><format>%s</format></image><clip><near>0.05</near><far>50</far></clip>%s</camera>'
+        '<plugin name="camera_probe" filename="libcamera_probe.so">%s</plugin></sensor></gazebo>'
+        % (update_rate, image_format, distortion, body))}
+
+
+def camera_frames(out):
+    return [line.split() for line in lines(out, 'CameraProbe frame ')]
+
+
+def test_a_camera_plugin_reads_its_cameras_image_and_gets_each_frame(sensor_world, capfd):
+    sensor_world.spawn('wall', WALL, '/', (1.05, 0.0, 0.45))
+    sensor_world.spawn('spinner', camera_probe(), '/', (0.0, 0.0, 0.1))
+    sensor_world.run(1.0)
+    out = capfd.readouterr().out
+    loaded = lines(out, 'CameraProbe loaded')
+    assert len(loaded) == 1, out
+    f = loaded[0].split()
+    # CameraProbe loaded NAME type T size WxH depth D format F hfov H vfov V clip N F bytes B active A topic X k1 K
+    assert f[2:12] == ['probe_camera', 'type', 'camera', 'size', '64x48', 'depth', '3', 'format', 'R8G8B8', 'hfov']
+    assert float(f[12]) == pytest.approx(1.2)
+    assert float(f[14]) == pytest.approx(2 * math.atan(math.tan(0.6) * 48 / 64), abs=1e-6)
+    assert f[16:18] == ['0.05', '50'] and f[19] == str(64 * 48 * 3) and f[21] == '1'  # CameraPlugin switches it on
+    assert f[23] == '~/spinner/base_link/probe_camera/image' and f[25] == '-1'  # no <distortion>
+    frames = camera_frames(out)
+    assert 9 <= len(frames) <= 11, out  # 10 Hz
+    g = frames[-1]
+    # CameraProbe frame N at T size WxH depth D format F top MEAN bottom MEAN same_data S
+    assert g[6:12] == ['64x48', 'depth', '3', 'format', 'R8G8B8', 'top'] and g[15:] == ['same_data', '1']
+    assert float(frames[1][4]) - float(frames[0][4]) == pytest.approx(0.1, abs=sensor_world.sim.step_size + 1e-9)
+    # rendered from the world: the red wall fills the bottom row, the background the top one; without the wall
+    # the bottom row sees the ground plane, the top one the same background
+    sensor_world.sim.delete_model('wall')
+    sensor_world.run(0.3)
+    h = camera_frames(capfd.readouterr().out)[-1]
+    assert abs(float(g[14]) - float(h[14])) > 10.0 and float(g[12]) == pytest.approx(float(h[12]), abs=1.0), (g, h)
+
+
+def test_a_mono_camera_gets_one_byte_a_pixel_and_a_plugins_set_hfov_is_rendered(sensor_world, capfd):
+    sensor_world.spawn('spinner', camera_probe('L8', hfov=0.6), '/', (0.0, 0.0, 0.1))
+    sensor_world.run(0.5)
+    out = capfd.readouterr().out
+    f = lines(out, 'CameraProbe loaded')[0].split()
+    assert f[7:9] == ['depth', '1'] and f[19] == str(64 * 48) and float(f[12]) == pytest.approx(0.6)
+    assert camera_frames(out)[-1][6:11] == ['64x48', 'depth', '1', 'format', 'L8']
+
+
+def test_a_cameras_distortion_is_read_and_a_camera_plugin_on_a_ray_sensor_is_refused(sensor_world, capfd):
+    distortion = '<distortion><k1>-0.25</k1><k2>0.12</k2><k3>0</k3><p1>0</p1><p2>0</p2></distortion>'
+    sensor_world.spawn('spinner', camera_probe(distortion=distortion), '/', (0.0, 0.0, 0.1))
+    assert lines(capfd.readouterr().out, 'CameraProbe loaded')[0].split()[25] == '-0.25'
+    sensor_world.sim.delete_model('spinner')
+    sensor_world.spawn('spinner', probe().replace('libscan_probe.so', 'libcamera_probe.so'), '/', (0.0, 0.0, 0.1))
+    errors = sensor_world.errors('libcamera_probe.so')
+    assert len(errors) == 1 and 'CameraPlugin requires a CameraSensor as its parent' in errors[0], errors

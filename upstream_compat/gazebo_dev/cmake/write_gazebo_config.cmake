@@ -62,8 +62,8 @@ target_compile_options(gazebo PRIVATE -O2)  # as Gazebo's own libraries are buil
 set_target_properties(gazebo PROPERTIES LIBRARY_OUTPUT_DIRECTORY ${CATKIN_DEVEL_PREFIX}/lib)
 install(TARGETS gazebo LIBRARY DESTINATION lib)
 # Gazebo's plugin base classes a sensor plugin links by name (target_link_libraries(x ... RayPlugin), found in
-# GAZEBO_LIBRARY_DIRS): libRayPlugin and libGpuRayPlugin beside libgazebo.
-foreach(_racebot_base RayPlugin GpuRayPlugin)
+# GAZEBO_LIBRARY_DIRS): libRayPlugin, libGpuRayPlugin and libCameraPlugin beside libgazebo.
+foreach(_racebot_base RayPlugin GpuRayPlugin CameraPlugin)
   add_library(${_racebot_base} SHARED ${CMAKE_CURRENT_LIST_DIR}/../src/plugins/${_racebot_base}.cc)
   target_link_libraries(${_racebot_base} PUBLIC gazebo)
   target_compile_options(${_racebot_base} PRIVATE -O2)

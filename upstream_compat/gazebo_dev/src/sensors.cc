@@ -14,6 +14,7 @@
 #include "gazebo/physics/Model.hh"
 #include "gazebo/physics/MultiRayShape.hh"
 #include "gazebo/physics/World.hh"
+#include "gazebo/sensors/CameraSensor.hh"
 #include "gazebo/sensors/ContactSensor.hh"
 #include "gazebo/sensors/GpuRaySensor.hh"
 #include "gazebo/sensors/ImuSensor.hh"
@@ -452,6 +453,31 @@ void ContactSensor::Measure(const common::Time &_time, std::vector<msgs::Contact
   }
   if (copy)
     transport::racebot::Deliver<msgs::Contacts>(this->topic, copy);
+  this->Measured(_time);
+}
+
+CameraSensor::CameraSensor(const Description &_description, rendering::CameraPtr _camera)
+  : Sensor(_description, IMAGE), camera(std::move(_camera))
+{
+}
+
+std::string CameraSensor::Topic() const { return racebot::SensorTopic(this->ParentName(), this->Name(), "image"); }
+
+bool CameraSensor::Rendered() const
+{
+  std::lock_guard<std::mutex> lock(this->mutex);
+  return this->rendered;
+}
+
+void CameraSensor::Measure(const common::Time &_time, const ignition::math::Pose3d &_worldPose,
+                           std::vector<unsigned char> _data)
+{
+  {
+    std::lock_guard<std::mutex> lock(this->mutex);
+    this->rendered = true;
+    this->lastMeasurementTime = _time;  // what OnNewFrame reads (gazebo_ros_camera stamps with it)
+  }
+  this->camera->Frame(_worldPose, std::move(_data));
   this->Measured(_time);
 }
 }  // namespace sensors

@@ -16,6 +16,7 @@ import os
 import sys
 import xml.etree.ElementTree as ET
 
+from racebot_sim_bridge.description import urdf_model
 from racebot_sim_bridge.gazebo_plugins.gazebo_ros_ft_sensor import wrench_at_link_origin
 from racebot_sim_bridge.supported_table import WHERE as SUPPORTED_TABLE
 
@@ -300,12 +301,13 @@ class CompiledPlugins:
 
     def load_sensor(self, manager, robot, spec, plugins, fallbacks=()):
         """Hosts the compiled `plugins` (GazeboPlugin specs whose library find_library found) of the <sensor> `spec`
-        (a ray, gpu_ray, imu or contact sensor, compiled_sensors.HOSTED_TYPES) of `robot`: a C++ sensor, and each plugin
-        loaded on it. Returns (the CompiledSensor for `manager` to step, or None when no plugin loaded; the plugins
-        that loaded). `fallbacks`: the filenames racebot also simulates (its class runs when this one fails)."""
-        from racebot_sim_bridge.gazebo_plugins.compiled_sensors import (CompiledContactSensor, CompiledImuSensor,
-                                                                        CompiledRaySensor, CompiledSensor,
-                                                                        ray_geometry)
+        (a ray, gpu_ray, imu, contact or camera sensor, compiled_sensors.HOSTED_TYPES) of `robot`: a C++ sensor,
+        and each plugin loaded on it. Returns (the CompiledSensor for `manager` to step, or None when no plugin
+        loaded; the plugins that loaded). `fallbacks`: the filenames racebot also simulates (its class runs when
+        this one fails)."""
+        from racebot_sim_bridge.gazebo_plugins.compiled_sensors import (CompiledCameraSensor, CompiledContactSensor,
+                                                                        CompiledImuSensor, CompiledRaySensor,
+                                                                        CompiledSensor, camera_geometry, ray_geometry)
         where = "%s: sensor '%s'" % (robot.name, spec.name)
         if not self._ensure_host():
             self.rospy.logerr('%s: %s. It runs without its compiled plugins' % (where, self.unavailable))
@@ -321,6 +323,9 @@ class CompiledPlugins:
                 sensor_id = self.host.add_imu_sensor(*common)
             except RuntimeError as err:  # Gazebo's "IMU has invalid parent"
                 raise ValueError(str(err)) from None
+        elif spec.type == 'camera':
+            kind = CompiledCameraSensor
+            sensor_id = self.host.add_camera_sensor(*common, *camera_geometry(spec.camera or urdf_model.CameraSpec()))
         elif spec.type == 'contact':
             kind = CompiledContactSensor
             sensor_id = self.host.add_contact_sensor(*common, list(spec.contact_collisions))

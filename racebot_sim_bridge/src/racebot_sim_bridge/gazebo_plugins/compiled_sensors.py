@@ -26,24 +26,34 @@ the contacts of its <contact><collision>s are read after every physics step (../
 contact.py, as gazebo_ros_bumper.py reads them), as Gazebo's contact manager hands the sensor one message a step;
 each update hands the C++ sensor every contact of the steps since the last one (at most 100 steps, Gazebo's limit).
 The first update after it became active has no steps yet and does nothing, as in Gazebo.
+
+A <sensor type="camera"> gets a sensors::CameraSensor with its rendering::Camera (CompiledCameraSensor): at its
+update rate while it is active (CameraPlugin's Load switches it on), a frame is rendered in the physics thread with
+the TinyRenderer from the world as the step left it (../sensors/render.py's CameraFrames: the ground planes drawn,
+the <noise> added), at the camera's size and horizontal field of view now (a plugin may SetHFOV), converted into
+its <image><format> (../sensors/messages.py's image_data) and handed over: the camera's new-frame event
+(CameraPlugin::OnNewFrame), then the sensor's updated event.
 """
 import collections
 
 import numpy as np
 
-from racebot_sim_bridge.description.urdf_model import ImuSpec
+from racebot_sim_bridge.description.urdf_model import CameraSpec, ImuSpec
+from racebot_sim_bridge.sensors.camera import PinholeCamera
 from racebot_sim_bridge.sensors.contact import group_contacts, urdf_collision_shapes
 from racebot_sim_bridge.sensors.contact_points import CollisionKinds, CollisionNames, link_com, read_contacts
 from racebot_sim_bridge.sensors.imu_reading import ImuKinematics, quaternion_to_matrix
+from racebot_sim_bridge.sensors.messages import IMAGE_ENCODINGS, image_data
 from racebot_sim_bridge.sensors.mount import SensorMount
 from racebot_sim_bridge.sensors.noise import AxisNoise, make_noise
 from racebot_sim_bridge.sensors.ray import ScanGeometry
 from racebot_sim_bridge.sensors.ray_shape import RayShape
 from racebot_sim_bridge.sensors.raycast import cast_with_retro
+from racebot_sim_bridge.sensors.render import TINY, CameraFrames
 from racebot_sim_bridge.sensors.schedule import RateMeter, UpdateSchedule
 
 # the <sensor> types whose compiled plugins racebot hosts
-HOSTED_TYPES = ('ray', 'gpu_ray', 'imu', 'contact')
+HOSTED_TYPES = ('ray', 'gpu_ray', 'imu', 'contact', 'camera')
 CONTACT_STEPS_KEPT = 100  # Gazebo's ContactSensor keeps the last 100 contact messages (steps) between updates
 
 
@@ -238,3 +248,38 @@ class CompiledContactSensor(CompiledSensor):
         com, orientation = link_com(world.client, self.body_id, index)
         return [(g.collision1, g.collision2, time, g.positions, g.normals, g.depths, g.forces, g.torques)
                 for g in group_contacts(points, com, orientation)]
+
+
+def camera_geometry(camera):
+    """A urdf_model.CameraSpec as gazebo_host.add_camera_sensor takes it: (width, height, format, hfov, near, far),
+    and the distortion (k1, k2, k3, p1, p2, cx, cy; Gazebo's default centre 0.5 0.5), empty when it has none."""
+    distortion = [float(v) for v in camera.distortion]
+    return ((int(camera.width), int(camera.height), camera.format, float(camera.horizontal_fov),
+             float(camera.clip_near), float(camera.clip_far)), distortion + [0.5, 0.5] if any(distortion) else [])
+
+
+class CompiledCameraSensor(CompiledSensor):
+    """A camera sensor whose plugins are compiled: a frame rendered here at each update (module doc)."""
+    topic_leaf = 'image'
+
+    def __init__(self, manager, robot, spec, mount, host, sensor_id, plugin_ids, unload, rng=None):
+        super().__init__(manager, robot, spec, mount, host, sensor_id, plugin_ids, unload)
+        self.camera_spec = spec.camera if spec.camera is not None else CameraSpec()
+        cam = self.camera_spec
+        self.noise = make_noise(cam.noise_type, cam.noise_mean, cam.noise_stddev, manager.noise_enabled, rng=rng)
+        self.frames = None
+        self.geometry = None
+
+    def measure(self, time):
+        width, height, image_format, hfov = self.host.camera_state(self.sensor_id)
+        if self.geometry != (width, height, hfov):  # the first frame, or a plugin's SetHFOV
+            self.geometry = (width, height, hfov)
+            cam = self.camera_spec
+            self.frames = CameraFrames(PinholeCamera(width, height, hfov, cam.clip_near, cam.clip_far), self.noise)
+        position, orientation = self.mount.pose()
+        rgb, _ = self.frames.make(self.sim.world, TINY, self.manager.scene_colours().planes, position,
+                                  quaternion_to_matrix(orientation), want_depth=False)
+        _, pixels = image_data(rgb, IMAGE_ENCODINGS.get(image_format, 'rgb8'))
+        pose = tuple(float(v) for v in position) + tuple(float(v) for v in orientation)
+        self.host.measure_camera(self.sensor_id, time, pose, pixels.tobytes())
+        self.meter.tick()

@@ -100,8 +100,17 @@ def image_encoding(image_format):
 
 
 def rgb_image(stamp, frame_id, rgb, encoding='rgb8'):
-    """An image of a rendered RGB frame (height x width x 3 uint8) in `encoding` (image_encoding()): mono by
-    ITU-R 601 luminance, 16-bit channels as value * 257 (full scale to full scale), Bayer as the mosaic."""
+    """An image of a rendered RGB frame (height x width x 3 uint8) in `encoding` (image_encoding()): image_data's."""
+    encoding, data = image_data(rgb, encoding)
+    height, width = data.shape[:2]
+    return FastImage(header=header(stamp, frame_id), height=height, width=width, encoding=encoding, is_bigendian=0,
+                     step=data.nbytes // height, data=data.tobytes())
+
+
+def image_data(rgb, encoding='rgb8'):
+    """(encoding, pixels) of a rendered RGB frame (height x width x 3 uint8) in `encoding` (image_encoding()), C
+    order, little-endian: mono by ITU-R 601 luminance, 16-bit channels as value * 257 (full scale to full scale),
+    Bayer as the mosaic; an encoding not listed is rgb8."""
     rgb = np.ascontiguousarray(rgb, dtype=np.uint8)
     height, width = rgb.shape[:2]
     if encoding == 'bgr8':
@@ -118,9 +127,7 @@ def rgb_image(stamp, frame_id, rgb, encoding='rgb8'):
             data[k // 2::2, k % 2::2] = rgb[k // 2::2, k % 2::2, 'RGB'.index(colour)]
     else:
         encoding, data = 'rgb8', rgb
-    data = np.ascontiguousarray(data)
-    return FastImage(header=header(stamp, frame_id), height=height, width=width, encoding=encoding, is_bigendian=0,
-                     step=data.nbytes // height, data=data.tobytes())
+    return encoding, np.ascontiguousarray(data)
 
 
 def depth_image(stamp, frame_id, depth, millimetres=False):

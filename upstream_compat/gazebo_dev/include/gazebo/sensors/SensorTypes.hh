@@ -1,5 +1,5 @@
 // racebot's Gazebo 11 plugin API (upstream_compat/gazebo_dev): the sensor pointer types (std::shared_ptr, as Gazebo
-// 11's) and categories. What racebot hosts: Sensor.hh, RaySensor.hh, GpuRaySensor.hh, ImuSensor.hh, ContactSensor.hh (docs/SUPPORTED.md).
+// 11's) and categories. What racebot hosts: Sensor.hh, RaySensor.hh, GpuRaySensor.hh, ImuSensor.hh, ContactSensor.hh, CameraSensor.hh (docs/SUPPORTED.md).
 #ifndef GAZEBO_SENSORS_SENSORTYPES_HH_
 #define GAZEBO_SENSORS_SENSORTYPES_HH_
 

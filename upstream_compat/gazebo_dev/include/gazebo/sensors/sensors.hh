@@ -3,6 +3,7 @@
 #ifndef GAZEBO_SENSORS_SENSORS_HH_
 #define GAZEBO_SENSORS_SENSORS_HH_
 
+#include "gazebo/sensors/CameraSensor.hh"
 #include "gazebo/sensors/ContactSensor.hh"
 #include "gazebo/sensors/GpuRaySensor.hh"
 #include "gazebo/sensors/ImuSensor.hh"

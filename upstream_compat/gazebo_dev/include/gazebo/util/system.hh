@@ -6,6 +6,7 @@
 #define GZ_COMMON_VISIBLE __attribute__((visibility("default")))
 #define GZ_PHYSICS_VISIBLE __attribute__((visibility("default")))
 #define GZ_SENSORS_VISIBLE __attribute__((visibility("default")))
+#define GZ_RENDERING_VISIBLE __attribute__((visibility("default")))
 #define GZ_UTIL_VISIBLE __attribute__((visibility("default")))
 #define GAZEBO_VISIBLE __attribute__((visibility("default")))
 #define GAZEBO_DEPRECATED(version) __attribute__((deprecated))
