@@ -49,8 +49,8 @@ PLUGIN = {'src/plugin.cc': ('#include <ros/ros.h>\n  #  include "gazebo/physics/
 # a ray sensor plugin's, all in it
 RAY_PLUGIN = {'src/plugin.cc': ('#include <gazebo/plugins/RayPlugin.hh>\n#include <gazebo/sensors/RaySensor.hh>\n'
                                 '#include <gazebo/transport/Node.hh>\n#include <gazebo/msgs/MessageTypes.hh>\n')}
-# a camera plugin's: gazebo/sensors/CameraSensor.hh is not in it
-SENSOR_PLUGIN = {'src/plugin.cc': '#include <gazebo/gazebo.hh>\n  #  include "gazebo/sensors/CameraSensor.hh"\n'}
+# a depth camera plugin's: gazebo/sensors/DepthCameraSensor.hh is not in it
+SENSOR_PLUGIN = {'src/plugin.cc': '#include <gazebo/gazebo.hh>\n  #  include "gazebo/sensors/DepthCameraSensor.hh"\n'}
 
 
 def flat(text):
@@ -97,7 +97,7 @@ def test_a_plugin_including_a_header_the_api_lacks_is_refused_naming_the_package
     assert code != 0, out
     out = flat(out)
     assert ("racebot: package 'my_gazebo_plugins' includes a Gazebo header that racebot's Gazebo plugin API does "
-            'not have (src/plugin.cc: # include "gazebo/sensors/CameraSensor.hh")') in out
+            'not have (src/plugin.cc: # include "gazebo/sensors/DepthCameraSensor.hh")') in out
     assert 'docs/SUPPORTED.md' in out
     assert 'catkin_make -DCATKIN_BLACKLIST_PACKAGES="my_gazebo_plugins"' in out
 
@@ -115,9 +115,9 @@ def test_an_include_in_a_branch_gazebo_11_does_not_take_is_not_refused(tmp_path)
 
 
 def test_an_include_under_a_condition_it_cannot_evaluate_is_refused(tmp_path):
-    sources = {'src/plugin.cc': '#ifdef WITH_CAMERA\n#include <gazebo/sensors/CameraSensor.hh>\n#endif\n'}
+    sources = {'src/plugin.cc': '#ifdef WITH_CAMERA\n#include <gazebo/sensors/DepthCameraSensor.hh>\n#endif\n'}
     code, out, _ = project(tmp_path, 'find_package(gazebo REQUIRED)\n', sources)
-    assert code != 0 and 'gazebo/sensors/CameraSensor.hh' in flat(out), out
+    assert code != 0 and 'gazebo/sensors/DepthCameraSensor.hh' in flat(out), out
 
 
 def test_without_required_a_plugin_package_gets_gazebo_not_found(tmp_path):
