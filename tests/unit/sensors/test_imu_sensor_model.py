@@ -1,6 +1,6 @@
-"""The IMU as Gazebo's ImuSensor and gazebo_ros_imu_sensor make it (row i of issue 17's audit): the
-acceleration over the physics step that ends at an update (instantaneous to within a step, not a mean over
-the update period), per-axis noise with a bias drawn once, and initialOrientationAsReference. No ROS."""
+"""The IMU as Gazebo's ImuSensor and gazebo_ros_imu_sensor make it: the acceleration differenced from the velocity
+last recorded (the previous measurement, or a `prime`), per-axis noise with a bias drawn once, and
+initialOrientationAsReference. No ROS."""
 import math
 
 import numpy as np
@@ -14,7 +14,7 @@ G = (0.0, 0.0, -9.8)
 LEVEL = (0.0, 0.0, 0.0, 1.0)
 
 
-def test_acceleration_is_over_the_step_before_the_update_not_the_period():
+def test_acceleration_is_the_velocitys_change_since_the_velocity_last_recorded():
     imu = ImuKinematics(G)
     imu.prime(0.0, (0.0, 0.0, 0.0))
     assert imu.measure(0.5, LEVEL, (0.0, 0.0, 0.0), (0, 0, 0)) is not None  # at rest for half a second

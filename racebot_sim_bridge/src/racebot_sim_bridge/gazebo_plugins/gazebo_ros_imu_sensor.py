@@ -6,6 +6,10 @@ Parameters as its Load(): robotNamespace (none: /<model>/, plugin_namespace.py),
 (written as it is into the header; without one it stops, "missing <frameName>, cannot proceed": refused),
 updateRateHZ (1: throttles the sensor's <update_rate> down to it), gaussianNoise (0), rpyOffset (0 0 0),
 initialOrientationAsReference (false).
+
+As in Gazebo, the sensor measures at its own <update_rate> whether or not anybody listens (the plugin's Load
+switches it on), each measurement's acceleration the velocity's change since the previous one (ImuSensor::UpdateImpl);
+the plugin publishes the latest at its updateRateHZ.
 """
 import numpy as np
 from sensor_msgs.msg import Imu
@@ -16,13 +20,14 @@ from racebot_sim_bridge.sensors import messages as msgs
 from racebot_sim_bridge.sensors.config_types import SensorConfigError, join_topic
 from racebot_sim_bridge.sensors.imu_reading import ImuKinematics
 from racebot_sim_bridge.sensors.noise import AxisNoise, make_noise
+from racebot_sim_bridge.sensors.schedule import FrameThrottle, UpdateSchedule
 
 
 class ImuSensor(Sensor, libraries=('libgazebo_ros_imu_sensor.so',), sensor_types=('imu',),
                 kind=SensorKind.IMU, main_topic='imu'):
     """gazebo_ros_imu_sensor on Gazebo's ImuSensor: per-axis noise with bias (<imu><angular_velocity><x>...),
     the plugin's gaussianNoise on every field, rpyOffset, initialOrientationAsReference, and the acceleration
-    over the physics step that ends at each update (the velocity is recorded one step before: wake_time)."""
+    differenced since the previous measurement at the sensor's rate (the module's doc)."""
 
     @classmethod
     def load(cls, config, sdf):
@@ -34,7 +39,9 @@ class ImuSensor(Sensor, libraries=('libgazebo_ros_imu_sensor.so',), sensor_types
                                     'publishes nothing; add <frameName>LINK</frameName> to the plugin' % what)
         config.frame_id = params.get('frameName')
         config.topics['imu'] = join_topic(sdf.namespace(cls.kind), params.get('topicName') or 'imu_data')
-        config.rate = _throttled(config.rate, sdf.number('updateRateHZ', 1.0))
+        config.params['sensor_rate'] = config.rate
+        config.params['publish_rate'] = sdf.number('updateRateHZ', 1.0)
+        config.rate = _throttled(config.rate, config.params['publish_rate'])
         config.params['gaussian_noise'] = sdf.number('gaussianNoise', 0.0)
         config.params['initial_orientation_as_reference'] = \
             (params.get('initialOrientationAsReference') or '').strip().lower() in ('true', '1')
@@ -58,28 +65,15 @@ class ImuSensor(Sensor, libraries=('libgazebo_ros_imu_sensor.so',), sensor_types
         self.plugin_noise = make_noise('gaussian', 0.0, self.plugin_stddev, enabled)
         self.offset = rpy_to_quaternion(*config.params['rpy_offset'])
         self.advertise('imu', Imu, 10)
-
-    def wake_time(self):
-        # The step before an update primes the velocity, while somebody listens; unheard, only the update
-        # (which resets the kinematics: the first update heard again primes the next).
-        if self.listened():
-            return self.schedule.next - self.sim.step_size
-        return self.schedule.next
-
-    def step(self, time):
-        if not self.schedule.due(time):
-            if time >= self.schedule.next - self.sim.step_size - 1e-9 and self.listened():
-                self.kinematics.prime(time, self.mount.motion()[2])
-            return
-        super().step(time)
+        # the sensor's measurements (Gazebo's ImuSensor, its rate), the plugin's publishing throttled on them
+        self.schedule = UpdateSchedule(config.params.get('sensor_rate', config.rate), start=self.sim.time)
+        self.throttle = FrameThrottle(config.params.get('publish_rate', 0.0))
+        self.kinematics.prime(self.sim.time, self.mount.motion()[2])  # Gazebo's Load records the velocity
 
     def update(self, time, stamp):
-        if not self.listened():
-            self.kinematics.reset()  # a silence: the next update after it has no velocity to start from
-            return
         _, orientation, velocity, omega = self.mount.motion()
         m = self.kinematics.measure(time, orientation, velocity, omega)
-        if m is None:
+        if m is None or not self.throttle.passes(time) or not self.listened():
             return
         q = np.asarray(quaternion_multiply(self.offset, m.orientation))  # the plugin's rpyOffset
         gyro, accel = m.angular_velocity, m.linear_acceleration

@@ -2,11 +2,10 @@
 
 Pure numpy: no rospy, no pybullet. As gazebo/sensors/ImuSensor does it:
 - angular velocity: the carrying link's world angular velocity, in the sensor frame;
-- linear acceleration: the sensor point's world acceleration minus gravity, in the sensor frame
-  (a sensor at rest reads +|g| along its up axis, as an accelerometer does). PyBullet reports
-  velocities, not accelerations: the acceleration at an update is the change of velocity over the
-  physics step that ends there (the sensor records the velocity one step before each update it
-  makes: `prime`), Gazebo's instantaneous value to within one step;
+- linear acceleration: the change of the sensor point's world velocity since the previous measurement over
+  the time between them, minus gravity, in the sensor frame (a sensor at rest reads +|g| along its up axis, as
+  an accelerometer does), as Gazebo's ImuSensor::UpdateImpl differences it (`prime` records a velocity without a
+  measurement: the one Gazebo's Load records);
 - orientation: the sensor frame's orientation in the world frame (ENU, REP 145: a level IMU facing
   east reads identity), or with gazebo_ros_imu_sensor's initialOrientationAsReference relative to
   the orientation the sensor had when it was made (`reference`).
