@@ -9,8 +9,8 @@ Pure numpy: no rospy, no pybullet. As gazebo/sensors/ImuSensor does it:
 - orientation: the sensor frame's orientation in the world frame (ENU, REP 145: a level IMU facing
   east reads identity), or with gazebo_ros_imu_sensor's initialOrientationAsReference relative to
   the orientation the sensor had when it was made (`reference`).
-An update with no velocity recorded one step before (the first after a subscriber came, or a reset)
-returns None rather than invent an acceleration.
+An update with no velocity recorded before it (none primed, or after reset()) returns None rather than invent an
+acceleration.
 """
 import numpy as np
 
