@@ -133,9 +133,10 @@ def test_bumper_free_then_pushed_into_the_box(world):
     assert free[-1].header.frame_id == 'bumper_link'
     push_into_the_box(sim, robot)
     m = fake.publishers['/bumper'].messages[-1]
+    # as Gazebo's ContactSensor: a state per step since the last update (the sensor's 50 Hz: 20 steps of 1 ms)
     pairs = [(s.collision1_name, s.collision2_name) for s in m.states]
-    assert pairs == [(BUMPER, 'obstacle::link::collision')]
-    s = m.states[0]
+    assert pairs == [(BUMPER, 'obstacle::link::collision')] * 20
+    s = m.states[-1]
     assert all(n.x < -0.99 for n in s.contact_normals)               # out of the box, into the bumper
     assert all(abs(p.x - BOX_FACE) < 0.01 for p in s.contact_positions)
     assert all(d >= 0.0 for d in s.depths) and len(s.wrenches) == len(s.depths)

@@ -40,8 +40,8 @@ import numpy as np
 
 from racebot_sim_bridge.description.urdf_model import CameraSpec, ImuSpec
 from racebot_sim_bridge.sensors.camera import PinholeCamera
-from racebot_sim_bridge.sensors.contact import group_contacts, urdf_collision_shapes
-from racebot_sim_bridge.sensors.contact_points import CollisionKinds, CollisionNames, link_com, read_contacts
+from racebot_sim_bridge.sensors.contact import urdf_collision_shapes
+from racebot_sim_bridge.sensors.contact_points import CONTACT_STEPS_KEPT, LinkContacts
 from racebot_sim_bridge.sensors.imu_reading import ImuKinematics, quaternion_to_matrix
 from racebot_sim_bridge.sensors.messages import IMAGE_ENCODINGS, image_data
 from racebot_sim_bridge.sensors.mount import SensorMount
@@ -54,7 +54,6 @@ from racebot_sim_bridge.sensors.schedule import RateMeter, UpdateSchedule
 
 # the <sensor> types whose compiled plugins racebot hosts
 HOSTED_TYPES = ('ray', 'gpu_ray', 'imu', 'contact', 'camera')
-CONTACT_STEPS_KEPT = 100  # Gazebo's ContactSensor keeps the last 100 contact messages (steps) between updates
 
 
 def ray_geometry(ray):
@@ -195,14 +194,9 @@ class CompiledContactSensor(CompiledSensor):
 
     def __init__(self, manager, robot, spec, mount, host, sensor_id, plugin_ids, unload, rng=None):
         super().__init__(manager, robot, spec, mount, host, sensor_id, plugin_ids, unload)
-        world = self.sim.world
-        self.body_id = robot.body.id
-        self.model_name = robot.name
-        self.shapes = urdf_collision_shapes(robot.model, mount.link)
-        self.wanted = set(spec.contact_collisions)
-        self.names = CollisionNames(world)
-        self.kinds = CollisionKinds(world.client)
-        self.bodies_seen = None
+        self.contacts = LinkContacts(self.sim.world, robot.body.id, mount.index,
+                                     urdf_collision_shapes(robot.model, mount.link), robot.name, mount.link,
+                                     spec.contact_collisions)
         self.steps = collections.deque(maxlen=CONTACT_STEPS_KEPT)  # per step since the last update: its contacts
         self.collecting = False  # active at an update: every step's contacts are read from then on
         self.next_wake = self.schedule.next
@@ -234,20 +228,8 @@ class CompiledContactSensor(CompiledSensor):
 
     def _contacts(self, time):
         """This step's contacts of the sensor's collisions, as measure_contacts takes them."""
-        world = self.sim.world
-        bodies = tuple(id(b) for b in world.bodies.values())
-        if bodies != self.bodies_seen:  # a body came or went: PyBullet ids may have been reused
-            self.names.forget()
-            self.kinds.forget()
-            self.bodies_seen = bodies
-        index = self.mount.index
-        points = read_contacts(world, self.names, self.body_id, index, self.shapes, self.model_name, self.mount.link,
-                               self.wanted, self.kinds)
-        if not points:
-            return []
-        com, orientation = link_com(world.client, self.body_id, index)
         return [(g.collision1, g.collision2, time, g.positions, g.normals, g.depths, g.forces, g.torques)
-                for g in group_contacts(points, com, orientation)]
+                for g in self.contacts.read()]
 
 
 def camera_geometry(camera):

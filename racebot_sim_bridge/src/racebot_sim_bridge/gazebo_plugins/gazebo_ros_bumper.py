@@ -4,20 +4,26 @@ collision names, contact groups and wrenches: ../sensors/contact.py; PyBullet's 
 Parameters as its Load(): robotNamespace (text + '/'; none: the node's namespace), bumperTopicName
 (bumper_states), frameName (world) resolved with the tf_prefix parameter of its namespace. The contact sensor must
 name one of its link's collisions (<contact><collision>), else it is refused.
+
+As Gazebo's ContactSensor, each update holds the contacts of every physics step since the previous update (at
+most the last 100), read while somebody listens (Gazebo reads them from the plugin's Load on: the first message
+after a subscriber came holds only the steps since then).
 """
+import collections
+
 from gazebo_msgs.msg import ContactsState
 
 from racebot_sim_bridge.gazebo_plugins.sensor_plugin import Sensor, SensorKind
 from racebot_sim_bridge.sensors import messages as msgs
 from racebot_sim_bridge.sensors.config_types import SensorConfigError, join_topic, set_frame
-from racebot_sim_bridge.sensors.contact import group_contacts, urdf_collision_shapes
-from racebot_sim_bridge.sensors.contact_points import CollisionKinds, CollisionNames, link_com, read_contacts
+from racebot_sim_bridge.sensors.contact import urdf_collision_shapes
+from racebot_sim_bridge.sensors.contact_points import CONTACT_STEPS_KEPT, LinkContacts
 
 
 class BumperSensor(Sensor, libraries=('libgazebo_ros_bumper.so',), sensor_types=('contact',),
                    kind=SensorKind.BUMPER, main_topic='bumper'):
-    """gazebo_ros_bumper: the contacts of the sensor's <contact><collision>s as
-    gazebo_msgs/ContactsState, every sensor update (an empty list when nothing touches)."""
+    """gazebo_ros_bumper: the contacts of the sensor's <contact><collision>s as gazebo_msgs/ContactsState, every
+    sensor update: a state per pair of collisions and step since the last update (none when nothing touches)."""
 
     @classmethod
     def load(cls, config, sdf):
@@ -48,24 +54,31 @@ class BumperSensor(Sensor, libraries=('libgazebo_ros_bumper.so',), sensor_types=
                     % (spec.name, written.get(name, name),
                        ' (which sdformat rewrites to %r, its link being lumped)' % name if name in written else '',
                        self.link, ', '.join(repr(k) for k in known) or '(it has none)'))
-        self.names = CollisionNames(self.sim.world)
-        self.kinds = CollisionKinds(self.sim.world.client)
-        self.bodies_seen = None
+        self.contacts = LinkContacts(self.sim.world, robot.body.id, self.mount.index, self.shapes, robot.name,
+                                     self.link, self.wanted)
+        # every step's contacts since the last update, as Gazebo's ContactSensor keeps them (at most 100 steps),
+        # read while somebody listens
+        self.steps = collections.deque(maxlen=CONTACT_STEPS_KEPT)
+        self._last_step = self.sim.time
         self.advertise('bumper', ContactsState, 1)
+
+    def wake_time(self):
+        if self.listened():
+            return self._last_step + self.sim.step_size
+        return self.schedule.next
+
+    def step(self, time):
+        self._last_step = time
+        if self.listened():
+            self.steps.append(self.contacts.read())
+        else:
+            self.steps.clear()
+        super().step(time)
 
     def update(self, time, stamp):
         if not self.listened():
             return
-        world = self.sim.world
-        bodies = tuple(id(b) for b in world.bodies.values())
-        if bodies != self.bodies_seen:  # a body came or went: PyBullet ids may have been reused
-            self.names.forget()
-            self.kinds.forget()
-            self.bodies_seen = bodies
-        index = self.mount.index
-        points = read_contacts(world, self.names, self.body_id, index, self.shapes, self.model_name, self.link,
-                               self.wanted, self.kinds)
-        com, orientation = link_com(world.client, self.body_id, index)
-        groups = group_contacts(points, com, orientation)
+        groups = [group for step in self.steps for group in step]
+        self.steps.clear()
         self.publishers['bumper'].publish(msgs.contacts_state(stamp, self.config.frame_id, groups, stamp.to_sec()))
         self.meter.tick()

@@ -13,8 +13,8 @@ from each side's creation order and shape: CollisionKinds read once per link).
 import numpy as np
 import pybullet as pb
 
-from racebot_sim_bridge.sensors.contact import (CollisionKind, ContactPoint, friction_reversed, nearest_shape,
-                                                sdf_collision_shapes, urdf_collision_shapes)
+from racebot_sim_bridge.sensors.contact import (CollisionKind, ContactPoint, friction_reversed, group_contacts,
+                                                nearest_shape, sdf_collision_shapes, urdf_collision_shapes)
 from racebot_sim_bridge.engine.physics_types import BodyKind
 from racebot_sim_bridge.kinematics.rotations import rotate_back
 
@@ -144,3 +144,38 @@ def read_contacts(world, names, body_id, link_index, shapes, model_name, link_na
                                 names.name(p[2], p[4], p[6]), tuple(p[5]), tuple(normal),
                                 max(0.0, -distance), tuple(force)))
     return out
+
+
+# Gazebo's ContactSensor keeps the contact messages (one a physics step) of at most the last 100 steps between updates
+CONTACT_STEPS_KEPT = 100
+
+
+class LinkContacts:
+    """The contacts of a link's watched collisions, one physics step at a time, as a contact sensor reads them:
+    read() gives this step's ContactGroups (contact.group_contacts: per pair of collisions, the wrench on the link
+    in its frame about its centre of mass). `world`: the PhysicsWorld; `body_id`, `link_index`: the link in
+    PyBullet; `shapes`: its NamedShapes; `model_name`, `link_name`: for the collisions' Gazebo names; `wanted`: the
+    watched collision names (without model::link::)."""
+
+    def __init__(self, world, body_id, link_index, shapes, model_name, link_name, wanted):
+        self.world = world
+        self.body_id, self.link_index = body_id, link_index
+        self.shapes, self.model_name, self.link_name = shapes, model_name, link_name
+        self.wanted = set(wanted)
+        self.names = CollisionNames(world)
+        self.kinds = CollisionKinds(world.client)
+        self.bodies_seen = None
+
+    def read(self):
+        world = self.world
+        bodies = tuple(id(b) for b in world.bodies.values())
+        if bodies != self.bodies_seen:  # a body came or went: PyBullet ids may have been reused
+            self.names.forget()
+            self.kinds.forget()
+            self.bodies_seen = bodies
+        points = read_contacts(world, self.names, self.body_id, self.link_index, self.shapes, self.model_name,
+                               self.link_name, self.wanted, self.kinds)
+        if not points:
+            return []
+        com, orientation = link_com(world.client, self.body_id, self.link_index)
+        return group_contacts(points, com, orientation)
