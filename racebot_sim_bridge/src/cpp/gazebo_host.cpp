@@ -441,9 +441,7 @@ public:
   // A camera's (width, height, format, horizontal fov, render rate) now: a plugin may have changed the fov or rate
   std::tuple<unsigned int, unsigned int, std::string, double> CameraState(int _sensor)
   {
-    auto sensor = std::dynamic_pointer_cast<gazebo::sensors::CameraSensor>(this->sensors.at(_sensor));
-    if (!sensor)
-      throw std::runtime_error("sensor " + std::to_string(_sensor) + " is not a camera sensor");
+    auto sensor = this->SensorAs<gazebo::sensors::CameraSensor>(_sensor, "a camera");
     auto camera = sensor->Camera();
     return std::make_tuple(camera->ImageWidth(), camera->ImageHeight(), camera->ImageFormat(),
                            camera->HFOV().Radian());
@@ -452,9 +450,7 @@ public:
   // One frame of a camera at sim time `_time` (CameraSensor::Measure), `_data` ImageByteSize() bytes in its format.
   void MeasureCamera(int _sensor, double _time, const PoseT &_worldPose, const py::bytes &_data)
   {
-    auto sensor = std::dynamic_pointer_cast<gazebo::sensors::CameraSensor>(this->sensors.at(_sensor));
-    if (!sensor)
-      throw std::runtime_error("sensor " + std::to_string(_sensor) + " is not a camera sensor");
+    auto sensor = this->SensorAs<gazebo::sensors::CameraSensor>(_sensor, "a camera");
     const std::string bytes = _data;
     const unsigned int size = sensor->Camera()->ImageByteSize();
     if (bytes.size() != size)
@@ -483,9 +479,7 @@ public:
   void MeasureRay(int _sensor, double _time, const PoseT &_worldPose, const Doubles &_ranges,
                   const Doubles &_intensities, const Doubles &_rawRanges, const Doubles &_rawRetro)
   {
-    auto sensor = std::dynamic_pointer_cast<gazebo::sensors::racebot::RayScan>(this->sensors.at(_sensor));
-    if (!sensor)
-      throw std::runtime_error("sensor " + std::to_string(_sensor) + " is not a ray sensor");
+    auto sensor = this->SensorAs<gazebo::sensors::racebot::RayScan>(_sensor, "a ray");
     std::vector<double> ranges = ToVector(_ranges), intensities = ToVector(_intensities);
     std::vector<double> raw = ToVector(_rawRanges), retro = ToVector(_rawRetro);
     {
@@ -501,9 +495,7 @@ public:
   void MeasureImu(int _sensor, double _time, const PoseT &_worldPose, const Vec &_angularVel, const Vec &_linearAcc,
                   const Vec &_noisyAngularVel, const Vec &_noisyLinearAcc)
   {
-    auto sensor = std::dynamic_pointer_cast<gazebo::sensors::ImuSensor>(this->sensors.at(_sensor));
-    if (!sensor)
-      throw std::runtime_error("sensor " + std::to_string(_sensor) + " is not an imu sensor");
+    auto sensor = this->SensorAs<gazebo::sensors::ImuSensor>(_sensor, "an imu");
     {
       py::gil_scoped_release unlocked;
       sensor->Measure(gazebo::common::Time(_time), PoseOf(_worldPose), V(_angularVel), V(_linearAcc),
@@ -519,9 +511,7 @@ public:
                               std::vector<double>, std::vector<Vec>, std::vector<Vec>>;
   void MeasureContacts(int _sensor, double _time, const std::vector<ContactT> &_contacts)
   {
-    auto sensor = std::dynamic_pointer_cast<gazebo::sensors::ContactSensor>(this->sensors.at(_sensor));
-    if (!sensor)
-      throw std::runtime_error("sensor " + std::to_string(_sensor) + " is not a contact sensor");
+    auto sensor = this->SensorAs<gazebo::sensors::ContactSensor>(_sensor, "a contact");
     std::vector<gazebo::msgs::Contact> contacts(_contacts.size());
     for (size_t i = 0; i < _contacts.size(); ++i)
     {
@@ -557,6 +547,16 @@ public:
   }
 
 private:
+  // sensor `_sensor` as the kind `T` ("a camera", ...: `_what`), or a RuntimeError saying it is not one
+  template<typename T>
+  std::shared_ptr<T> SensorAs(int _sensor, const char *_what) const
+  {
+    auto sensor = std::dynamic_pointer_cast<T>(this->sensors.at(_sensor));
+    if (!sensor)
+      throw std::runtime_error("sensor " + std::to_string(_sensor) + " is not " + _what + " sensor");
+    return sensor;
+  }
+
   gazebo::sensors::Sensor::Description Describe(const std::string &_type, const std::string &_name,
                                                 const std::string &_model, const std::string &_link,
                                                 const PoseT &_pose, double _updateRate, bool _alwaysOn,

@@ -29,9 +29,18 @@ with open(os.path.join(PROJECT, 'spinner.urdf.in')) as _f:
     SPINNER = _f.read()
 
 
+def spinner(extra):
+    """The spinner with its test rotor and limits, and `extra` (its <gazebo> blocks) added."""
+    return SPINNER % {'mass': ROTOR_MASS, 'izz': ROTOR_IZZ, 'effort': 3.0, 'velocity': 40.0, 'extra': extra}
+
+
+def plugin_params(params):
+    """A <plugin>'s body of {tag: text}."""
+    return ''.join('<%s>%s</%s>' % (k, v, k) for k, v in params.items())
+
+
 def robot(*plugins):
-    return SPINNER % {'mass': ROTOR_MASS, 'izz': ROTOR_IZZ, 'effort': 3.0, 'velocity': 40.0,
-                      'extra': '<gazebo>%s</gazebo>' % ''.join(plugins)}
+    return spinner('<gazebo>%s</gazebo>' % ''.join(plugins))
 
 
 def driver(mode, target, report=0, joint='spin_joint', name='driver'):
@@ -313,14 +322,14 @@ SENSOR_HEIGHT = 0.6  # the spinner's base_link at z 0.1, the laser 0.5 above it,
 def probe(sensor_type='ray', always_on=False, update_rate=20, samples=11, resolution=1, **params):
     """The spinner with a downward ray sensor 1 m ahead of its base (at `update_rate`), carrying scan_probe (its
     <plugin> params: `params`)."""
-    body = ''.join('<%s>%s</%s>' % (k, v, k) for k, v in params.items())
-    return SPINNER % {'mass': ROTOR_MASS, 'izz': ROTOR_IZZ, 'effort': 3.0, 'velocity': 40.0, 'extra': (
+    body = plugin_params(params)
+    return spinner(
         '<gazebo reference="base_link"><sensor type="%s" name="probe_laser"><pose>1 0 0.5 0 1.5707963 0</pose>'
         '<always_on>%s</always_on><update_rate>%g</update_rate><ray><scan><horizontal><samples>%d</samples>'
         '<resolution>%g</resolution><min_angle>-0.2</min_angle><max_angle>0.2</max_angle></horizontal></scan>'
         '<range><min>0.05</min><max>5</max><resolution>0.01</resolution></range></ray>'
         '<plugin name="probe" filename="libscan_probe.so">%s</plugin></sensor></gazebo>'
-        % (sensor_type, 'true' if always_on else 'false', update_rate, samples, resolution, body))}
+        % (sensor_type, 'true' if always_on else 'false', update_rate, samples, resolution, body))
 
 
 @pytest.fixture
@@ -421,12 +430,12 @@ def test_a_model_plugin_in_a_sensor_is_refused_and_a_depth_cameras_plugin_is_not
 def imu_probe(link='base_link', yaw=0.0, always_on=True, update_rate=50, noise='', extra='', **params):
     """The spinner with an imu sensor on `link` (yawed by `yaw` there, at `update_rate`) carrying imu_probe (its
     <plugin> params: `params`); `noise`: the <imu> element's body; `extra`: more <gazebo> (a joint driver)."""
-    body = ''.join('<%s>%s</%s>' % (k, v, k) for k, v in params.items())
-    return SPINNER % {'mass': ROTOR_MASS, 'izz': ROTOR_IZZ, 'effort': 3.0, 'velocity': 40.0, 'extra': (
+    body = plugin_params(params)
+    return spinner(
         '<gazebo reference="%s"><sensor type="imu" name="probe_imu"><pose>0 0 0 0 0 %r</pose>'
         '<always_on>%s</always_on><update_rate>%g</update_rate><imu>%s</imu>'
         '<plugin name="imu_probe" filename="libimu_probe.so">%s</plugin></sensor></gazebo>%s'
-        % (link, yaw, 'true' if always_on else 'false', update_rate, noise, body, extra))}
+        % (link, yaw, 'true' if always_on else 'false', update_rate, noise, body, extra))
 
 
 def imu_updates(out):
@@ -516,12 +525,12 @@ def test_an_inactive_imu_is_not_measured_until_a_transport_subscriber_comes(sens
 def contact_probe(update_rate=10, collision='base_link_collision', **params):
     """The spinner with a contact sensor on its base (at `update_rate`) watching `collision`, carrying
     contact_probe."""
-    body = ''.join('<%s>%s</%s>' % (k, v, k) for k, v in params.items())
-    return SPINNER % {'mass': ROTOR_MASS, 'izz': ROTOR_IZZ, 'effort': 3.0, 'velocity': 40.0, 'extra': (
+    body = plugin_params(params)
+    return spinner(
         '<gazebo reference="base_link"><sensor type="contact" name="bumper"><update_rate>%g</update_rate>'
         '<contact><collision>%s</collision></contact>'
         '<plugin name="contact_probe" filename="libcontact_probe.so">%s</plugin></sensor></gazebo>'
-        % (update_rate, collision, body))}
+        % (update_rate, collision, body))
 
 
 def contact_updates(out):
@@ -575,13 +584,13 @@ rgba="0.9 0.1 0.1 1"/></material></visual><collision><geometry><box size="0.5 4 
 def camera_probe(image_format='R8G8B8', update_rate=10, distortion='', **params):
     """The spinner with a camera 0.5 m above its base looking ahead, carrying camera_probe (a red wall 0.8 m ahead,
     whose top edge crosses its image, fills the image's bottom row: camera_world)."""
-    body = ''.join('<%s>%s</%s>' % (k, v, k) for k, v in params.items())
-    return SPINNER % {'mass': ROTOR_MASS, 'izz': ROTOR_IZZ, 'effort': 3.0, 'velocity': 40.0, 'extra': (
+    body = plugin_params(params)
+    return spinner(
         '<gazebo reference="base_link"><sensor type="camera" name="probe_camera"><pose>0 0 0.5 0 0 0</pose>'
         '<update_rate>%g</update_rate><camera><horizontal_fov>1.2</horizontal_fov><image><width>64</width>'
         '<height>48</height><format>%s</format></image><clip><near>0.05</near><far>50</far></clip>%s</camera>'
         '<plugin name="camera_probe" filename="libcamera_probe.so">%s</plugin></sensor></gazebo>'
-        % (update_rate, image_format, distortion, body))}
+        % (update_rate, image_format, distortion, body))
 
 
 def camera_frames(out):

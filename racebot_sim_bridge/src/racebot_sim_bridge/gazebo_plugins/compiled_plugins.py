@@ -16,7 +16,6 @@ import os
 import sys
 import xml.etree.ElementTree as ET
 
-from racebot_sim_bridge.description import urdf_model
 from racebot_sim_bridge.gazebo_plugins.gazebo_ros_ft_sensor import wrench_at_link_origin
 from racebot_sim_bridge.supported_table import WHERE as SUPPORTED_TABLE
 
@@ -307,7 +306,8 @@ class CompiledPlugins:
         this one fails)."""
         from racebot_sim_bridge.gazebo_plugins.compiled_sensors import (CompiledCameraSensor, CompiledContactSensor,
                                                                         CompiledImuSensor, CompiledRaySensor,
-                                                                        CompiledSensor, camera_geometry, ray_geometry)
+                                                                        CompiledSensor, camera_geometry, camera_spec,
+                                                                        ray_geometry)
         where = "%s: sensor '%s'" % (robot.name, spec.name)
         if not self._ensure_host():
             self.rospy.logerr('%s: %s. It runs without its compiled plugins' % (where, self.unavailable))
@@ -325,7 +325,7 @@ class CompiledPlugins:
                 raise ValueError(str(err)) from None
         elif spec.type == 'camera':
             kind = CompiledCameraSensor
-            sensor_id = self.host.add_camera_sensor(*common, *camera_geometry(spec.camera or urdf_model.CameraSpec()))
+            sensor_id = self.host.add_camera_sensor(*common, *camera_geometry(camera_spec(spec)))
         elif spec.type == 'contact':
             kind = CompiledContactSensor
             sensor_id = self.host.add_contact_sensor(*common, list(spec.contact_collisions))

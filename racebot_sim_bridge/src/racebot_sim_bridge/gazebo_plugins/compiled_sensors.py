@@ -63,6 +63,11 @@ def ray_geometry(ray):
             float(ray.vertical_max_angle), float(ray.range_min), float(ray.range_max), float(ray.range_resolution))
 
 
+def pose_tuple(position, orientation):
+    """A pose as gazebo_host takes one: (x, y, z, qx, qy, qz, qw), Python floats."""
+    return tuple(float(v) for v in position) + tuple(float(v) for v in orientation)
+
+
 def sensor_topic(world_name, model, link, sensor, leaf):
     """A sensor's Gazebo topic as Gazebo decodes it ("~/model/link/sensor/scan": RaySensor::Topic(); .../imu; a
     contact sensor's has no leaf)."""
@@ -156,7 +161,7 @@ class CompiledRaySensor(CompiledSensor):
         else:
             raw_fractions, raw_hit, retro = self._cast(self.shape, position, rotation)
             raw = self.shape.ranges(raw_fractions, raw_hit)
-        pose = tuple(float(v) for v in position) + tuple(float(v) for v in orientation)
+        pose = pose_tuple(position, orientation)
         self.host.measure_ray(self.sensor_id, time, pose, ranges, intensities, raw, retro)
         self.meter.tick()
 
@@ -182,7 +187,7 @@ class CompiledImuSensor(CompiledSensor):
         gyro, accel = m.angular_velocity, m.linear_acceleration
         noisy_gyro = gyro if self.gyro_noise is None else self.gyro_noise.apply(gyro)
         noisy_accel = accel if self.accel_noise is None else self.accel_noise.apply(accel)
-        pose = tuple(float(v) for v in position) + tuple(float(v) for v in orientation)
+        pose = pose_tuple(position, orientation)
         self.host.measure_imu(self.sensor_id, time, pose, *(tuple(float(v) for v in vector) for vector in
                                                             (gyro, accel, noisy_gyro, noisy_accel)))
         self.meter.tick()
@@ -232,6 +237,11 @@ class CompiledContactSensor(CompiledSensor):
                 for g in self.contacts.read()]
 
 
+def camera_spec(spec):
+    """The sensor's <camera> (urdf_model.CameraSpec), sdformat's defaults when it has none."""
+    return spec.camera if spec.camera is not None else CameraSpec()
+
+
 def camera_geometry(camera):
     """A urdf_model.CameraSpec as gazebo_host.add_camera_sensor takes it: (width, height, format, hfov, near, far),
     and the distortion (k1, k2, k3, p1, p2, cx, cy; Gazebo's default centre 0.5 0.5), empty when it has none."""
@@ -246,7 +256,7 @@ class CompiledCameraSensor(CompiledSensor):
 
     def __init__(self, manager, robot, spec, mount, host, sensor_id, plugin_ids, unload, rng=None):
         super().__init__(manager, robot, spec, mount, host, sensor_id, plugin_ids, unload)
-        self.camera_spec = spec.camera if spec.camera is not None else CameraSpec()
+        self.camera_spec = camera_spec(spec)
         cam = self.camera_spec
         self.noise = make_noise(cam.noise_type, cam.noise_mean, cam.noise_stddev, manager.noise_enabled, rng=rng)
         self.frames = None
@@ -262,6 +272,6 @@ class CompiledCameraSensor(CompiledSensor):
         rgb, _ = self.frames.make(self.sim.world, TINY, self.manager.scene_colours().planes, position,
                                   quaternion_to_matrix(orientation), want_depth=False)
         _, pixels = image_data(rgb, IMAGE_ENCODINGS.get(image_format, 'rgb8'))
-        pose = tuple(float(v) for v in position) + tuple(float(v) for v in orientation)
+        pose = pose_tuple(position, orientation)
         self.host.measure_camera(self.sensor_id, time, pose, pixels.tobytes())
         self.meter.tick()

@@ -39,8 +39,6 @@ class BumperSensor(Sensor, libraries=('libgazebo_ros_bumper.so',), sensor_types=
 
     def __init__(self, manager, robot, spec, config):
         super().__init__(manager, robot, spec, config)
-        self.body_id = robot.body.id
-        self.model_name = robot.name
         self.link = self.mount.link
         self.shapes = urdf_collision_shapes(robot.model, self.link)
         known = [shape.name for shape in self.shapes]

@@ -66,8 +66,8 @@ class ImuSensor(Sensor, libraries=('libgazebo_ros_imu_sensor.so',), sensor_types
         self.offset = rpy_to_quaternion(*config.params['rpy_offset'])
         self.advertise('imu', Imu, 10)
         # the sensor's measurements (Gazebo's ImuSensor, its rate), the plugin's publishing throttled on them
-        self.schedule = UpdateSchedule(config.params.get('sensor_rate', config.rate), start=self.sim.time)
-        self.throttle = FrameThrottle(config.params.get('publish_rate', 0.0))
+        self.schedule = UpdateSchedule(config.params['sensor_rate'], start=self.sim.time)
+        self.throttle = FrameThrottle(config.params['publish_rate'])
         self.kinematics.prime(self.sim.time, self.mount.motion()[2])  # Gazebo's Load records the velocity
 
     def update(self, time, stamp):
