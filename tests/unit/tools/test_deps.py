@@ -111,6 +111,17 @@ def test_vcs_import_output_gives_each_repository_its_first_error():
         'c': "Could not clone repository '/m': error: unable to read sha1 file of x.stl (ab12)"}
 
 
+@pytest.mark.parametrize('remote_first', [True, False])
+def test_a_shallow_fetch_of_a_copy_lacking_an_object_names_the_object_in_either_order_of_gits_lines(remote_first):
+    """git's remote side (pack-objects) and its local side write to one stream: either line may come first
+    (1 run in 8 of the same fetch put the local side's first); the error is the object, not the dying process."""
+    sha = '8b0c466f4d55057173c2d9ac96438ddca22930d6'
+    remote, local = 'remote: fatal: unable to read %s' % sha, 'error: git upload-pack: git-pack-objects died with error.'
+    lines = [remote, local] if remote_first else [local, remote]
+    output = '=== src/models (git) ===\n%s\nfatal: protocol error: bad pack header\n' % '\n'.join(lines)
+    assert repos._vcs_errors(output) == {'models': 'fatal: unable to read %s' % sha}
+
+
 def test_a_clone_whose_checkout_fails_is_reported_with_gits_error_not_vcstools_retry(tmp_path):
     """A copy lacking a blob (a snapshot that left large files out) clones but cannot check out; vcstool's retry
     then cloned into the half-written folder and said only "destination path '.' already exists"."""
