@@ -116,7 +116,8 @@ def test_a_shallow_fetch_of_a_copy_lacking_an_object_names_the_object_in_either_
     """git's remote side (pack-objects) and its local side write to one stream: either line may come first
     (1 run in 8 of the same fetch put the local side's first); the error is the object, not the dying process."""
     sha = '8b0c466f4d55057173c2d9ac96438ddca22930d6'
-    remote, local = 'remote: fatal: unable to read %s' % sha, 'error: git upload-pack: git-pack-objects died with error.'
+    remote = 'remote: fatal: unable to read %s' % sha
+    local = 'error: git upload-pack: git-pack-objects died with error.'
     lines = [remote, local] if remote_first else [local, remote]
     output = '=== src/models (git) ===\n%s\nfatal: protocol error: bad pack header\n' % '\n'.join(lines)
     assert repos._vcs_errors(output) == {'models': 'fatal: unable to read %s' % sha}
