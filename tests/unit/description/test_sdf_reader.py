@@ -97,6 +97,20 @@ def test_physics_defaults_are_gazebos():
     assert (physics.type, physics.max_step_size, physics.real_time_factor,
             physics.real_time_update_rate, physics.gravity) == \
         ('ode', 0.001, 1.0, 1000.0, (0.0, 0.0, -9.8))
+    assert physics.friction_model == 'pyramid_model'  # sdformat's physics.sdf: <ode><solver><friction_model>
+
+
+@pytest.mark.parametrize('written, read, warning', [
+    ('cone_model', 'cone_model', None),
+    ('pyramid_model', 'pyramid_model', None),
+    ('box_model', 'pyramid_model', "physics: friction_model 'box_model' is not simulated (racebot has pyramid_model "
+                                   "and cone_model); using the default pyramid_model"),
+])
+def test_the_friction_model_is_read_from_odes_solver(written, read, warning):
+    world = parse_world(world_with('', header='<physics type="ode"><ode><solver><friction_model>%s</friction_model>'
+                                              '</solver></ode></physics>' % written))
+    assert world.physics.friction_model == read
+    assert world.warnings == ([warning] if warning else [])
 
 
 def test_models_links_and_shapes(world):

@@ -322,3 +322,40 @@ def test_a_spawn_leaves_no_file_behind(make_world, racebot_model, racebot_xml, t
     world.spawn_urdf('racebot', racebot_model, racebot_xml, position=(0, 0, 0.05))
     assert 'racebot' in world.bodies
     assert list(tmp_path.iterdir()) == []
+
+
+BOX_ON_GROUND = """<?xml version="1.0"?>
+<sdf version="1.6"><world name="w">%s
+  <include><uri>model://ground_plane</uri></include>
+  <model name="box"><pose>0 0 0.1 0 0 0</pose><link name="link">
+    <inertial><mass>1</mass><inertia><ixx>0.01</ixx><iyy>0.01</iyy><izz>0.01</izz></inertia></inertial>
+    <collision name="c"><geometry><box><size>0.2 0.2 0.2</size></box></geometry>
+      <surface><friction><ode><mu>0.5</mu><mu2>0.5</mu2></ode></friction></surface></collision>
+  </link></model>
+</world></sdf>"""
+
+
+@pytest.mark.parametrize('solver, slides', [
+    ('', False),  # Gazebo's default, the pyramid
+    ('<physics type="ode"><ode><solver><friction_model>pyramid_model</friction_model></solver></ode></physics>', False),
+    ('<physics type="ode"><ode><solver><friction_model>cone_model</friction_model></solver></ode></physics>', True),
+])
+def test_the_worlds_friction_model_limits_a_diagonal_push_as_odes_does(solver, slides):
+    """A box pushed at 45 degrees with 1.2 mu m g: ODE's pyramid limits each of the two friction directions to mu N
+    on its own, so the push (0.85 mu m g along each) is held; the cone limits their sum, so the box slides."""
+    from fakes import FakeLog
+    from racebot_sim_bridge.engine.simulator import Simulator
+    sim = Simulator(sdf_reader.parse_world(BOX_ON_GROUND % solver), io=None, log=FakeLog(), get_params={}.get)
+    try:
+        box = sim.world.bodies['box']
+        for _ in range(200):
+            sim.world.step()
+        push = 1.2 * 0.5 * 1.0 * 9.8 / math.sqrt(2)
+        start = box.pose()[0]
+        for _ in range(1000):
+            box.links['link'].apply_wrench((push, push, 0.0), (0.0, 0.0, 0.0))
+            sim.world.step()
+        moved = math.dist(box.pose()[0][:2], start[:2])
+        assert (moved > 0.2) if slides else (moved < 0.001), moved  # cone: 0.5 a t^2 = 0.49 m along the push
+    finally:
+        sim.world.close()

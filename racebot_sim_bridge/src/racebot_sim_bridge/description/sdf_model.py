@@ -29,6 +29,11 @@ def _named(items, name, owner, kind):
     raise KeyError('%s has no %s %r (%ss: %s)' % (owner, kind, name, kind, ', '.join(i.name for i in items) or 'none'))
 
 
+# ODE's friction models that Bullet has: the pyramid (friction limited in each of two directions, Gazebo's default)
+# and the cone. ODE's third, box_model (a constant force limit), Bullet has not.
+FRICTION_MODELS = ('pyramid_model', 'cone_model')
+
+
 @dataclass
 class Physics:
     """The physics block, with Gazebo's defaults."""
@@ -37,6 +42,7 @@ class Physics:
     real_time_factor: float = 1.0
     real_time_update_rate: float = 1000.0
     gravity: tuple = (0.0, 0.0, -9.8)
+    friction_model: str = 'pyramid_model'  # <ode><solver><friction_model>: ODE's pyramid unless cone_model
 
 
 @dataclass

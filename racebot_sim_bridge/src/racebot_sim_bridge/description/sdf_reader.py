@@ -42,7 +42,7 @@ from collections.abc import Sequence
 from racebot_sim_bridge.description import model_path, xml_document
 from racebot_sim_bridge.description.sdf_elements import Unusable, child_bool, child_float, floats, quote
 from racebot_sim_bridge.description.sdf_links import keep
-from racebot_sim_bridge.description.sdf_model import Light, Physics, World, WorldPlugin
+from racebot_sim_bridge.description.sdf_model import FRICTION_MODELS, Light, Physics, World, WorldPlugin
 from racebot_sim_bridge.description.sdf_models import ModelReader
 from racebot_sim_bridge.kinematics.rotations import XyzRpy, as_xyz_rpy, compose, inverse
 
@@ -145,6 +145,12 @@ class _WorldReader(ModelReader):
                               % (tag, '>= 0' if allow_zero else '> 0', value, default))
                     continue
                 setattr(physics, tag, value)
+            model = (chosen.findtext('ode/solver/friction_model') or '').strip()
+            if model in FRICTION_MODELS:
+                physics.friction_model = model
+            elif model:
+                self.warn('physics', 'friction_model %s is not simulated (racebot has %s); using the default %s'
+                          % (quote(model), ' and '.join(FRICTION_MODELS), physics.friction_model))
         gravity = world_elem.find('gravity')
         if gravity is None and chosen is not None:
             gravity = chosen.find('gravity')  # SDF <= 1.5 kept it in <physics>

@@ -46,7 +46,7 @@ class PhysicsWorld:
     hold them."""
 
     def __init__(self, step_size: float = 0.001, gravity: Vec3 = (0.0, 0.0, -9.8), gui: bool = False,
-                 visuals: bool = True) -> None:
+                 visuals: bool = True, friction_model: str = 'pyramid_model') -> None:
         if not (step_size > 0 and math.isfinite(step_size)):
             raise PhysicsError('physics step size must be a positive number of seconds, got %r' % (step_size,))
         self.gui = gui
@@ -61,6 +61,7 @@ class PhysicsWorld:
         self.gravity = tuple(gravity)
         self.client.setGravity(*self.gravity)
         self.client.setTimeStep(step_size)
+        self.set_friction_model(friction_model)
         self.bodies = {}
         self.laser_retro = {}
         self.ground_mu = 1.0
@@ -146,6 +147,14 @@ class PhysicsWorld:
     def set_step_size(self, step_size: float) -> None:
         self.step_size = step_size
         self.client.setTimeStep(step_size)
+
+    def set_friction_model(self, friction_model: str) -> None:
+        """ODE's friction model by its SDF name (sdf_model.FRICTION_MODELS). Gazebo's default is the pyramid: each
+        of the two friction directions is limited to mu times the normal force on its own, where Bullet's default,
+        the cone, limits their sum; a wheel that rolls while it pulls sliding casters slips less on the pyramid
+        (docs/COMING_FROM_GAZEBO.md)."""
+        self.friction_model = friction_model
+        self.client.setPhysicsEngineParameter(enableConeFriction=int(friction_model == 'cone_model'))
 
     def set_solver(self, **params: float) -> None:
         """Constraint solver parameters by PyBullet's names (numSolverIterations, erp, globalCFM)."""

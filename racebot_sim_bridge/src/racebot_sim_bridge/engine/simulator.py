@@ -66,7 +66,8 @@ class Simulator:
         self.step_size = world_spec.physics.max_step_size
         self.real_time_update_rate = world_spec.physics.real_time_update_rate
         self.lights = list(world_spec.lights)
-        self.world = physics.PhysicsWorld(self.step_size, world_spec.physics.gravity)  # DIRECT: see viewer.py
+        self.world = physics.PhysicsWorld(self.step_size, world_spec.physics.gravity,  # DIRECT: see viewer.py
+                                          friction_model=world_spec.physics.friction_model)
         self.rendering = False  # a window shows this world (set by the world server)
         self.node_namespace = '/'  # the world server node's namespace: relative plugin namespaces resolve in it
         self.lock = threading.RLock()
