@@ -83,7 +83,7 @@ demo: setup
 
 # Speed against the physics ceiling and fidelity against the kinematic model: prints the table, writes
 # out/bench/ (bench.json, PNG plots), each key figure beside the one kept in tools/bench/last_figures.json.
-# About 8 minutes; bench-quick runs every part briefly (~1.5 min). Keep this run's figures as the
+# About 8 minutes; bench-quick runs every part briefly (about 3 min on a 2-core machine). Keep this run's figures as the
 # reference (then commit the file): make bench ARGS=--save.
 bench: setup
 	@$(IN_WS) $(VENV)/bin/python3 tools/run_bench.py $(ARGS)

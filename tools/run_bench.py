@@ -12,7 +12,7 @@ Speed ratios are the median of at least three side-by-side pairs, printed with t
 (min-max over the pairs).
 --save writes this run's key figures into tools/bench/last_figures.json (commit it): the new
 reference. Only when asked (see tools/bench/kept_figures.py for why); not with --quick.
---quick runs every part briefly (under a minute) to show the bench works; its figures mean little
+--quick runs every part briefly (about 3 minutes on a 2-core machine) to show the bench works; its figures mean little
 and are shown beside the kept ones without a verdict.
 Exit status 0 when every part ran (whether or not each target is met), 1 when a part failed.
 
@@ -53,7 +53,7 @@ FULL = {
 QUICK = {
     'speed': dict(rounds=3, window_s=0.7, warmup_s=0.5, profile_s=0, memory_sim_s=10.0, memory_timeout_s=120),
     'realtime': dict(settle_s=0.5, parts=1, part_s=3.0, commands=100, command_rate_hz=100.0),
-    'sensors': dict(settle_s=3.0, window_s=3.0),
+    'sensors': dict(settle_s=1.0, window_s=2.0),
     'startup_runs': 0,
     'fidelity': dict(speeds=[1.0], speed_settle_s=1.0, speed_measure_s=1.0, angles=[0.3], circle_speed=0.5,
                      circle_turns=1.1, circle_max_s=3.0, circle_settle_s=1.0, lock_angles=[0.6], lock_speed=2.0,
@@ -297,7 +297,7 @@ def save_figures(kept, figures, results, loads):
 
 def parse_args():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument('--quick', action='store_true', help='every part, briefly (under a minute)')
+    parser.add_argument('--quick', action='store_true', help='every part, briefly (about 3 minutes)')
     parser.add_argument('--out', default=os.path.join(common.REPO, 'out', 'bench'), help='output folder')
     parser.add_argument('--only', help='comma-separated parts: ' + ', '.join(n for n, _ in PARTS))
     parser.add_argument('--save', action='store_true',
