@@ -117,7 +117,9 @@ def measure(p, out):
         command.publish(Float64(VELOCITY))
         sim = worlds['cpp'][0]
         joint = sim.robots['spinner'].body.joints['spin_joint']
-        common.wait_for(lambda: sim.step() or abs(joint.state().velocity - VELOCITY) < 1e-6, 30,
+        # to the solver's precision, as check_turning judges it: on ODE's pyramid friction the spinner's base, held on
+        # the ground against the rotor's reaction, leaves the motor 2e-4 rad/s off its target
+        common.wait_for(lambda: sim.step() or abs(joint.state().velocity - VELOCITY) < 1e-3, 30,
                         'the C++ controller to take its command')
         steps, rounds = int(p['steps']), int(p['rounds'])
         sims = {variant: sim for variant, (sim, _) in worlds.items()}
