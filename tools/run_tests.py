@@ -5,8 +5,8 @@
 failure count over the N runs: the way to tell a flaky test (fails 1 of 10) from a broken one.
 
 Three tiers: ruff over the repository (one test), pytest unit tests in tests/unit (no ROS master)
-and every rostest file in tests/integration (each brings up its own master, roslaunch and nodes), --jobs of them
-(and of pytest's workers) at a time, default 2. Results are counted
+and every rostest file in tests/integration (each brings up its own master, roslaunch and nodes), --jobs pytest
+workers (default 2) and --rostest-jobs rostest files (default one more) at a time. Results are counted
 from the JUnit XML both write, so a test node that crashes or never reports counts as failed.
 Run it from a shell where `devel/setup.bash` is sourced (the Makefile does that).
 """
@@ -31,16 +31,19 @@ OUT = os.path.join(ROOT, 'out', 'test-results')
 # its results, and reports a slow test as "unreadable results" (bench_quick at a load of 8).
 ROSTEST_SLACK_S = 120
 ROSTEST_DEFAULT_TIME_LIMIT_S = 60.0
-# Rostest files run JOBS at a time: each brings up a master of its own on a free port (rostest's port 0), its own
-# Xvfb (-displayfd), temporary folders and render buffers, and most of a file's time is spent waiting for sim time,
-# so two at once on a 2-core machine take about 60 % of the serial time. Every test bounds its waits in wall time
-# generously: a test that fails because another one runs beside it is a defect of that test, as on a busy CI host.
+# pytest's workers: JOBS, one per core (the unit tests are CPU-bound). Rostest files run JOBS + 1 at a time: each
+# brings up a master of its own on a free port (rostest's port 0), its own Xvfb (-displayfd), temporary folders and
+# render buffers, and most of a file's time is spent waiting for sim time at real time (a world server then takes
+# about half a core, make bench), so on a 2-core machine two at once took 830 s of the serial 1520 and three 678 s
+# (2026-12-03). Every test bounds its waits in wall time generously: a test that fails because others run beside it
+# is a defect of that test, as on a busy CI host.
 JOBS = int(os.environ.get('RACEBOT_TEST_JOBS', '2'))
-# Started first: each takes a minute or more; started last, one would leave a lane running alone at the end.
-# The bench's quick run and the soak share a lane too: neither judges a timing (bench_quick_test checks that
-# figures exist, the soak reads memory at rest), so another test beside them changes only how long they take.
-LONG = ('soak_short', 'bench_quick', 'shutdown_stress', 'readme_drive', 'robustness_input', 'racebot_launch',
-        'faults', 'robustness_world', 'viewer')
+# Started first, longest first: each takes a minute or more; started last, one would leave a lane running alone at
+# the end. The bench's quick run and the soak (both as fast as possible) run beside others: neither judges a timing
+# (bench_quick_test checks that figures exist, the soak reads memory at rest), so a test beside them changes only
+# how long they take; readme_drive, at real time, is the third of the first three.
+LONG = ('bench_quick', 'soak_short', 'readme_drive', 'shutdown_stress', 'compiled_plugins', 'robustness_input',
+        'robustness_world', 'racebot_launch', 'viewer', 'faults')
 # The corpus of public packages (make corpus) needs the network or clones; the suite never runs it.
 CORPUS_NOT_RUN = 'corpus: not run here (no network/clones; make corpus; the last table is docs/CORPUS.md)'
 
@@ -331,13 +334,18 @@ def main():
                         help='run N times; end with each test\'s failure count')
     parser.add_argument('--out', default=OUT, help='results directory (emptied first; default %(default)s)')
     parser.add_argument('--jobs', '-j', type=int, default=JOBS, metavar='N',
-                        help='rostest files (and pytest workers) at a time (default %(default)s, or '
-                             'RACEBOT_TEST_JOBS)')
+                        help='pytest workers (default %(default)s, or RACEBOT_TEST_JOBS); rostest files run N + 1 at '
+                             'a time unless --rostest-jobs says otherwise')
+    parser.add_argument('--rostest-jobs', type=int, metavar='N', help='rostest files at a time (default: --jobs + 1)')
     args = parser.parse_args()
+    if args.rostest_jobs is None:
+        args.rostest_jobs = args.jobs + 1
     if args.repeat < 1:
         parser.error('--repeat N needs N >= 1, got %d' % args.repeat)
     if args.jobs < 1:
         parser.error('--jobs N needs N >= 1, got %d (RACEBOT_TEST_JOBS?)' % args.jobs)
+    if args.rostest_jobs < 1:
+        parser.error('--rostest-jobs N needs N >= 1, got %d' % args.rostest_jobs)
     # SIGTERM as an exception in the main thread, as Ctrl-C is: run_rostests then ends the rostests under way
     signal.signal(signal.SIGTERM, lambda signum, frame: sys.exit(128 + signum))
     if 'ROS_PACKAGE_PATH' not in os.environ or ROOT not in os.environ['ROS_PACKAGE_PATH']:
@@ -378,7 +386,7 @@ def run_once(args):
     if not args.unit_only:
         test_files = [f for f in sorted(glob.glob(os.path.join(ROOT, 'tests', 'integration', '*.test')))
                       if not args.only or args.only in os.path.basename(f)]
-        run_rostests(test_files, args.jobs, add)
+        run_rostests(test_files, args.rostest_jobs, add)
     if not args.only and not args.unit_only:
         add(check_source_space())
     print(CORPUS_NOT_RUN, flush=True)

@@ -1,4 +1,4 @@
-"""tools/run_tests.py: rostest files run --jobs at a time, the long ones first."""
+"""tools/run_tests.py: rostest files run --rostest-jobs at a time, the long ones first."""
 import importlib.util
 import os
 import threading
@@ -16,7 +16,7 @@ def files(*names):
 
 def test_long_files_start_first():
     order = run_tests.rostest_order(files('a', 'bench_quick', 'faults', 'readme_drive', 'soak_short', 'z'))
-    assert [run_tests.test_name(f) for f in order] == ['soak_short', 'bench_quick', 'readme_drive', 'faults', 'a', 'z']
+    assert [run_tests.test_name(f) for f in order] == ['bench_quick', 'soak_short', 'readme_drive', 'faults', 'a', 'z']
 
 
 def test_every_long_name_is_a_rostest_file_of_the_suite():
