@@ -100,6 +100,19 @@ def test_physics_defaults_are_gazebos():
     assert physics.friction_model == 'pyramid_model'  # sdformat's physics.sdf: <ode><solver><friction_model>
 
 
+def test_an_unusable_ode_setting_keeps_sdformats_default_with_one_warning():
+    world = parse_world(world_with('', header='<physics type="ode"><ode><solver><iters>12.5</iters><sor>-1</sor>'
+                                              '</solver></ode></physics>'))
+    assert (world.physics.ode['sor_pgs_iters'], world.physics.ode['sor_pgs_w']) == (50, 1.3)
+    assert world.warnings == [
+        'physics: ode/solver/iters must be a whole number >= 1, got 12.5; using the default 50',
+        'physics: ode/solver/sor must be a number >= 0, got -1; using the default 1.3']
+    none = parse_world(world_with('', header='<physics type="ode"><ode><solver><iters>0</iters></solver></ode>'
+                                             '</physics>'))
+    assert none.physics.ode['sor_pgs_iters'] == 50 and none.warnings == [
+        'physics: ode/solver/iters must be a whole number >= 1, got 0; using the default 50']
+
+
 @pytest.mark.parametrize('written, read, warning', [
     ('cone_model', 'cone_model', None),
     ('pyramid_model', 'pyramid_model', None),

@@ -43,6 +43,23 @@ class Physics:
     real_time_update_rate: float = 1000.0
     gravity: tuple = (0.0, 0.0, -9.8)
     friction_model: str = 'pyramid_model'  # <ode><solver><friction_model>: ODE's pyramid unless cone_model
+    # <ode>'s solver and constraints and <max_contacts>, by gazebo_msgs/ODEPhysics's names, with sdformat's defaults
+    ode: dict = field(default_factory=lambda: dict(ODE_DEFAULTS))
+
+
+# (ODEPhysics field, its path under <physics>, sdformat's default, an integer); get_physics_properties reports them,
+# and the solver's iterations reach the engine (Bullet's constraint solver has no SOR, CFM or ERP of ODE's meaning)
+ODE_SETTINGS = (
+    ('sor_pgs_iters', 'ode/solver/iters', 50, True),
+    ('sor_pgs_precon_iters', 'ode/solver/precon_iters', 0, True),
+    ('sor_pgs_w', 'ode/solver/sor', 1.3, False),
+    ('cfm', 'ode/constraints/cfm', 0.0, False),
+    ('erp', 'ode/constraints/erp', 0.2, False),
+    ('contact_max_correcting_vel', 'ode/constraints/contact_max_correcting_vel', 100.0, False),
+    ('contact_surface_layer', 'ode/constraints/contact_surface_layer', 0.001, False),
+    ('max_contacts', 'max_contacts', 20, True),
+)
+ODE_DEFAULTS = {name: default for name, _, default, _ in ODE_SETTINGS}
 
 
 @dataclass

@@ -42,7 +42,7 @@ from collections.abc import Sequence
 from racebot_sim_bridge.description import model_path, xml_document
 from racebot_sim_bridge.description.sdf_elements import Unusable, child_bool, child_float, floats, quote
 from racebot_sim_bridge.description.sdf_links import keep
-from racebot_sim_bridge.description.sdf_model import FRICTION_MODELS, Light, Physics, World, WorldPlugin
+from racebot_sim_bridge.description.sdf_model import FRICTION_MODELS, ODE_SETTINGS, Light, Physics, World, WorldPlugin
 from racebot_sim_bridge.description.sdf_models import ModelReader
 from racebot_sim_bridge.kinematics.rotations import XyzRpy, as_xyz_rpy, compose, inverse
 
@@ -145,6 +145,18 @@ class _WorldReader(ModelReader):
                               % (tag, '>= 0' if allow_zero else '> 0', value, default))
                     continue
                 setattr(physics, tag, value)
+            for name, path, default, integer in ODE_SETTINGS:
+                try:
+                    value = child_float(chosen, path, default, path.rsplit('/', 1)[-1])
+                except Unusable as err:
+                    self.warn('physics', '%s; using the default %g' % (err, default))
+                    continue
+                least = 1 if name == 'sor_pgs_iters' else 0  # a solver that never iterates holds nothing
+                if value < least or (integer and value != int(value)):
+                    self.warn('physics', '%s must be a %s >= %d, got %g; using the default %g'
+                              % (path, 'whole number' if integer else 'number', least, value, default))
+                    continue
+                physics.ode[name] = int(value) if integer else value
             model = (chosen.findtext('ode/solver/friction_model') or '').strip()
             if model in FRICTION_MODELS:
                 physics.friction_model = model

@@ -68,6 +68,7 @@ class Simulator:
         self.lights = list(world_spec.lights)
         self.world = physics.PhysicsWorld(self.step_size, world_spec.physics.gravity,  # DIRECT: see viewer.py
                                           friction_model=world_spec.physics.friction_model)
+        self.world.set_solver(numSolverIterations=world_spec.physics.ode['sor_pgs_iters'])  # <ode><solver><iters>
         self.rendering = False  # a window shows this world (set by the world server)
         self.node_namespace = '/'  # the world server node's namespace: relative plugin namespaces resolve in it
         self.lock = threading.RLock()

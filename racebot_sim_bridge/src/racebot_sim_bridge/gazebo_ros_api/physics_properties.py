@@ -2,7 +2,8 @@
 
 gravity, time_step and max_update_rate change for real (the Simulator's step size, the world server's pace, the
 PhysicsWorld's gravity), and ode_config.sor_pgs_iters sets the solver's iterations; the other ODE numbers are kept
-and returned by get_physics_properties, without effect. Listeners (physics_reconfigure's) hear of every change.
+and returned by get_physics_properties, without effect. They start as the world file's <physics> gives them.
+Listeners (physics_reconfigure's) hear of every change.
 """
 import math
 
@@ -19,9 +20,8 @@ class PhysicsProperties(ServiceGroup):
     def __init__(self, rospy, sim):
         from gazebo_msgs import msg
         super().__init__(rospy, sim)
-        self.ode_config = msg.ODEPhysics(auto_disable_bodies=False, sor_pgs_precon_iters=0, sor_pgs_iters=50,
-                                         sor_pgs_w=1.3, sor_pgs_rms_error_tol=0.0, contact_surface_layer=0.001,
-                                         contact_max_correcting_vel=100.0, cfm=0.0, erp=0.2, max_contacts=20)
+        # what the world file's <physics> says (sdf_model.ODE_SETTINGS), as Gazebo's ODEPhysics reports it
+        self.ode_config = msg.ODEPhysics(auto_disable_bodies=False, sor_pgs_rms_error_tol=0.0, **sim.spec.physics.ode)
         self.physics_listeners = []  # called with no arguments after set_physics_properties changed the world
 
     def get_physics_properties(self, _req):
