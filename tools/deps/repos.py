@@ -111,15 +111,17 @@ def vcs():
     return beside if os.path.exists(beside) else (shutil.which('vcs') or 'vcs')
 
 
-def _vcs_errors(output):
+def _vcs_errors(output, src=None):
     """{local name: its error in one line} from `vcs import` output: vcstool's summary of the failed step
     ("Could not clone repository '...'"), followed by git's own first `error:` or `fatal:` line where the summary
-    does not hold it (a clone whose checkout failed prints "Cloning into '.'..." first)."""
+    does not hold it (a clone whose checkout failed prints "Cloning into '.'..." first). A local name is the
+    section's path below `src` (a release repository's `navigation-release/fake_localization`), or its last part."""
     sections, current = {}, None
     for line in output.splitlines():
         found = VCS_SECTION.match(line.strip())
         if found:
-            current = os.path.basename(found.group(1))
+            path = found.group(1)
+            current = os.path.relpath(path, src) if src and os.path.isabs(path) else os.path.basename(path)
             sections.setdefault(current, [])
         elif current and line.strip():
             sections[current].append(line.strip())
@@ -157,7 +159,7 @@ def _vcs_import(wanted, src, work, log):
     done = subprocess.run([vcs(), 'import', '--force', '--shallow', '--retry', '0', '--input', listing, src],
                           stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
     log.write(done.stdout)
-    return _vcs_errors(done.stdout)
+    return _vcs_errors(done.stdout, os.path.abspath(src))
 
 
 def _name_object(error, url, version):

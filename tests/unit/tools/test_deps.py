@@ -111,6 +111,19 @@ def test_vcs_import_output_gives_each_repository_its_first_error():
         'c': "Could not clone repository '/m': error: unable to read sha1 file of x.stl (ab12)"}
 
 
+def test_the_error_of_a_release_repositorys_package_is_found_by_its_local_name():
+    """vcs import prints each repository's path as given, absolute under the underlay's src, and a release
+    repository's local name has two parts: its error was looked up by the last part only and never found (the row
+    then said only "see vcs-import.log")."""
+    sha = '6e139cbd0e1a942d90deec82427ae99a039932e1'
+    output = ('=== /ws/src/robot_localization-release/robot_localization (git) ===\n'
+              'remote: fatal: unable to read %s\n'
+              '=== /ws/src/joy (git) ===\nCould not checkout ref \'1.15.1\': error: pathspec\n' % sha)
+    assert repos._vcs_errors(output, '/ws/src') == {
+        'robot_localization-release/robot_localization': 'fatal: unable to read ' + sha,
+        'joy': "Could not checkout ref '1.15.1': error: pathspec"}
+
+
 @pytest.mark.parametrize('remote_first', [True, False])
 def test_a_shallow_fetch_of_a_copy_lacking_an_object_names_the_object_in_either_order_of_gits_lines(remote_first):
     """git's remote side (pack-objects) and its local side write to one stream: either line may come first
