@@ -134,14 +134,15 @@ def _vcs_errors(output, src=None):
         # git names the object it could not read on the remote side's stderr, which reaches the output before or
         # after the local side's "git-pack-objects died" as the two processes happen to write: that is the cause
         unreadable = next((text for text in lines if UNREADABLE.search(text)), None)
-        if unreadable and (first.startswith('remote: ') or not UNREADABLE.search(first)):
+        if unreadable:
             cause = unreadable[len('remote: '):] if unreadable.startswith('remote: ') else unreadable
-            first = cause if re.match(r'(remote: )?(error|fatal):', first) else \
-                '%s: %s' % (first.split(': ', 1)[0], cause)
         elif not re.search(r'(^|: )(error|fatal):', first):
             cause = next((text for text in lines if text.startswith(('error:', 'fatal:'))), None)
-            if cause:
-                first = '%s: %s' % (first.split(': ', 1)[0], cause)
+        else:
+            cause = None
+        if cause and cause != first:  # git's own line replaces git's line, and follows vcstool's summary
+            first = cause if re.match(r'(remote: )?(error|fatal):', first) else \
+                '%s: %s' % (first.split(': ', 1)[0], cause)
         errors[name] = first
     return errors
 

@@ -18,6 +18,9 @@ from racebot_model import render_racebot
 from racebot_sim_bridge.engine.physics import PhysicsWorld
 from racebot_sim_bridge.engine.bullet_urdf import NEGLIGIBLE_MASS
 from racebot_sim_bridge.engine.physics_types import PhysicsError
+from racebot_sim_bridge.engine.simulator import Simulator
+
+from fakes import FakeLog
 
 REPO = Path(__file__).resolve().parents[3]
 EMPTY_WORLD = REPO / 'racebot_sim_bridge' / 'worlds' / 'empty.world'
@@ -343,8 +346,6 @@ BOX_ON_GROUND = """<?xml version="1.0"?>
 def test_the_worlds_friction_model_limits_a_diagonal_push_as_odes_does(solver, slides):
     """A box pushed at 45 degrees with 1.2 mu m g: ODE's pyramid limits each of the two friction directions to mu N
     on its own, so the push (0.85 mu m g along each) is held; the cone limits their sum, so the box slides."""
-    from fakes import FakeLog
-    from racebot_sim_bridge.engine.simulator import Simulator
     sim = Simulator(sdf_reader.parse_world(BOX_ON_GROUND % solver), io=None, log=FakeLog(), get_params={}.get)
     try:
         box = sim.world.bodies['box']

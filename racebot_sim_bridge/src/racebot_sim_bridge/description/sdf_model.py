@@ -47,19 +47,20 @@ class Physics:
     ode: dict = field(default_factory=lambda: dict(ODE_DEFAULTS))
 
 
-# (ODEPhysics field, its path under <physics>, sdformat's default, an integer); get_physics_properties reports them,
-# and the solver's iterations reach the engine (Bullet's constraint solver has no SOR, CFM or ERP of ODE's meaning)
+# (ODEPhysics field, its path under <physics>, sdformat's default, an integer, the least value taken);
+# get_physics_properties reports them, and the solver's iterations reach the engine (Bullet's constraint solver has
+# no SOR, CFM or ERP of ODE's meaning). A solver that never iterates holds nothing: iters from 1.
 ODE_SETTINGS = (
-    ('sor_pgs_iters', 'ode/solver/iters', 50, True),
-    ('sor_pgs_precon_iters', 'ode/solver/precon_iters', 0, True),
-    ('sor_pgs_w', 'ode/solver/sor', 1.3, False),
-    ('cfm', 'ode/constraints/cfm', 0.0, False),
-    ('erp', 'ode/constraints/erp', 0.2, False),
-    ('contact_max_correcting_vel', 'ode/constraints/contact_max_correcting_vel', 100.0, False),
-    ('contact_surface_layer', 'ode/constraints/contact_surface_layer', 0.001, False),
-    ('max_contacts', 'max_contacts', 20, True),
+    ('sor_pgs_iters', 'ode/solver/iters', 50, True, 1),
+    ('sor_pgs_precon_iters', 'ode/solver/precon_iters', 0, True, 0),
+    ('sor_pgs_w', 'ode/solver/sor', 1.3, False, 0),
+    ('cfm', 'ode/constraints/cfm', 0.0, False, 0),
+    ('erp', 'ode/constraints/erp', 0.2, False, 0),
+    ('contact_max_correcting_vel', 'ode/constraints/contact_max_correcting_vel', 100.0, False, 0),
+    ('contact_surface_layer', 'ode/constraints/contact_surface_layer', 0.001, False, 0),
+    ('max_contacts', 'max_contacts', 20, True, 0),
 )
-ODE_DEFAULTS = {name: default for name, _, default, _ in ODE_SETTINGS}
+ODE_DEFAULTS = {name: default for name, _, default, _, _ in ODE_SETTINGS}
 
 
 @dataclass

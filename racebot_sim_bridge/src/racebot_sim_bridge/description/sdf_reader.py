@@ -145,13 +145,12 @@ class _WorldReader(ModelReader):
                               % (tag, '>= 0' if allow_zero else '> 0', value, default))
                     continue
                 setattr(physics, tag, value)
-            for name, path, default, integer in ODE_SETTINGS:
+            for name, path, default, integer, least in ODE_SETTINGS:
                 try:
                     value = child_float(chosen, path, default, path.rsplit('/', 1)[-1])
                 except Unusable as err:
                     self.warn('physics', '%s; using the default %g' % (err, default))
                     continue
-                least = 1 if name == 'sor_pgs_iters' else 0  # a solver that never iterates holds nothing
                 if value < least or (integer and value != int(value)):
                     self.warn('physics', '%s must be a %s >= %d, got %g; using the default %g'
                               % (path, 'whole number' if integer else 'number', least, value, default))
