@@ -4,7 +4,8 @@ prepare_urdf_for_bullet rewrites a spawned robot's parsed URDF for loadURDF: Gaz
 (../description/urdf_lumping.py), the links in tree order (PyBullet crashes on a root written last), negligible
 inertia where none is declared, each inertia as Gazebo's ODE takes it (../kinematics/inertia.py: one that is not
 positive definite becomes the identity, with a warning; one PyBullet's importer would zero, though ODE takes it, is
-written in its principal axes and its moments set after loading), the Gazebo-only blocks dropped. No PyBullet calls
+written in its principal axes and its moments set after loading), a faceted wheel mesh replaced by the round wheel
+it approximates (round_wheels.py), the Gazebo-only blocks dropped. No PyBullet calls
 here: urdf_spawn.py loads the text.
 """
 from __future__ import annotations
@@ -15,6 +16,7 @@ from typing import NamedTuple
 
 from racebot_sim_bridge.description import urdf_lumping
 from racebot_sim_bridge.description.urdf_model import RobotModel
+from racebot_sim_bridge.engine import round_wheels
 from racebot_sim_bridge.kinematics import inertia as inertia_maths
 from racebot_sim_bridge.kinematics.rotations import quaternion_multiply, quaternion_to_rpy, rpy_to_quaternion
 
@@ -70,7 +72,8 @@ def prepare_urdf_for_bullet(root: ET.Element, urdf_model: RobotModel, visuals: b
                             warn: Callable[[str], None] | None = None) -> BulletUrdf:
     """The URDF text PyBullet should read, rewritten from its root element (changed in place): links
     lumped as Gazebo lumps them; negligible inertia for links that declare none; each inertia as ODE takes it
-    (_inertias_as_ode_takes_them: warn(message) hears of model `name`'s that are not positive definite); <gazebo>,
+    (_inertias_as_ode_takes_them: warn(message) hears of model `name`'s that are not positive definite); a faceted
+    wheel mesh made round (round_wheels.py: Bullet's rigid contacts make its facets chatter); <gazebo>,
     <transmission> and sensor blocks dropped; the visuals dropped unless `visuals`; an <axis> without xyz given
     urdfdom's default, 1 0 0 (PyBullet would read uninitialised memory for it). Mesh filenames must already be files
     PyBullet reads (urdf_assets.resolve_assets)."""
@@ -81,6 +84,7 @@ def prepare_urdf_for_bullet(root: ET.Element, urdf_model: RobotModel, visuals: b
         if axis.get('xyz') is None:
             axis.set('xyz', '1 0 0')
     urdf_lumping.lump_fixed_links(root, urdf_model)
+    round_wheels.round_wheel_meshes(root)
     _links_in_tree_order(root, urdf_model)
     for link in root.findall('link'):
         if link.find('inertial') is None:
