@@ -18,10 +18,10 @@ from racebot_sim_bridge.description import urdf_lumping
 from racebot_sim_bridge.description.urdf_model import RobotModel
 from racebot_sim_bridge.engine import round_wheels
 from racebot_sim_bridge.kinematics import inertia as inertia_maths
-from racebot_sim_bridge.kinematics.rotations import quaternion_multiply, quaternion_to_rpy, rpy_to_quaternion
+from racebot_sim_bridge.kinematics.rotations import quaternion_multiply, quaternion_to_rpy, rotate, rpy_to_quaternion
 
-__all__ = ['NEGLIGIBLE_MASS', 'NEGLIGIBLE_INERTIA', 'BulletUrdf', 'prepare_urdf_for_bullet', 'joint_friction',
-           'link_friction', 'link_laser_retro']
+__all__ = ['NEGLIGIBLE_MASS', 'NEGLIGIBLE_INERTIA', 'BulletUrdf', 'FrictionAxes', 'prepare_urdf_for_bullet',
+           'joint_friction', 'link_friction', 'link_friction_axes', 'link_laser_retro']
 
 # Mass and inertia given to links that declare no <inertial> (Gazebo drops such links' mass; PyBullet would give 1 kg).
 NEGLIGIBLE_MASS = 1e-4
@@ -66,6 +66,47 @@ def link_friction(urdf_model: RobotModel, link: str) -> float:
         if values:
             mus.append(min(values))
     return min(mus) if mus else 1.0
+
+
+class FrictionAxes(NamedTuple):
+    """Gazebo's anisotropic friction of a link: `mu1` along `fdir1` (a unit vector in the URDF link's frame), `mu2`
+    square to it; `axle`: the link's own continuous joint's axis (unit, in its frame) when fdir1 is square to it (a
+    wheel: mu1 is then the rolling direction's, whichever way the wheel has turned), else None."""
+    mu1: float
+    mu2: float
+    fdir1: tuple
+    axle: tuple | None
+
+
+def link_friction_axes(urdf_model: RobotModel, link: str) -> FrictionAxes | None:
+    """The FrictionAxes of a PyBullet link whose <gazebo reference> gives mu1 and mu2 that differ and an <fdir1>
+    (sdformat: in the collision's frame; the link's first collision's origin turns it into the link's), when it is
+    the only URDF link with collisions merged into it; None otherwise (link_friction's smaller mu then applies)."""
+    merged = [name for name, spec in urdf_model.links.items()
+              if urdf_model.lumped_link(name) == link and spec.collisions]
+    if merged != [link]:
+        return None
+    props = urdf_model.gazebo_refs.get(link, {})
+    mu1, mu2 = props.get('mu1'), props.get('mu2')
+    if not (isinstance(mu1, float) and isinstance(mu2, float)) or mu1 == mu2:
+        return None
+    try:
+        fdir1 = [float(v) for v in str(props.get('fdir1', '')).split()]
+    except ValueError:
+        return None
+    norm = sum(v * v for v in fdir1) ** 0.5 if len(fdir1) == 3 else 0.0
+    if not norm > 1e-9:
+        return None
+    rpy = urdf_model.links[link].collisions[0].origin_rpy or (0.0, 0.0, 0.0)
+    fdir1 = rotate(rpy_to_quaternion(*rpy), [v / norm for v in fdir1])
+    axle = None
+    joint = urdf_model.parent_joint(link)
+    if joint is not None and joint.type == 'continuous' and joint.axis is not None:
+        a = joint.axis
+        a_norm = sum(v * v for v in a) ** 0.5
+        if a_norm > 1e-9 and abs(sum(f * v for f, v in zip(fdir1, a))) / a_norm < 1e-3:
+            axle = tuple(v / a_norm for v in a)
+    return FrictionAxes(mu1, mu2, tuple(fdir1), axle)
 
 
 def prepare_urdf_for_bullet(root: ET.Element, urdf_model: RobotModel, visuals: bool = True, name: str = '',

@@ -36,13 +36,13 @@ import pybullet as pb
 
 from racebot_sim_bridge.description import urdf_assets
 from racebot_sim_bridge.engine import mimic_joints
-from racebot_sim_bridge.engine.bullet_urdf import joint_friction, link_friction, link_laser_retro, \
-    prepare_urdf_for_bullet
+from racebot_sim_bridge.engine.bullet_urdf import FrictionAxes, joint_friction, link_friction, link_friction_axes, \
+    link_laser_retro, prepare_urdf_for_bullet
 from racebot_sim_bridge.engine.joint_damping import ImplicitDampers, implicit_joints
 from racebot_sim_bridge.engine.model import Model
 from racebot_sim_bridge.engine.physics_types import BodyKind, BodySource, PhysicsError
 from racebot_sim_bridge.engine.pybullet_client import PybulletClient
-from racebot_sim_bridge.kinematics.rotations import Quat, Vec3
+from racebot_sim_bridge.kinematics.rotations import Quat, Vec3, rotate_back
 
 if TYPE_CHECKING:
     from racebot_sim_bridge.description.urdf_model import RobotModel
@@ -51,6 +51,7 @@ if TYPE_CHECKING:
 # Links in one PyBullet body whose state it can report (SharedMemoryPublic.h MAX_DEGREE_OF_FREEDOM): with
 # more, loadURDF succeeds and then every state query (getBasePositionAndOrientation, ...) fails.
 MAX_BULLET_LINKS = 128
+ALIGNED = 0.999  # |cos| of the angle within which <fdir1> or an axle lies along an axis of a link's frame
 FLAGS = pb.URDF_USE_INERTIA_FROM_FILE | pb.URDF_MAINTAIN_LINK_ORDER | pb.URDF_USE_IMPLICIT_CYLINDER
 
 
@@ -89,7 +90,7 @@ class UrdfSpawn:
                                % (name, links, MAX_BULLET_LINKS))
         body_id = self._load(name, bullet.text, position, orientation, fixed, load_trial)
         try:
-            return self._set_up(name, body_id, urdf_model, urdf_xml, ground_mu, bullet.moments)
+            return self._set_up(name, body_id, urdf_model, urdf_xml, ground_mu, bullet.moments, warn)
         except Exception as err:  # a body half set up would stay in the world, stepped and never reported
             self.client.removeBody(body_id)
             for key in [k for k in self.laser_retro if k[0] == body_id]:
@@ -115,7 +116,39 @@ class UrdfSpawn:
             except pb.error as err:
                 raise PhysicsError("PyBullet could not load the URDF of '%s': %s" % (name, err))
 
-    def _set_up(self, name, body_id, urdf_model, urdf_xml, ground_mu, moments):
+    def _friction_axes(self, name: str, body_id: int, index: int, link: str, axes: FrictionAxes, ground_mu: float,
+                       warn: Callable[[str], None] | None) -> None:
+        """Gazebo's mu1 along fdir1 and mu2 across it (each the smaller of the link's and the ground's, as ODE takes
+        each direction's) as Bullet's anisotropic friction: a scale per axis of the link's collision frame (its
+        inertial frame in PyBullet) on the link's friction. Exact where fdir1 lies along one of those axes; a
+        wheel's fdir1 square to its axle gives mu1 to both axes square to the axle (the rolling direction's as it
+        turns), mu2 to the axle's. Otherwise the smaller mu stays, with one warning."""
+        client = self.client
+        mu1, mu2 = min(axes.mu1, ground_mu), min(axes.mu2, ground_mu)
+        if mu1 == mu2:
+            return
+        inertial = client.getDynamicsInfo(body_id, index)[4]  # the collision frame's orientation in the link's
+        fdir1 = rotate_back(inertial, axes.fdir1)
+        along = max(range(3), key=lambda k: abs(fdir1[k]))
+        if abs(fdir1[along]) < ALIGNED:
+            if warn is not None:
+                warn("'%s': link '%s' has <fdir1> %s with mu1 %g and mu2 %g; racebot simulates different mu1 and mu2 "
+                     "only along an axis of the link's inertial frame, so it takes the smaller, %g, in every "
+                     "direction" % (name, link, ' '.join('%g' % v for v in axes.fdir1), axes.mu1, axes.mu2,
+                                    min(mu1, mu2)))
+            return
+        scale = [mu2, mu2, mu2]
+        scale[along] = mu1
+        if axes.axle is not None:
+            axle = rotate_back(inertial, axes.axle)
+            spin = max(range(3), key=lambda k: abs(axle[k]))
+            if abs(axle[spin]) >= ALIGNED:
+                scale = [mu1, mu1, mu1]
+                scale[spin] = mu2
+        top = max(scale)
+        client.changeDynamics(body_id, index, lateralFriction=top, anisotropicFriction=[v / top for v in scale])
+
+    def _set_up(self, name, body_id, urdf_model, urdf_xml, ground_mu, moments, warn=None):
         """The Model of a URDF PyBullet just loaded, with Gazebo's friction, damping and joint motors, and the
         principal `moments` ({link: (x, y, z)}) its importer would have zeroed."""
         client = self.client
@@ -126,6 +159,9 @@ class UrdfSpawn:
             # PyBullet's default link damping (0.04) has no counterpart in Gazebo: a free wheel would slow down.
             friction = min(link_friction(urdf_model, link), ground_mu)
             client.changeDynamics(body_id, index, lateralFriction=friction)
+            axes = link_friction_axes(urdf_model, link)
+            if axes is not None:
+                self._friction_axes(name, body_id, index, link, axes, ground_mu, warn)
             # separate call: PyBullet ignores the friction when damping comes in the same call
             client.changeDynamics(body_id, index, linearDamping=0.0, angularDamping=0.0)
             if link in moments:  # changeDynamics takes the moments the importer refuses
