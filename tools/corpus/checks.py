@@ -22,11 +22,13 @@ sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 import rospy  # noqa: E402
 
 from corpus import floor, sensors  # noqa: E402
+from corpus.drive_path import travelled  # noqa: E402
 from corpus.flight_check import check_flight  # noqa: E402
 from corpus.ros_io import (MESSAGE_TIMEOUT_S, WALL_MARGIN_S, CheckFailed, Commander, Latest, message,  # noqa: E402
-                           model_pose, service, sim_sleep, wrap, yaw_of)
+                           model_pose, service, sim_sleep, yaw_of)
 
 PATH_TOLERANCE_VIOLATED = -4  # control_msgs/FollowJointTrajectoryResult
+DRIVE_SAMPLE_S = 0.1  # s of sim time between the poses a drive check's path is summed from
 
 
 def joint_positions(topic):
@@ -89,20 +91,26 @@ def check_drive(check, row):
     model = check.get('model', row.get('model'))
     odom = Latest(check['odom_topic'], 'nav_msgs/Odometry') if check.get('odom_topic') else None
     cmd = Commander(check)
+    seconds = float(check['seconds'])
+    samples = max(1, int(round(seconds / DRIVE_SAMPLE_S)))
     try:
         sim_sleep(float(check.get('settle', 2.0)))
         x0, y0, th0, t0 = model_pose(getter, model)
         o0 = odom.msg if odom else None
-        sim_sleep(float(check['seconds']))
-        x1, y1, th1, t1 = model_pose(getter, model)
+        poses = [(x0, y0, th0)]
+        for _ in range(samples):  # the path, not the chord: a turning drive's arc is longer (drive_path.py)
+            sim_sleep(seconds / samples)
+            x1, y1, th1, t1 = model_pose(getter, model)
+            poses.append((x1, y1, th1))
         o1 = odom.msg if odom else None
     finally:
         cmd.stop()
     dt = t1 - t0
     if dt <= 0:
         raise CheckFailed('sim time did not advance between the two model states')
-    dist = math.hypot(x1 - x0, y1 - y0)
-    speed, yaw_rate = dist / dt, wrap(th1 - th0) / dt
+    dist, turned = travelled(poses)
+    speed, yaw_rate = dist / dt, turned / dt
+    chord = math.hypot(x1 - x0, y1 - y0)  # what the odometry's first and last poses are compared with
     tol = float(check['tolerance'])
     want = float(check['expect_speed'])
     numbers = 'ground truth %.3f m/s over %.1f s (expected %.3f +-%.0f%%)' % (speed, dt, want, tol * 100)
@@ -120,9 +128,9 @@ def check_drive(check, row):
         else:
             p0, p1 = o0.pose.pose.position, o1.pose.pose.position
             odist = math.hypot(p1.x - p0.x, p1.y - p0.y)
-            numbers += '; odometry %s %.3f m vs ground truth %.3f m' % (check['odom_topic'], odist, dist)
-            if abs(odist - dist) > tol * max(dist, 0.05):
-                problems.append('odometry says %.3f m, ground truth %.3f m' % (odist, dist))
+            numbers += '; odometry %s %.3f m vs ground truth %.3f m' % (check['odom_topic'], odist, chord)
+            if abs(odist - chord) > tol * max(chord, 0.05):
+                problems.append('odometry says %.3f m, ground truth %.3f m' % (odist, chord))
     if problems:
         raise CheckFailed('; '.join(problems), numbers)
     return numbers

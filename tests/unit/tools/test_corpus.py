@@ -2,6 +2,7 @@
 real git repositories made here), the sensor expectations read off a URDF, the build and launch log
 readers, and the table."""
 import copy
+import math
 import os
 import subprocess
 from pathlib import Path
@@ -461,3 +462,17 @@ def test_plugin_output_counts_the_text_in_every_commands_log(tmp_path):
     assert numbers == "'Hello World!' 2 time(s) in the commands' output (command-1.log: 1, command-2.log: 1)"
     with pytest.raises(CheckFailed, match=r"appeared 2 time\(s\), the row expects 3"):
         check_plugin_output({'text': 'Hello World!', 'count': 3, 'timeout': 0}, row)
+
+
+def test_a_turning_drives_path_is_its_arc_not_its_chord():
+    from corpus.drive_path import travelled
+    radius, rate, seconds = 1.6, 0.3, 5.0  # the racecar's turn: a chord 7 % short of the arc
+    poses = [(radius * math.sin(rate * t), radius * (1 - math.cos(rate * t)), rate * t)
+             for t in [seconds * k / 50 for k in range(51)]]
+    length, turned = travelled(poses)
+    assert length == pytest.approx(radius * rate * seconds, rel=1e-3)
+    assert turned == pytest.approx(rate * seconds, rel=1e-9)
+    chord = math.hypot(poses[-1][0], poses[-1][1])
+    assert chord < 0.95 * length
+    # a turn past half a circle is counted whole, segment by segment
+    assert travelled([(0, 0, 0.0), (0, 0, 3.0), (0, 0, -3.0)])[1] == pytest.approx(3.0 + 2 * math.pi - 6.0)
