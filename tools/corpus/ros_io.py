@@ -53,10 +53,6 @@ def yaw_of(q):
     return math.atan2(2.0 * (q.w * q.z + q.x * q.y), 1.0 - 2.0 * (q.y * q.y + q.z * q.z))
 
 
-def wrap(angle):
-    return math.atan2(math.sin(angle), math.cos(angle))
-
-
 class Commander:
     """Publishes one command at 20 Hz (wall) until stopped, then a zero command."""
 

@@ -33,6 +33,7 @@ import xml.etree.ElementTree as ET
 
 import numpy as np
 
+from racebot_sim_bridge.description import xml_values
 from racebot_sim_bridge.engine.one_sided_mesh import read_obj
 from racebot_sim_bridge.kinematics.rotations import matrix, quaternion_to_rpy, rpy_to_quaternion
 
@@ -93,13 +94,11 @@ def round_wheel_meshes(root: ET.Element) -> list[str]:
         link = links.get(child.get('link')) if child is not None else None
         if link is None or link.get('name') in carriers:
             continue
-        axis_elem = joint.find('axis')
         try:  # urdfdom's default axis, 1 0 0
-            axis = np.array([float(x) for x in ((axis_elem.get('xyz') if axis_elem is not None else None)
-                                                or '1 0 0').split()])
-        except ValueError:
+            axis = np.array(_vector(joint.find('axis'), 'xyz', '1 0 0'))
+        except xml_values.BadValue:
             continue
-        if axis.shape != (3,) or not np.all(np.isfinite(axis)) or np.linalg.norm(axis) < 1e-9:
+        if np.linalg.norm(axis) < 1e-9:
             continue
         axis = axis / np.linalg.norm(axis)
         rounded = False
@@ -117,14 +116,12 @@ def _round(collision: ET.Element, mesh: ET.Element, axis_in_link: np.ndarray) ->
     path = mesh.get('filename') or ''
     if not path.endswith('.obj') or not os.path.isfile(path):
         return False
+    origin = collision.find('origin')
     try:
-        scale = np.array([float(x) for x in (mesh.get('scale') or '1 1 1').split()])
-        origin = collision.find('origin')
-        xyz = np.array([float(x) for x in ((origin.get('xyz') if origin is not None else None) or '0 0 0').split()])
-        rpy = [float(x) for x in ((origin.get('rpy') if origin is not None else None) or '0 0 0').split()]
-    except ValueError:  # the reader has warned of a malformed number; Bullet gets the mesh as it is
-        return False
-    if scale.shape != (3,) or xyz.shape != (3,) or len(rpy) != 3:
+        scale = np.array(_vector(mesh, 'scale', '1 1 1'))
+        xyz = np.array(_vector(origin, 'xyz', '0 0 0'))
+        rpy = _vector(origin, 'rpy', '0 0 0')
+    except xml_values.BadValue:  # the reader has warned of a malformed value; Bullet gets the mesh as it is
         return False
     vertices, _ = read_obj(path)
     if len(vertices) < 3:
@@ -147,6 +144,13 @@ def _round(collision: ET.Element, mesh: ET.Element, axis_in_link: np.ndarray) ->
     geometry = ET.SubElement(collision, 'geometry')
     ET.SubElement(geometry, 'cylinder', radius='%.9g' % radius, length='%.9g' % length)
     return True
+
+
+def _vector(element: ET.Element | None, attribute: str, default: str) -> tuple[float, ...]:
+    """The three finite numbers of `element`'s `attribute` (`default` when the element or the attribute is absent);
+    xml_values.BadValue otherwise."""
+    text = element.get(attribute) if element is not None else None
+    return xml_values.numbers(text or default, 3)
 
 
 def _z_onto(axis):
