@@ -1,0 +1,77 @@
+#!/usr/bin/env python3
+"""A topic's publishing rate in sim time, read from its messages' header stamps: rostest's hztest with the
+clock taken from the message instead of from the moment it arrives.
+
+hztest stamps each message with rospy.get_rostime() in its callback, so under load (three rostests on two
+cores) a backlog of messages handled at one /clock reading shortens the measured span: it once read 52.002 Hz
+for /racebot/joint_states, which publishes at exactly 50 Hz of sim time. The stamps are what the publisher
+promises (joint_state_controller's publish_rate, a sensor's update_rate), whatever the subscriber's load.
+
+Params (hztest's names): ~topic, ~hz, ~hzerror, ~test_duration (sim seconds), ~wait_time (wall seconds for
+the first message). Checks, over the stamps received in test_duration:
+- stamps strictly increase (a republished or reordered message fails);
+- the median interval is within hz +- hzerror (a lost message lengthens one interval, not the median);
+- the average rate is at most hz + hzerror (losses only lower it: more is a publisher too fast).
+"""
+import statistics
+import threading
+import time
+import unittest
+
+import rospy
+import rostest
+import rostopic
+
+MIN_INTERVALS = 10  # fewer than this in test_duration is no measurement
+
+
+class StampRateTest(unittest.TestCase):
+
+    def test_rate_from_stamps(self):
+        topic = rospy.get_param('~topic')
+        hz, hzerror = float(rospy.get_param('~hz')), float(rospy.get_param('~hzerror'))
+        duration, wait = float(rospy.get_param('~test_duration', 5.0)), float(rospy.get_param('~wait_time', 20.0))
+        self.assertGreater(hz - hzerror, 0.0, '~hz must exceed ~hzerror')
+
+        deadline = time.time() + wait
+        cls = None
+        while cls is None and time.time() < deadline and not rospy.is_shutdown():
+            cls, _, _ = rostopic.get_topic_class(topic)
+            if cls is None:
+                time.sleep(0.1)
+        self.assertIsNotNone(cls, '%s was not advertised within %.0f s' % (topic, wait))
+        self.assertIn('header', cls.__slots__, '%s has no header to take the stamps from' % topic)
+
+        stamps, lock = [], threading.Lock()
+
+        def on_msg(msg):
+            with lock:
+                stamps.append(msg.header.stamp.to_sec())
+        sub = rospy.Subscriber(topic, cls, on_msg, queue_size=10000)
+        while not stamps and time.time() < deadline and not rospy.is_shutdown():
+            time.sleep(0.05)
+        self.assertTrue(stamps, 'no message on %s within %.0f s' % (topic, wait))
+        end = rospy.get_time() + duration
+        guard = time.time() + wait + 10 * duration  # a stalled simulator fails, it does not hang
+        while rospy.get_time() < end and time.time() < guard and not rospy.is_shutdown():
+            time.sleep(0.05)
+        sub.unregister()
+        with lock:
+            got = list(stamps)
+
+        intervals = [b - a for a, b in zip(got, got[1:])]
+        self.assertGreaterEqual(len(intervals), MIN_INTERVALS, '%d messages on %s in %.1f s of sim time'
+                                % (len(got), topic, duration))
+        bad = [(a, b) for a, b in zip(got, got[1:]) if b <= a]
+        self.assertFalse(bad, '%s stamps do not increase: %r' % (topic, bad[:5]))
+        median = statistics.median(intervals)
+        self.assertAlmostEqual(1.0 / median, hz, delta=hzerror, msg='%s: median interval %.4f s of sim time '
+                               '(%.3f Hz), expected %.1f +- %.1f Hz' % (topic, median, 1.0 / median, hz, hzerror))
+        average = len(intervals) / (got[-1] - got[0])
+        self.assertLessEqual(average, hz + hzerror, '%s: %d intervals in %.4f s of stamps, %.3f Hz'
+                             % (topic, len(intervals), got[-1] - got[0], average))
+
+
+if __name__ == '__main__':
+    rospy.init_node('stamp_rate_test', anonymous=True)
+    rostest.rosrun('racebot_tests', 'stamp_rate_test', StampRateTest)
