@@ -11,6 +11,7 @@ Waits are in wall time, judgements in sim time.
 """
 import functools
 import math
+import statistics
 import unittest
 
 import rospy
@@ -135,10 +136,14 @@ class OdometryTest(unittest.TestCase):
         self.assertGreater(mid.twist.twist.linear.x, speed * 0.9)  # accelerating at the start: mean is lower
 
     def test_3_odom_at_20_hz_of_sim_time(self):
+        # the median interval: gazebo_odometry stamps at arrival and publishes the ticks a stall made it miss with
+        # the next arrivals (odometry.SimTimeTicks), so under load (2026-12-03) a window opening on such a burst
+        # averaged 21.8 Hz; the median moves only if most intervals are off
         stamps = [m.header.stamp.to_sec() for m in self.moving_odom]
         self.assertGreater(len(stamps), 10)
-        rate = (len(stamps) - 1) / (stamps[-1] - stamps[0])
-        self.assertAlmostEqual(rate, 20.0, delta=1.5)
+        median = statistics.median(b - a for a, b in zip(stamps, stamps[1:]))
+        self.assertAlmostEqual(1.0 / median, 20.0, delta=1.5, msg='median interval %.4f s of sim time' % median)
+        self.assertTrue(all(b > a for a, b in zip(stamps, stamps[1:])), 'stamps do not increase')
 
     def test_4_wheel_odometry_within_5_percent(self):
         truth = self.travelled(self.end_truth)

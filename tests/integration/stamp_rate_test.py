@@ -10,8 +10,9 @@ promises (joint_state_controller's publish_rate, a sensor's update_rate), whatev
 Params (hztest's names): ~topic, ~hz, ~hzerror, ~test_duration (sim seconds), ~wait_time (wall seconds for
 the first message). Checks, over the stamps received in test_duration:
 - stamps strictly increase (a republished or reordered message fails);
-- the median interval is within hz +- hzerror (a lost message lengthens one interval, not the median);
-- the average rate is at most hz + hzerror (losses only lower it: more is a publisher too fast).
+- the median interval is within hz +- hzerror: a lost message lengthens one interval, and a node that stamps at
+  arrival and catches up on the ticks a stall made it miss (gazebo_odometry's SimTimeTicks) shortens a few, but
+  neither moves the median; the average over a window that opens on such a burst does (22 Hz for 20).
 """
 import statistics
 import threading
@@ -67,9 +68,6 @@ class StampRateTest(unittest.TestCase):
         median = statistics.median(intervals)
         self.assertAlmostEqual(1.0 / median, hz, delta=hzerror, msg='%s: median interval %.4f s of sim time '
                                '(%.3f Hz), expected %.1f +- %.1f Hz' % (topic, median, 1.0 / median, hz, hzerror))
-        average = len(intervals) / (got[-1] - got[0])
-        self.assertLessEqual(average, hz + hzerror, '%s: %d intervals in %.4f s of stamps, %.3f Hz'
-                             % (topic, len(intervals), got[-1] - got[0], average))
 
 
 if __name__ == '__main__':
