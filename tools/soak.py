@@ -2,7 +2,7 @@
 """Soak: a long drive in the room, as fast as possible, watching memory, logs and the clock.
 
     make soak                                  30 min of sim time (the full soak)
-    python3 tools/soak.py --sim-minutes 1      the short form (the test suite runs it)
+    python3 tools/soak.py --sim-minutes 0.75   the short form (the test suite runs it)
 
 Starts `roslaunch racebot_gazebo racebot.launch gui:=false teleop:=false` on a master of its own (a
 free port) with a copy of the room world whose real_time_update_rate is 0 (as fast as possible),
