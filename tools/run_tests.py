@@ -31,6 +31,7 @@ OUT = os.path.join(ROOT, 'out', 'test-results')
 # its results, and reports a slow test as "unreadable results" (bench_quick at a load of 8).
 ROSTEST_SLACK_S = 120
 ROSTEST_DEFAULT_TIME_LIMIT_S = 60.0
+WAIT_POLL_S = 0.1  # how often run_bounded looks whether its command ended (wait4 has no timeout)
 # pytest's workers: JOBS, one per core (the unit tests are CPU-bound). Rostest files run JOBS + 1 at a time: each
 # brings up a master of its own on a free port (rostest's port 0), its own Xvfb (-displayfd), temporary folders and
 # render buffers, and most of a file's time is spent waiting for sim time at real time (a world server then takes
@@ -156,17 +157,27 @@ def end_group(proc, grace):
     proc.wait()
 
 
-def run_bounded(cmd, out, timeout, grace=15.0):
+def run_bounded(cmd, out, timeout, grace=15.0, usage=None):
     """Runs cmd in a session of its own with output to `out`; its exit code, or 'timeout after N s' when it ran
-    past `timeout` and its whole process group (rostest, its master, roslaunch and test nodes) was ended."""
+    past `timeout` and its whole process group (rostest, its master, roslaunch and test nodes) was ended.
+    `usage`, a dict, gets 'cpu_s': the user and system CPU seconds of cmd and of every descendant reaped below it
+    (rostest reaps its nodes, they reap theirs), from wait4: what a test costs the machine, whatever runs beside."""
     proc = subprocess.Popen(cmd, stdout=out, stderr=subprocess.STDOUT, start_new_session=True)
     with _RUNNING_LOCK:
         _RUNNING.add(proc)
+    deadline = time.monotonic() + timeout
     try:
-        return proc.wait(timeout=timeout)
-    except subprocess.TimeoutExpired:
-        end_group(proc, grace)
-        return 'timeout after %d s' % timeout
+        while True:
+            pid, status, rusage = os.wait4(proc.pid, os.WNOHANG)
+            if pid:
+                proc.returncode = os.waitstatus_to_exitcode(status)
+                if usage is not None:
+                    usage['cpu_s'] = rusage.ru_utime + rusage.ru_stime
+                return proc.returncode
+            if time.monotonic() >= deadline:
+                end_group(proc, grace)
+                return 'timeout after %d s' % timeout
+            time.sleep(WAIT_POLL_S)
     finally:
         with _RUNNING_LOCK:
             _RUNNING.discard(proc)
@@ -192,8 +203,9 @@ def rostest_cases(test_file):
     report = ['== rostest %s' % os.path.relpath(test_file, ROOT)]
     start = time.time()
     log = os.path.join(OUT, 'rostest-%s.log' % name)
+    usage = {}
     with open(log, 'w') as out:
-        code = run_bounded(cmd, out, rostest_timeout(test_file))
+        code = run_bounded(cmd, out, rostest_timeout(test_file), usage=usage)
     passed = failed = skipped = 0
     failures = []
     for xml in sorted(glob.glob(os.path.join(results_dir, '**', 'rosunit-*.xml'), recursive=True)):
@@ -208,8 +220,9 @@ def rostest_cases(test_file):
     if (code != 0 and failed == 0) or passed + failed + skipped == 0 or isinstance(code, str):
         failed += 1
         failures.append('%s: rostest exited %s' % (name, code))
-    report.append('   %d passed, %d failed in %.0f s (log: %s)' % (passed, failed, time.time() - start,
-                                                                  os.path.relpath(log, ROOT)))
+    report.append('   %d passed, %d failed in %.0f s, %s CPU s (log: %s)'
+                  % (passed, failed, time.time() - start, '%.0f' % usage['cpu_s'] if 'cpu_s' in usage else '?',
+                     os.path.relpath(log, ROOT)))
     if failures:
         with open(log) as f:
             tail = f.read()[-4000:]

@@ -54,3 +54,18 @@ def test_a_timeout_ends_the_whole_process_group(tmp_path):
 def test_an_exit_code_is_returned_as_it_is(tmp_path):
     with open(tmp_path / 'out.log', 'w') as out:
         assert run_tests.run_bounded(['bash', '-c', 'exit 3'], out, timeout=30) == 3
+
+
+def test_a_signal_is_returned_as_popen_returns_it(tmp_path):
+    with open(tmp_path / 'out.log', 'w') as out:
+        assert run_tests.run_bounded(['bash', '-c', 'kill -TERM $$'], out, timeout=30) == -15
+
+
+def test_the_cpu_of_the_command_and_the_descendants_it_reaped_is_reported(tmp_path):
+    # a grandchild (bash -> python) spins 0.4 s of CPU; the shell reaps it, so wait4 counts it for the command
+    spin = 'import time\nt = time.process_time()\nwhile time.process_time() - t < 0.4:\n    pass\n'
+    usage = {}
+    with open(tmp_path / 'out.log', 'w') as out:
+        code = run_tests.run_bounded(['bash', '-c', 'python3 -c "$0"; true', spin], out, timeout=30, usage=usage)
+    assert code == 0
+    assert 0.4 <= usage['cpu_s'] < 5.0, usage
