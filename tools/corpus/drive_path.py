@@ -8,6 +8,8 @@ from __future__ import annotations
 import math
 from collections.abc import Sequence
 
+from corpus import angles
+
 
 def travelled(poses: Sequence[tuple[float, float, float]]) -> tuple[float, float]:
     """(length of the path through the (x, y, yaw) poses, the yaw turned along it): segment by segment, each
@@ -16,5 +18,5 @@ def travelled(poses: Sequence[tuple[float, float, float]]) -> tuple[float, float
     length = turned = 0.0
     for (x0, y0, th0), (x1, y1, th1) in zip(poses, poses[1:]):
         length += math.hypot(x1 - x0, y1 - y0)
-        turned += math.atan2(math.sin(th1 - th0), math.cos(th1 - th0))
+        turned += angles.wrap(th1 - th0)
     return length, turned

@@ -17,7 +17,7 @@ from typing import NamedTuple
 
 import numpy as np
 
-from corpus import slam_map
+from corpus import angles, slam_map
 
 COARSE_CELL = 0.1    # m: the coarse search's cells
 YAW_STEP = math.radians(2.0)
@@ -96,16 +96,13 @@ def occupied(grid: Grid) -> np.ndarray:
 def compose(a: tuple, b: tuple) -> tuple:
     """The pose b given in frame a, in a's parent frame (a * b)."""
     c, s = math.cos(a[2]), math.sin(a[2])
-    return (a[0] + c * b[0] - s * b[1], a[1] + s * b[0] + c * b[1], _wrap(a[2] + b[2]))
+    return (a[0] + c * b[0] - s * b[1], a[1] + s * b[0] + c * b[1], angles.wrap(a[2] + b[2]))
 
 
 def inverse(a: tuple) -> tuple:
     c, s = math.cos(a[2]), math.sin(a[2])
-    return (-(c * a[0] + s * a[1]), s * a[0] - c * a[1], _wrap(-a[2]))
+    return (-(c * a[0] + s * a[1]), s * a[0] - c * a[1], angles.wrap(-a[2]))
 
-
-def _wrap(angle):
-    return math.atan2(math.sin(angle), math.cos(angle))
 
 
 def _turn(points, yaw):
@@ -173,7 +170,7 @@ def _distinct(ranked, count):
     """The first `count` of ranked (score, yaw, x, y) that are DISTINCT apart from each other."""
     kept = []
     for cand in ranked:
-        if all(math.hypot(cand[2] - k[2], cand[3] - k[3]) > DISTINCT or abs(_wrap(cand[1] - k[1])) > DISTINCT
+        if all(math.hypot(cand[2] - k[2], cand[3] - k[3]) > DISTINCT or abs(angles.wrap(cand[1] - k[1])) > DISTINCT
                for k in kept):
             kept.append(cand)
         if len(kept) == count:
@@ -237,5 +234,5 @@ def _uncentred(found, centre):
 def _registration(points, field, found, tolerance):
     _, yaw, x, y = found
     d = field.distance(_turn(points, yaw) + (x, y))
-    return Registration(float(x), float(y), _wrap(float(yaw)), float((d <= tolerance).mean()),
+    return Registration(float(x), float(y), angles.wrap(float(yaw)), float((d <= tolerance).mean()),
                         float(np.minimum(d, tolerance).mean()), tolerance, len(points))

@@ -10,6 +10,8 @@ import math
 
 import numpy as np
 
+from corpus import angles
+
 # what a navigation check needs in its row (manifest.py and the check itself refuse a row without one)
 KEYS = ('world', 'height', 'cmd_topic', 'route', 'goals', 'goal_timeout', 'localisation_tolerance',
         'xy_goal_tolerance', 'yaw_goal_tolerance', 'initial_pose')
@@ -98,7 +100,7 @@ def judge_localisation(amcl: tuple, truth: tuple, tolerance: float) -> tuple:
     """([problem], numbers): amcl's pose against the ground truth (both in the map frame), within `tolerance` m in
     x-y; the yaw is said, not judged."""
     off = math.hypot(amcl[0] - truth[0], amcl[1] - truth[1])
-    turn = math.degrees(abs(_wrap(amcl[2] - truth[2])))
+    turn = math.degrees(abs(angles.wrap(amcl[2] - truth[2])))
     numbers = 'amcl at (%.3f, %.3f), ground truth (%.3f, %.3f): %.3f m off (tolerance %.2f), yaw %.1f deg off' % (
         amcl[0], amcl[1], truth[0], truth[1], off, tolerance, turn)
     return (['amcl %.3f m from the ground truth (tolerance %.2f)' % (off, tolerance)] if off > tolerance else []), \
@@ -111,7 +113,7 @@ def judge_goal(goal: tuple, localised: tuple, truth: tuple, xy_tolerance: float,
     and yaw goal tolerances of the goal: that is judged with them. The robot itself (`truth`, the ground truth in
     the map frame) is where amcl is, give or take amcl's own error: within xy tolerance + localisation tolerance."""
     off = math.hypot(localised[0] - goal[0], localised[1] - goal[1])
-    turn = abs(_wrap(localised[2] - goal[2]))
+    turn = abs(angles.wrap(localised[2] - goal[2]))
     true_off = math.hypot(truth[0] - goal[0], truth[1] - goal[1])
     allowed = xy_tolerance + localisation_tolerance
     numbers = ('amcl %.3f m (xy tolerance %.3f) and %.3f rad (yaw tolerance %.3f) from the goal; ground truth %.3f m '
@@ -126,6 +128,3 @@ def judge_goal(goal: tuple, localised: tuple, truth: tuple, xy_tolerance: float,
             true_off, allowed))
     return problems, numbers
 
-
-def _wrap(angle):
-    return math.atan2(math.sin(angle), math.cos(angle))

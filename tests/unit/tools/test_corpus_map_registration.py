@@ -8,6 +8,7 @@ import numpy as np
 import pytest
 from PIL import Image
 
+from corpus import angles
 from corpus import map_registration as reg
 from corpus import slam_map
 from corpus.floor import pose_matrix
@@ -60,7 +61,7 @@ def test_a_map_drawn_in_the_room_is_placed_where_it_was_drawn_within_a_cell(wall
     grid = drawn(inner_faces(walls), placed)
     found = reg.register(reg.occupied(grid), walls, tolerance=0.1)
     assert math.hypot(found.x - placed[0], found.y - placed[1]) < RES
-    assert abs(reg._wrap(found.yaw - placed[2])) < math.radians(1.0)
+    assert abs(angles.wrap(found.yaw - placed[2])) < math.radians(1.0)
     assert found.on_walls > 0.95
     # every cell of the map lands within a cell of where it was drawn
     cells = reg.occupied(grid)
