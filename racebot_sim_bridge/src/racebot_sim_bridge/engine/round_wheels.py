@@ -33,7 +33,8 @@ import xml.etree.ElementTree as ET
 
 import numpy as np
 
-from racebot_sim_bridge.description import xml_values
+from racebot_sim_bridge.description import urdf_elements
+from racebot_sim_bridge.description.urdf_model import UrdfError
 from racebot_sim_bridge.engine.one_sided_mesh import read_obj
 from racebot_sim_bridge.kinematics.rotations import matrix, quaternion_to_rpy, rpy_to_quaternion
 
@@ -94,9 +95,11 @@ def round_wheel_meshes(root: ET.Element) -> list[str]:
         link = links.get(child.get('link')) if child is not None else None
         if link is None or link.get('name') in carriers:
             continue
+        axis_elem = joint.find('axis')
+        text = axis_elem.get('xyz') if axis_elem is not None else None
         try:  # urdfdom's default axis, 1 0 0
-            axis = np.array(_vector(joint.find('axis'), 'xyz', '1 0 0'))
-        except xml_values.BadValue:
+            axis = np.array((1.0, 0.0, 0.0) if text is None else urdf_elements.vector(text, 3, 'axis'))
+        except UrdfError:
             continue
         if np.linalg.norm(axis) < 1e-9:
             continue
@@ -116,13 +119,13 @@ def _round(collision: ET.Element, mesh: ET.Element, axis_in_link: np.ndarray) ->
     path = mesh.get('filename') or ''
     if not path.endswith('.obj') or not os.path.isfile(path):
         return False
-    origin = collision.find('origin')
-    try:
-        scale = np.array(_vector(mesh, 'scale', '1 1 1'))
-        xyz = np.array(_vector(origin, 'xyz', '0 0 0'))
-        rpy = _vector(origin, 'rpy', '0 0 0')
-    except xml_values.BadValue:  # the reader has warned of a malformed value; Bullet gets the mesh as it is
+    try:  # as the URDF reader reads them (urdf_links)
+        scale = np.array((1.0, 1.0, 1.0) if mesh.get('scale') is None else
+                         urdf_elements.vector(mesh.get('scale'), 3, 'scale'))
+        xyz, rpy = urdf_elements.origin(collision, 'collision')
+    except UrdfError:  # the reader has warned of a malformed value; Bullet gets the mesh as it is
         return False
+    xyz = np.array(xyz)
     vertices, _ = read_obj(path)
     if len(vertices) < 3:
         return False
@@ -144,13 +147,6 @@ def _round(collision: ET.Element, mesh: ET.Element, axis_in_link: np.ndarray) ->
     geometry = ET.SubElement(collision, 'geometry')
     ET.SubElement(geometry, 'cylinder', radius='%.9g' % radius, length='%.9g' % length)
     return True
-
-
-def _vector(element: ET.Element | None, attribute: str, default: str) -> tuple[float, ...]:
-    """The three finite numbers of `element`'s `attribute` (`default` when the element or the attribute is absent);
-    xml_values.BadValue otherwise."""
-    text = element.get(attribute) if element is not None else None
-    return xml_values.numbers(text or default, 3)
 
 
 def _z_onto(axis):
