@@ -104,7 +104,6 @@ def inverse(a: tuple) -> tuple:
     return (-(c * a[0] + s * a[1]), s * a[0] - c * a[1], angles.wrap(-a[2]))
 
 
-
 def _turn(points, yaw):
     c, s = math.cos(yaw), math.sin(yaw)
     return np.stack([c * points[:, 0] - s * points[:, 1], s * points[:, 0] + c * points[:, 1]], axis=1)

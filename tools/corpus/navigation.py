@@ -127,4 +127,3 @@ def judge_goal(goal: tuple, localised: tuple, truth: tuple, xy_tolerance: float,
         problems.append('the robot is %.3f m from the goal, more than xy + localisation tolerance %.3f' % (
             true_off, allowed))
     return problems, numbers
-
