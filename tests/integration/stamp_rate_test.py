@@ -23,6 +23,8 @@ import rospy
 import rostest
 import rostopic
 
+from integration_common import wait_for  # next to this file
+
 MIN_INTERVALS = 10  # fewer than this in test_duration is no measurement
 
 
@@ -34,13 +36,8 @@ class StampRateTest(unittest.TestCase):
         duration, wait = float(rospy.get_param('~test_duration', 5.0)), float(rospy.get_param('~wait_time', 20.0))
         self.assertGreater(hz - hzerror, 0.0, '~hz must exceed ~hzerror')
 
-        deadline = time.time() + wait
-        cls = None
-        while cls is None and time.time() < deadline and not rospy.is_shutdown():
-            cls, _, _ = rostopic.get_topic_class(topic)
-            if cls is None:
-                time.sleep(0.1)
-        self.assertIsNotNone(cls, '%s was not advertised within %.0f s' % (topic, wait))
+        deadline = time.time() + wait  # for the topic and its first message together
+        cls = wait_for(lambda: rostopic.get_topic_class(topic)[0], '%s to be advertised' % topic, wait, period=0.1)
         self.assertIn('header', cls.__slots__, '%s has no header to take the stamps from' % topic)
 
         stamps, lock = [], threading.Lock()
@@ -49,13 +46,10 @@ class StampRateTest(unittest.TestCase):
             with lock:
                 stamps.append(msg.header.stamp.to_sec())
         sub = rospy.Subscriber(topic, cls, on_msg, queue_size=10000)
-        while not stamps and time.time() < deadline and not rospy.is_shutdown():
-            time.sleep(0.05)
-        self.assertTrue(stamps, 'no message on %s within %.0f s' % (topic, wait))
+        wait_for(lambda: stamps, 'a message on %s' % topic, max(0.0, deadline - time.time()), period=0.05)
         end = rospy.get_time() + duration
-        guard = time.time() + wait + 10 * duration  # a stalled simulator fails, it does not hang
-        while rospy.get_time() < end and time.time() < guard and not rospy.is_shutdown():
-            time.sleep(0.05)
+        # a stalled simulator fails, it does not hang
+        wait_for(lambda: rospy.get_time() >= end, '%.1f s of sim time' % duration, wait + 10 * duration, period=0.05)
         sub.unregister()
         with lock:
             got = list(stamps)
