@@ -154,14 +154,15 @@ class SimBridgeTest(unittest.TestCase):
             # From half a second on it stays in the band (a creep along the scrub's stick and slip may still be
             # closing the last hundredths: 0.2826 rad moving at 0.22 rad/s at 0.5 s, once under load); by
             # SETTLE_BY it has stopped.
-            for state in [s for s in list(states) if took_effect[name] + 0.5 <= s.header.stamp.to_sec()
-                          <= last.header.stamp.to_sec()]:
-                what = '%s %.3f s after the command took effect: at %.4f rad, moving at %.3f rad/s' % (
+            def what(state):
+                return '%s %.3f s after the command took effect: at %.4f rad, moving at %.3f rad/s' % (
                     name, state.header.stamp.to_sec() - took_effect[name], state.process_value,
                     state.process_value_dot)
-                self.assertLessEqual(state.process_value, target + 0.02, what)
-                self.assertGreaterEqual(state.process_value, target - SCRUB_SHORT, what)
-            self.assertLess(abs(last.process_value_dot), SETTLED_SPEED, what)
+            for state in [s for s in list(states) if took_effect[name] + 0.5 <= s.header.stamp.to_sec()
+                          <= last.header.stamp.to_sec()]:
+                self.assertLessEqual(state.process_value, target + 0.02, what(state))
+                self.assertGreaterEqual(state.process_value, target - SCRUB_SHORT, what(state))
+            self.assertLess(abs(last.process_value_dot), SETTLED_SPEED, what(last))
         # /racebot/joint_states says the same from its first message half a second after both took it.
         settled = max(took_effect.values()) + 0.5
         msg = wait_for(lambda: self.joint_state if self.joint_state.header.stamp.to_sec() >= settled else None,
