@@ -1,5 +1,6 @@
 """Helpers shared by the rostest nodes in this folder (not a test node itself)."""
 import math
+import statistics
 import time
 
 import rospy
@@ -20,6 +21,13 @@ def wait_for(condition, what, timeout=90.0, period=0.02):
 def yaw_of(q):
     """Yaw of a geometry_msgs/Quaternion."""
     return math.atan2(2 * (q.w * q.z + q.x * q.y), 1 - 2 * (q.y * q.y + q.z * q.z))
+
+
+def theil_sen_period(stamps):
+    """The period of a stream from its stamps: the median over all pairs i < j of (stamp_j - stamp_i) / (j - i),
+    Theil and Sen's slope of stamp against message count."""
+    n = len(stamps)
+    return statistics.median((stamps[j] - stamps[i]) / (j - i) for i in range(n) for j in range(i + 1, n))
 
 
 class Latest:

@@ -10,9 +10,13 @@ promises (joint_state_controller's publish_rate, a sensor's update_rate), whatev
 Params (hztest's names): ~topic, ~hz, ~hzerror, ~test_duration (sim seconds), ~wait_time (wall seconds for
 the first message). Checks, over the stamps received in test_duration:
 - stamps strictly increase (a republished or reordered message fails);
-- the median interval is within hz +- hzerror: a lost message lengthens one interval, and a node that stamps at
-  arrival and catches up on the ticks a stall made it miss (gazebo_odometry's SimTimeTicks) shortens a few, but
-  neither moves the median; the average over a window that opens on such a burst does (22 Hz for 20).
+- the rate, the Theil-Sen slope of stamp against message count (theil_sen_period), is within hz +- hzerror. A lost
+  message lowers it by its share of the count. Jitter does not move it: gazebo_odometry stamps each message when a
+  link_states arrives and catches up on the ticks a stall made it miss (SimTimeTicks), so its intervals spread from
+  1 to 98 ms under load with the count exact. The median interval of such a stream read 18.9 Hz for 20 (its long
+  intervals outnumber the short ones that pay for them), and the average over a window that opens on a catch-up
+  burst 21.8 Hz; the median of the slopes over all pairs, where the far pairs are exact, read 19.98 to 20.08 Hz on
+  both (measured beside bench_quick and compiled_plugins, and with SimTimeTicks fed stalls of up to 0.8 s).
 """
 import statistics
 import threading
@@ -23,7 +27,7 @@ import rospy
 import rostest
 import rostopic
 
-from integration_common import wait_for  # next to this file
+from integration_common import theil_sen_period, wait_for  # next to this file
 
 MIN_INTERVALS = 10  # fewer than this in test_duration is no measurement
 
@@ -59,10 +63,13 @@ class StampRateTest(unittest.TestCase):
                                 % (len(got), topic, duration))
         bad = [(a, b) for a, b in zip(got, got[1:]) if b <= a]
         self.assertFalse(bad, '%s stamps do not increase: %r' % (topic, bad[:5]))
-        median = statistics.median(intervals)
-        self.assertAlmostEqual(1.0 / median, hz, delta=hzerror, msg='%s: median interval %.4f s of sim time '
-                               '(%.3f Hz), expected %.1f +- %.1f Hz' % (topic, median, 1.0 / median, hz, hzerror))
-
+        period = theil_sen_period(got)
+        deciles = statistics.quantiles(intervals, n=10)
+        self.assertAlmostEqual(1.0 / period, hz, delta=hzerror, msg='%s: %.3f Hz of sim time (the median slope of '
+                               'stamp over message count, %.4f s), expected %.1f +- %.1f Hz; %d messages stamped over '
+                               '%.3f s, intervals 10th/90th percentile %.4f/%.4f s, shortest %.4f s, longest %.4f s'
+                               % (topic, 1.0 / period, period, hz, hzerror, len(got), got[-1] - got[0],
+                                  deciles[0], deciles[-1], min(intervals), max(intervals)))
 
 if __name__ == '__main__':
     rospy.init_node('stamp_rate_test', anonymous=True)
