@@ -20,8 +20,9 @@ from racebot_sim_bridge.engine import round_wheels
 from racebot_sim_bridge.kinematics import inertia as inertia_maths
 from racebot_sim_bridge.kinematics.rotations import quaternion_multiply, quaternion_to_rpy, rotate, rpy_to_quaternion
 
-__all__ = ['NEGLIGIBLE_MASS', 'NEGLIGIBLE_INERTIA', 'BulletUrdf', 'FrictionAxes', 'prepare_urdf_for_bullet',
-           'joint_friction', 'link_friction', 'link_friction_axes', 'link_laser_retro']
+__all__ = ['NEGLIGIBLE_MASS', 'NEGLIGIBLE_INERTIA', 'BulletUrdf', 'FrictionAxes', 'WheelAxes',
+           'prepare_urdf_for_bullet', 'joint_friction', 'link_friction', 'link_friction_axes', 'link_laser_retro',
+           'wheel_axes']
 
 # Mass and inertia given to links that declare no <inertial> (Gazebo drops such links' mass; PyBullet would give 1 kg).
 NEGLIGIBLE_MASS = 1e-4
@@ -78,6 +79,54 @@ class FrictionAxes(NamedTuple):
     axle: tuple | None
 
 
+class WheelAxes(NamedTuple):
+    """A wheel's friction pyramid as ODE builds it from <fdir1>: `mu_roll` along the rolling direction, `mu_axle`
+    along the axle (each the mu1 or mu2 of whichever fdir1 lies along), `axle`: the unit axis of the wheel's
+    continuous joint in its URDF link frame."""
+    mu_roll: float
+    mu_axle: float
+    axle: tuple
+
+
+def _fdir1_in_link(urdf_model: RobotModel, link: str) -> list | None:
+    """A link's <fdir1> as a unit vector in its URDF frame (sdformat: in the collision's frame; the link's first
+    collision's origin turns it), or None when it has none (or a zero or unreadable one)."""
+    try:
+        fdir1 = [float(v) for v in str(urdf_model.gazebo_refs.get(link, {}).get('fdir1', '')).split()]
+    except ValueError:
+        return None
+    norm = sum(v * v for v in fdir1) ** 0.5 if len(fdir1) == 3 else 0.0
+    if not norm > 1e-9:
+        return None
+    rpy = urdf_model.links[link].collisions[0].origin_rpy or (0.0, 0.0, 0.0)
+    return rotate(rpy_to_quaternion(*rpy), [v / norm for v in fdir1])
+
+
+def wheel_axes(urdf_model: RobotModel, link: str) -> WheelAxes | None:
+    """The WheelAxes of a link that turns on a continuous joint and whose <gazebo reference> gives an <fdir1> square
+    to that joint's axis or along it (ODE then aligns the friction pyramid with the wheel: engine/wheel_friction.py),
+    when it is the only URDF link with collisions merged into its PyBullet link; None otherwise. mu1 and mu2 default
+    to 1, as sdformat's <friction><ode>."""
+    merged = [name for name, spec in urdf_model.links.items()
+              if urdf_model.lumped_link(name) == link and spec.collisions]
+    joint = urdf_model.parent_joint(link)
+    if merged != [link] or joint is None or joint.type != 'continuous' or joint.axis is None:
+        return None
+    fdir1 = _fdir1_in_link(urdf_model, link)
+    a_norm = sum(v * v for v in joint.axis) ** 0.5
+    if fdir1 is None or not a_norm > 1e-9:
+        return None
+    axle = tuple(v / a_norm for v in joint.axis)
+    props = urdf_model.gazebo_refs.get(link, {})
+    mu1, mu2 = (props[k] if isinstance(props.get(k), float) else 1.0 for k in ('mu1', 'mu2'))
+    along = abs(sum(f * v for f, v in zip(fdir1, axle)))
+    if along < 1e-3:
+        return WheelAxes(mu1, mu2, axle)
+    if along > 1.0 - 1e-6:
+        return WheelAxes(mu2, mu1, axle)
+    return None
+
+
 def link_friction_axes(urdf_model: RobotModel, link: str) -> FrictionAxes | None:
     """The FrictionAxes of a PyBullet link whose <gazebo reference> gives mu1 and mu2 that differ and an <fdir1>
     (sdformat: in the collision's frame; the link's first collision's origin turns it into the link's), when it is
@@ -90,15 +139,9 @@ def link_friction_axes(urdf_model: RobotModel, link: str) -> FrictionAxes | None
     mu1, mu2 = props.get('mu1'), props.get('mu2')
     if not (isinstance(mu1, float) and isinstance(mu2, float)) or mu1 == mu2:
         return None
-    try:
-        fdir1 = [float(v) for v in str(props.get('fdir1', '')).split()]
-    except ValueError:
+    fdir1 = _fdir1_in_link(urdf_model, link)
+    if fdir1 is None:
         return None
-    norm = sum(v * v for v in fdir1) ** 0.5 if len(fdir1) == 3 else 0.0
-    if not norm > 1e-9:
-        return None
-    rpy = urdf_model.links[link].collisions[0].origin_rpy or (0.0, 0.0, 0.0)
-    fdir1 = rotate(rpy_to_quaternion(*rpy), [v / norm for v in fdir1])
     axle = None
     joint = urdf_model.parent_joint(link)
     if joint is not None and joint.type == 'continuous' and joint.axis is not None:

@@ -52,6 +52,8 @@ class Joint:
         are put where their rule says."""
         model = self.model
         model.client.resetJointState(model.id, self.index, position, velocity)
+        if model.wheel_friction is not None:  # a wheel held at a rate: its friction along the wheel (wheel_friction.py)
+            model.wheel_friction.hold(self.index)
         if model.mimics:
             mimic_joints.settle(model.client, model.id, model.joints, model.mimics)
 

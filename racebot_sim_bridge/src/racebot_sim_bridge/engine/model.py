@@ -56,6 +56,7 @@ class Model:
         self.initial_joint_positions = {}
         self.mimics = {}
         self.dampers = None
+        self.wheel_friction = None  # its wheels' fdir1-aligned friction (wheel_friction.py), which the step runs
         self.damper_efforts = {}  # joint index -> effort applied for the coming step (with dampers only)
         self.link_index = {root_link or client.getBodyInfo(body_id)[0].decode(): -1}
         self.joints = {}
@@ -161,6 +162,8 @@ class Model:
         for joint in self.joints.values():
             self.client.resetJointState(self.id, joint.index, self.initial_joint_positions.get(joint.name, 0.0), 0.0)
         mimic_joints.settle(self.client, self.id, self.joints, self.mimics)
+        if self.wheel_friction is not None:
+            self.wheel_friction.reset()
 
     def body_ids(self) -> list[int]:
         """Its PyBullet bodies: its own and an SDF model's other links'."""

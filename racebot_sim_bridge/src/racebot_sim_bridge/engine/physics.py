@@ -67,6 +67,7 @@ class PhysicsWorld:
         self.ground_mu = 1.0
         self.applied = {}
         self._damped = []  # the models with implicitly damped joints (Model.dampers), in spawn order
+        self._wheeled = []  # the models with fdir1-aligned wheel friction (Model.wheel_friction)
         self.load_trial = None
         self._urdf = UrdfSpawn(self.client, self.applied, self.laser_retro, visuals)
 
@@ -119,6 +120,8 @@ class PhysicsWorld:
                 model.spawn_pose = model.pose()  # Model::Reset puts it back where it stands, not inside the floor
         if model.dampers is not None:
             self._damped.append(model)
+        if model.wheel_friction is not None:
+            self._wheeled.append(model)
         self.bodies[name] = model
         return model
 
@@ -135,6 +138,8 @@ class PhysicsWorld:
         model.remove()
         if model in self._damped:
             self._damped = [m for m in self._damped if m is not model]
+        if model in self._wheeled:
+            self._wheeled = [m for m in self._wheeled if m is not model]
         gone = set(model.body_ids())
         for key in [k for k in self.laser_retro if k[0] in gone]:
             del self.laser_retro[key]
@@ -162,9 +167,12 @@ class PhysicsWorld:
 
     # -- time ---------------------------------------------------------------------------------
     def step(self) -> None:
-        """One physics step: the implicit dampers' torques first, then the applied wrenches are forgotten."""
+        """One physics step: the implicit dampers' torques and the wheels' friction first, then the applied wrenches
+        are forgotten."""
         for model in self._damped:
             model.damp(self.step_size)
+        for model in self._wheeled:
+            model.wheel_friction.apply(self.step_size)
         self.client.stepSimulation()
         if self.applied:
             self.applied.clear()

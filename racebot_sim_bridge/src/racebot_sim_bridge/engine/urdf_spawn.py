@@ -37,11 +37,12 @@ import pybullet as pb
 from racebot_sim_bridge.description import urdf_assets
 from racebot_sim_bridge.engine import mimic_joints
 from racebot_sim_bridge.engine.bullet_urdf import FrictionAxes, joint_friction, link_friction, link_friction_axes, \
-    link_laser_retro, prepare_urdf_for_bullet
+    link_laser_retro, prepare_urdf_for_bullet, wheel_axes
 from racebot_sim_bridge.engine.joint_damping import ImplicitDampers, implicit_joints
 from racebot_sim_bridge.engine.model import Model
 from racebot_sim_bridge.engine.physics_types import BodyKind, BodySource, PhysicsError
 from racebot_sim_bridge.engine.pybullet_client import PybulletClient
+from racebot_sim_bridge.engine.wheel_friction import AlignedWheel, WheelFriction
 from racebot_sim_bridge.kinematics.rotations import Quat, Vec3, rotate_back
 
 if TYPE_CHECKING:
@@ -155,10 +156,16 @@ class UrdfSpawn:
         # urdf_xml has its meshes resolved: a copy needs no package path
         model = Model(client, self.applied, name, body_id, urdf_model.static,
                       BodySource(BodyKind.URDF, urdf_model, urdf_xml))
+        free = not (urdf_model.static or urdf_model.root_link == 'world')  # a fixed base is no rigid body to solve
+        wheels = []
         for link, index in model.link_index.items():
             # PyBullet's default link damping (0.04) has no counterpart in Gazebo: a free wheel would slow down.
             friction = min(link_friction(urdf_model, link), ground_mu)
             client.changeDynamics(body_id, index, lateralFriction=friction)
+            wheel = wheel_axes(urdf_model, link) if free else None
+            if wheel is not None:  # wheel_friction.py takes its contacts' friction over while a plugin holds it
+                wheels.append(AlignedWheel(index, wheel.axle, min(wheel.mu_roll, ground_mu),
+                                           min(wheel.mu_axle, ground_mu)))
             axes = link_friction_axes(urdf_model, link)
             if axes is not None:
                 self._friction_axes(name, body_id, index, link, axes, ground_mu, warn)
@@ -183,4 +190,6 @@ class UrdfSpawn:
                 client.changeDynamics(body_id, index, jointDamping=0.0)
             model.set_dampers(ImplicitDampers(client, body_id, urdf_model.root_link == 'world', implicit))
         model.mimics = mimic_joints.couple(client, body_id, model.joints, urdf_model)
+        if wheels:
+            model.wheel_friction = WheelFriction(client, body_id, wheels)
         return model
