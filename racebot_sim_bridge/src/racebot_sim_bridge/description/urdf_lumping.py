@@ -16,6 +16,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from racebot_sim_bridge.description import urdf_elements
 from racebot_sim_bridge.kinematics.rotations import compose, matrix, quaternion_to_rpy
 
 if TYPE_CHECKING:
@@ -64,13 +65,9 @@ def lump_fixed_links(robot: ET.Element, model: RobotModel) -> None:
 
 
 def _origin(elem):
-    """The 6-tuple <origin> of a URDF element (validated by urdf_model already)."""
-    origin = elem.find('origin')
-    if origin is None:
-        return (0.0, 0.0, 0.0, 0.0, 0.0, 0.0)
-    xyz = [float(v) for v in (origin.get('xyz') or '0 0 0').split()]
-    rpy = [float(v) for v in (origin.get('rpy') or '0 0 0').split()]
-    return tuple(xyz + rpy)
+    """The 6-tuple <origin> of a URDF element, read as the URDF reader reads it (which has validated it already)."""
+    xyz, rpy = urdf_elements.origin(elem, '<%s>' % elem.tag)
+    return xyz + rpy
 
 
 def _set_origin(elem, transform):
