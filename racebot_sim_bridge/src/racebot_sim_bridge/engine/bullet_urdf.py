@@ -102,21 +102,31 @@ def _fdir1_in_link(urdf_model: RobotModel, link: str) -> list | None:
     return rotate(rpy_to_quaternion(*rpy), [v / norm for v in fdir1])
 
 
+def _only_link_merged(urdf_model: RobotModel, link: str) -> bool:
+    """Whether `link` is the only URDF link with collisions merged into its PyBullet link (Gazebo keeps each
+    collision's surface; PyBullet one per link)."""
+    return [name for name, spec in urdf_model.links.items()
+            if urdf_model.lumped_link(name) == link and spec.collisions] == [link]
+
+
+def _continuous_axle(urdf_model: RobotModel, link: str) -> tuple | None:
+    """The unit axis, in its URDF frame, of the continuous joint `link` turns on; None if it turns on none."""
+    joint = urdf_model.parent_joint(link)
+    if joint is None or joint.type != 'continuous' or joint.axis is None:
+        return None
+    norm = sum(v * v for v in joint.axis) ** 0.5
+    return tuple(v / norm for v in joint.axis) if norm > 1e-9 else None
+
+
 def wheel_axes(urdf_model: RobotModel, link: str) -> WheelAxes | None:
     """The WheelAxes of a link that turns on a continuous joint and whose <gazebo reference> gives an <fdir1> square
     to that joint's axis or along it (ODE then aligns the friction pyramid with the wheel: engine/wheel_friction.py),
     when it is the only URDF link with collisions merged into its PyBullet link; None otherwise. mu1 and mu2 default
     to 1, as sdformat's <friction><ode>."""
-    merged = [name for name, spec in urdf_model.links.items()
-              if urdf_model.lumped_link(name) == link and spec.collisions]
-    joint = urdf_model.parent_joint(link)
-    if merged != [link] or joint is None or joint.type != 'continuous' or joint.axis is None:
+    axle = _continuous_axle(urdf_model, link)
+    fdir1 = _fdir1_in_link(urdf_model, link) if axle is not None and _only_link_merged(urdf_model, link) else None
+    if fdir1 is None:
         return None
-    fdir1 = _fdir1_in_link(urdf_model, link)
-    a_norm = sum(v * v for v in joint.axis) ** 0.5
-    if fdir1 is None or not a_norm > 1e-9:
-        return None
-    axle = tuple(v / a_norm for v in joint.axis)
     props = urdf_model.gazebo_refs.get(link, {})
     mu1, mu2 = (props[k] if isinstance(props.get(k), float) else 1.0 for k in ('mu1', 'mu2'))
     along = abs(sum(f * v for f, v in zip(fdir1, axle)))
@@ -131,9 +141,7 @@ def link_friction_axes(urdf_model: RobotModel, link: str) -> FrictionAxes | None
     """The FrictionAxes of a PyBullet link whose <gazebo reference> gives mu1 and mu2 that differ and an <fdir1>
     (sdformat: in the collision's frame; the link's first collision's origin turns it into the link's), when it is
     the only URDF link with collisions merged into it; None otherwise (link_friction's smaller mu then applies)."""
-    merged = [name for name, spec in urdf_model.links.items()
-              if urdf_model.lumped_link(name) == link and spec.collisions]
-    if merged != [link]:
+    if not _only_link_merged(urdf_model, link):
         return None
     props = urdf_model.gazebo_refs.get(link, {})
     mu1, mu2 = props.get('mu1'), props.get('mu2')
@@ -142,13 +150,9 @@ def link_friction_axes(urdf_model: RobotModel, link: str) -> FrictionAxes | None
     fdir1 = _fdir1_in_link(urdf_model, link)
     if fdir1 is None:
         return None
-    axle = None
-    joint = urdf_model.parent_joint(link)
-    if joint is not None and joint.type == 'continuous' and joint.axis is not None:
-        a = joint.axis
-        a_norm = sum(v * v for v in a) ** 0.5
-        if a_norm > 1e-9 and abs(sum(f * v for f, v in zip(fdir1, a))) / a_norm < 1e-3:
-            axle = tuple(v / a_norm for v in a)
+    axle = _continuous_axle(urdf_model, link)
+    if axle is not None and abs(sum(f * v for f, v in zip(fdir1, axle))) >= 1e-3:
+        axle = None  # fdir1 is not square to it
     return FrictionAxes(mu1, mu2, tuple(fdir1), axle)
 
 
