@@ -78,9 +78,9 @@ class WheelFriction:
             local = rotate_back(d[4], w.axle)
             self.spin_inertia[w.index] = max(sum(m * c * c for m, c in zip(d[2], local)), 1e-12)
         self.impulse = {w.index: np.zeros(2) for w in wheels}  # the integral term of each wheel's rows
-        self.other_mu = {}  # (body, link) -> its lateral friction (Bullet multiplies; the robot's is ODE's minimum)
-        self.other_static = {}
-        self.rigid = None
+        # (body, link) -> (its lateral friction, whether it is static) of what the wheels touch (Bullet multiplies
+        # frictions; the robot's is ODE's minimum already)
+        self.others = {}
         self.solver = None
         self.steps = 0
 
@@ -101,7 +101,7 @@ class WheelFriction:
     def reset(self) -> None:
         for v in self.impulse.values():
             v[:] = 0.0
-        self.rigid = self.solver = None
+        self.solver = None
 
     def _rigid_body(self):
         """(mass, centre of mass, inverse inertia about it) of the whole body, in the world."""
@@ -125,11 +125,10 @@ class WheelFriction:
     def _other(self, body: int, link: int):
         """(lateral friction, static) of the body a wheel touches."""
         key = (body, link)
-        if key not in self.other_mu:
+        if key not in self.others:
             info = self.client.getDynamicsInfo(body, link)
-            self.other_mu[key] = info[1]
-            self.other_static[key] = info[0] == 0.0
-        return self.other_mu[key], self.other_static[key]
+            self.others[key] = (info[1], info[0] == 0.0)
+        return self.others[key]
 
     def _point_velocity(self, body: int, link: int, point: tuple) -> tuple:
         client = self.client
@@ -159,9 +158,10 @@ class WheelFriction:
 
     def _solver(self, key, rows, spin):
         """What takes a slip to its impulses, x = W^+ s as (pseudo-inverse of W scaled to unit rows, the scale), for
-        the wheels in contact `key`; worked out again every RIGID_STEPS steps or when the wheels in contact change."""
+        the wheels in contact `key`; worked out again, with the rigid body, every RIGID_STEPS steps or when the wheels
+        in contact change."""
         if self.solver is None or self.solver[0] != key or self.steps % RIGID_STEPS == 0:
-            mass, cm, inverse_inertia = self.rigid
+            mass, cm, inverse_inertia = self._rigid_body()
             jac = np.array([list(d) + list(_cross(_sub(point, cm), d)) for point, d in rows])
             response = jac[:, :3] @ jac[:, :3].T / mass + jac[:, 3:] @ inverse_inertia @ jac[:, 3:].T
             response[0::2, 0::2] += np.diag(spin)  # an impulse along the rolling direction also turns the wheel
@@ -171,20 +171,20 @@ class WheelFriction:
         return self.solver[1], self.solver[2]
 
     def apply(self, dt: float) -> None:
+        if not (self.held or self.active):  # no wheel held now or before: every step of a car driven by effort
+            return
         held, self.held = self.held, set()
         if held != self.active:
             self._take_over(held)
         if not held:
             return
-        contacts = [c for c in self._contacts() if c[0].index in held]
+        contacts = self._contacts()  # of the active wheels, the held ones
         touching = {c[0].index for c in contacts}
         for index, v in self.impulse.items():
             if index not in touching:
                 v[:] = 0.0
         if not contacts:
             return
-        if self.rigid is None or self.steps % RIGID_STEPS == 0:
-            self.rigid = tuple(self._rigid_body())
         client = self.client
         states = client.getLinkStates(self.body, [c[0].index for c in contacts], computeLinkVelocity=1,
                                       computeForwardKinematics=1)
