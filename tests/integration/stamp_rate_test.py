@@ -71,6 +71,7 @@ class StampRateTest(unittest.TestCase):
                                % (topic, 1.0 / period, period, hz, hzerror, len(got), got[-1] - got[0],
                                   deciles[0], deciles[-1], min(intervals), max(intervals)))
 
+
 if __name__ == '__main__':
     rospy.init_node('stamp_rate_test', anonymous=True)
     rostest.rosrun('racebot_tests', 'stamp_rate_test', StampRateTest)
