@@ -9,7 +9,9 @@ that moves the joint from roscpp's thread. As a user would, from a login shell: 
 catkin_make a workspace under /tmp holding the package, source its devel space and roslaunch its world launch
 (gazebo_ros's empty_world.launch, spawn_model -urdf). Checked: roscpp's node runs beside the world server's rospy
 node without a name clash; the command drives the joint (its velocity topic reads it back); the service moves the
-joint from roscpp's thread while the world steps; ROS_INFO from Load reaches the log.
+joint from roscpp's thread while the world steps; ROS_INFO from Load reaches the log. The launch also names the
+package's system plugin on gzserver's command line (-s): it meets the world at worldCreated and serves what it
+counts of the world's updates.
 
 The same workspace holds tests/fixtures/gazebo_plugin_workspace/fixture_cpp_controllers, a lab's own ros_control
 controllers in C++ (issue 39, point 3): find_package(catkin COMPONENTS controller_interface hardware_interface
@@ -170,6 +172,24 @@ class CompiledPluginsTest(unittest.TestCase):
         self.assertAlmostEqual(float(answer.message), 0.0, places=6)
         self.launched(lambda: self.velocities and abs(self.velocities[-1]) < 1e-6,
                       'the joint stopped by the service', COMMAND_TIMEOUT)
+
+    def test_3a_a_system_plugin_from_the_command_line_serves_what_it_counts(self):
+        # spinner_world.launch: extra_gazebo_args:="-s libfixture_world_stats_plugin.so"; its ros::init gave way
+        # to the world server's roscpp, and its service waited for worldCreated
+        rospy.wait_for_service('/world_stats/describe', timeout=STARTUP_TIMEOUT)
+        services = {name: providers for name, providers in rosgraph.Master('/compiled_plugins_test')
+                    .getSystemState()[2]}
+        self.assertEqual(services.get('/world_stats/describe'), ['/gazebo_cpp'])
+        describe = rospy.ServiceProxy('/world_stats/describe', Trigger)
+        self.launched(lambda: ' models 1 ' in describe().message, 'the spinner in the system plugin\'s world')
+        first = describe().message.split()
+        self.assertEqual(first[:4], ['world', 'default', 'models', '1'], first)
+        self.launched(lambda: int(describe().message.split()[5]) > int(first[5]) + 10,
+                      'the system plugin counting updates', COMMAND_TIMEOUT)
+        words = describe().message.split()
+        # every update it counted is one of the world's (it connected at worldCreated, before the first)
+        self.assertLessEqual(int(words[5]), int(words[7]))
+        self.assertGreater(int(words[5]), 0)
 
     # -- a lab's C++ ros_control controllers (fixture_cpp_controllers) -------------------------------------------
     @classmethod

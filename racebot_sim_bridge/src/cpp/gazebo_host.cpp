@@ -249,6 +249,7 @@ struct Loaded
   boost::shared_ptr<gazebo::ModelPlugin> model;
   boost::shared_ptr<gazebo::WorldPlugin> world;
   boost::shared_ptr<gazebo::SensorPlugin> sensor;
+  boost::shared_ptr<gazebo::SystemPlugin> system;
 };
 
 // numpy's float64 arrays, as the sensor's measurement comes from racebot's ray casts
@@ -346,6 +347,66 @@ public:
            const std::string &_name, const std::string &_model, const std::string &_xml)
   {
     return this->LoadPlugin(_kind, _path, _filename, _name, _model, _xml, 0);
+  }
+
+  // gzserver's command line, which a system plugin's Load(argc, argv) gets (gazebo_ros_api_plugin keeps the
+  // pointers for its ros::init at worldCreated: they live as long as the host).
+  void SetServerArgs(const std::vector<std::string> &_args)
+  {
+    this->serverArgs = _args;
+    this->serverArgv.clear();
+    for (auto &arg : this->serverArgs)
+      this->serverArgv.push_back(&arg[0]);
+    this->serverArgv.push_back(nullptr);
+  }
+
+  // Loads a system plugin (gzserver's -s LIBRARY), as gazebo_shared::setup does: its Load(argc, argv) with the
+  // command line SetServerArgs gave; its id. Init is InitSystem's, once every system plugin is loaded.
+  int LoadSystem(const std::string &_path, const std::string &_filename)
+  {
+    return this->LoadPlugin("system", _path, _filename, _filename, "", "", 0);
+  }
+
+  // A system plugin's Init (gazebo_shared::setup calls them after every Load). RuntimeError with the reason when
+  // it throws; the plugin is unloaded then.
+  void InitSystem(int _id)
+  {
+    auto found = this->plugins.find(_id);
+    if (found == this->plugins.end() || !found->second.system)
+      throw std::runtime_error("no system plugin " + std::to_string(_id) + " in racebot's plugin host");
+    const std::string label = found->second.label;
+    try
+    {
+      gazebo::event::detail::OwnerScope scope(_id);
+      found->second.system->Init();
+    }
+    catch (const std::exception &_e)
+    {
+      this->Unload(_id);
+      throw std::runtime_error(label + ": in Init: " + _e.what());
+    }
+  }
+
+  // Gazebo's worldCreated event (World::Load ends with it once the world's models are loaded): a system plugin
+  // starts its world-bound work there (physics::get_world(name), its update connections).
+  void WorldCreated()
+  {
+    {
+      py::gil_scoped_release unlocked;
+      gazebo::event::Events::worldCreated(this->info.worldName);
+    }
+    this->AfterEvents();
+  }
+
+  // gzserver's Server::SigInt: the stop event, then sigInt (gazebo_ros_api_plugin shuts ROS down on it).
+  void SigInt()
+  {
+    {
+      py::gil_scoped_release unlocked;
+      gazebo::event::Events::stop();
+      gazebo::event::Events::sigInt();
+    }
+    this->AfterEvents();
   }
 
   // Loads a sensor plugin of the sensor `_sensor` (an Add*Sensor id), as Load loads a model's: Load(sensor,
@@ -578,7 +639,8 @@ private:
   int LoadPlugin(const std::string &_kind, const std::string &_path, const std::string &_filename,
                  const std::string &_name, const std::string &_model, const std::string &_xml, int _sensor)
   {
-    const std::string label = "plugin '" + _name + "' (" + _filename + ")";
+    const std::string label = _kind == "system" ? "system plugin " + _filename :
+                                                  "plugin '" + _name + "' (" + _filename + ")";
     // RTLD_NOW where Gazebo has RTLD_LAZY: a symbol racebot's API lacks is an error now, naming it, not a crash
     // at the plugin's first call
     void *handle = dlopen(_path.c_str(), RTLD_NOW | RTLD_GLOBAL);
@@ -588,10 +650,11 @@ private:
     if (symbol == nullptr)
       throw std::runtime_error(label + ": " + _path + " is not a Gazebo plugin: it has no RegisterPlugin (what "
                                "GZ_REGISTER_MODEL_PLUGIN and its kin define)");
-    sdf::ElementPtr sdf = this->PluginElement(label, _xml);
+    // a system plugin has no <plugin> element: its Load takes the command line
+    sdf::ElementPtr sdf = _kind == "system" ? sdf::ElementPtr() : this->PluginElement(label, _xml);
     const int id = ++this->lastId;
     crash::Install();
-    crash::Remember(id, (_kind == "world" ? std::string("world ") :
+    crash::Remember(id, (_kind == "world" ? std::string("world ") : _kind == "system" ? std::string() :
                          _kind == "sensor" ? "sensor '" + this->sensors.at(_sensor)->Name() + "' of model '" + _model +
                                                "': " : "model '" + _model + "': ") + label);
     Loaded loaded;
@@ -605,7 +668,8 @@ private:
         throw std::runtime_error("RegisterPlugin returned no plugin");
       loaded.type = plugin->GetType();
       const gazebo::PluginType wanted = _kind == "world" ? gazebo::WORLD_PLUGIN :
-                                        _kind == "sensor" ? gazebo::SENSOR_PLUGIN : gazebo::MODEL_PLUGIN;
+                                        _kind == "sensor" ? gazebo::SENSOR_PLUGIN :
+                                        _kind == "system" ? gazebo::SYSTEM_PLUGIN : gazebo::MODEL_PLUGIN;
       if (loaded.type != wanted)
       {
         delete plugin;  // its destructor is virtual: the right one runs whatever kind it is
@@ -628,6 +692,12 @@ private:
           throw std::runtime_error("model '" + _model + "' is not in the world");
         loaded.model->Load(model, sdf);
         loaded.model->Init();
+      }
+      else if (loaded.type == gazebo::SYSTEM_PLUGIN)
+      {
+        loaded.system.reset(reinterpret_cast<gazebo::SystemPlugin *>(plugin));
+        loaded.system->SetNames(_filename, _name);
+        loaded.system->Load(static_cast<int>(this->serverArgv.size()) - 1, this->serverArgv.data());
       }
       else
       {
@@ -740,6 +810,7 @@ public:
       loaded.model.reset();  // the plugin's destructor (its connections go with it)
       loaded.world.reset();
       loaded.sensor.reset();
+      loaded.system.reset();
     }
     catch (...)
     {
@@ -823,6 +894,8 @@ private:
   int lastId = 0;
   std::map<int, std::shared_ptr<gazebo::sensors::Sensor>> sensors;
   int lastSensorId = 0;
+  std::vector<std::string> serverArgs;
+  std::vector<char *> serverArgv{nullptr};
 };
 std::unique_ptr<ros::AsyncSpinner> spinner;
 std::unique_ptr<ros::NodeHandle> rosNode;
@@ -867,6 +940,12 @@ PYBIND11_MODULE(gazebo_host, m)
     // plugin code runs without the interpreter lock (PyEngine takes it for each call into the engine)
     .def("load", &Host::Load, py::arg("kind"), py::arg("path"), py::arg("filename"), py::arg("name"),
          py::arg("model"), py::arg("xml"), py::call_guard<py::gil_scoped_release>())
+    .def("set_server_args", &Host::SetServerArgs, py::arg("args"))
+    .def("load_system", &Host::LoadSystem, py::arg("path"), py::arg("filename"),
+         py::call_guard<py::gil_scoped_release>())
+    .def("init_system", &Host::InitSystem, py::arg("id"), py::call_guard<py::gil_scoped_release>())
+    .def("world_created", &Host::WorldCreated)  // these release it themselves, around the events
+    .def("sig_int", &Host::SigInt)
     .def("add_ray_sensor", &Host::AddRaySensor, py::arg("type"), py::arg("name"), py::arg("model"),
          py::arg("link"), py::arg("pose"), py::arg("update_rate"), py::arg("always_on"), py::arg("visualize"),
          py::arg("geometry"))

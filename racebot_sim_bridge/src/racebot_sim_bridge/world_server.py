@@ -9,9 +9,10 @@ SensorManager), model plugins (gazebo_plugins, PluginManager) and gazebo_ros_con
 manager and services, GazeboRosControlPlugin). Windows are separate processes that attach to it
 (gzclient.py; viewer.AttachedWindows).
 
-Command line (as gzserver's, via empty_world.launch): `[-u|--pause] [--verbose] [-e ENGINE] [other
-gzserver options, ignored with a log line] WORLD_FILE`. `-u` starts paused; `-e` other than ode and
-`-r` (recording) are said to have no meaning here. Private parameters:
+Command line (as gzserver's, via empty_world.launch): `[-u|--pause] [--verbose] [-e ENGINE] [-s LIBRARY ...]
+[other gzserver options, ignored with a log line] WORLD_FILE`. `-u` starts paused; `-s` (--server-plugin) loads a
+compiled system plugin (CompiledPlugins.load_system); `-e` other than ode and `-r` (recording) are said to have
+no meaning here. Private parameters:
   ~gzclient_address (set here)   the Unix socket windows attach through (viewer.AttachedWindows):
                                  `rosrun gazebo_ros gzclient` reads it; removed at shutdown
   ~gui (bool)                    no longer opens a window: the window is gzclient, a node of its own
@@ -92,7 +93,8 @@ LOG = RospyLog(rospy)  # what the simulator, its plugins and the windows log thr
 
 
 # gzserver options that take a value: their value must not be mistaken for the world file.
-GZSERVER_VALUE_OPTIONS = {'-s', '--server-plugin', '-o', '--profile', '--seed', '--iters', '--record_path',
+SERVER_PLUGIN_OPTIONS = ('-s', '--server-plugin')
+GZSERVER_VALUE_OPTIONS = {*SERVER_PLUGIN_OPTIONS, '-o', '--profile', '--seed', '--iters', '--record_path',
                           '--record_period', '--record_filter', '--record_resources', '--record_encoding',
                           '-p', '--play'}
 
@@ -112,6 +114,10 @@ def parse_args(argv):
             engine = next(it, 'ode')
             if engine != 'ode':
                 ignored.append('-e %s (the physics engine is always PyBullet here)' % engine)
+        elif a in SERVER_PLUGIN_OPTIONS:
+            next(it, None)  # server_plugins' to load
+        elif a.startswith('--server-plugin='):
+            pass
         elif a in GZSERVER_VALUE_OPTIONS:
             ignored.append('%s %s' % (a, next(it, '')))
         elif a.startswith('-'):
@@ -119,6 +125,22 @@ def parse_args(argv):
         elif a.strip():
             world = a
     return world, paused, verbose, ignored
+
+
+def server_plugins(argv):
+    """The system plugins gzserver's command line names (-s LIBRARY, --server-plugin LIBRARY or
+    --server-plugin=LIBRARY), in order, as Server::ParseArgs hands them to gazebo::addPlugin."""
+    plugins, it = [], iter(argv)
+    for a in it:
+        if a in SERVER_PLUGIN_OPTIONS:
+            value = next(it, '')
+        elif a.startswith('--server-plugin='):
+            value = a.split('=', 1)[1]
+        else:
+            continue
+        if value.strip():
+            plugins.append(value.strip())
+    return plugins
 
 
 def resolve_world(name):
@@ -168,7 +190,9 @@ def load_world_spec(path, fallback_to_empty=False, log=LOG):
 
 
 class WorldServer:
-    def __init__(self, world_path, paused, gui, fallback_to_empty=False):
+    def __init__(self, world_path, paused, gui, fallback_to_empty=False, system_plugins=(), server_argv=()):
+        """`system_plugins`: gzserver's -s libraries, loaded before the world's models with `server_argv`, the
+        command line as gzserver got it, for their Load(argc, argv)."""
         # the resource path: a name not found is reported with the folders it was looked for in
         world_path, spec = load_world_spec(world_path, fallback_to_empty)
         for w in spec.warnings:
@@ -200,8 +224,10 @@ class WorldServer:
         self.last_clock_wall = -math.inf
         self.states_period = self._rate_param('~states_publish_rate', 100.0)
         self.clock_pub = clock_publisher()
-        # compiled plugins (model, world and sensor ones, with roscpp as node <this node>_cpp): one host for all
+        # compiled plugins (model, world, sensor and system ones, with roscpp as node <this node>_cpp): one host
         self.compiled = CompiledPlugins(rospy, self.sim, rospy.get_name().rsplit('/', 1)[-1] + '_cpp')
+        if system_plugins:  # gazebo_shared::setup loads them before the world
+            self.compiled.load_system(system_plugins, server_argv)
         # before the services: every spawn gets its sensors
         self.sensors = SensorManager(rospy, self.sim, compiled=self.compiled)
         # and its model plugins (diff drive, p3d, ...)
@@ -209,7 +235,7 @@ class WorldServer:
         # and gazebo_ros_control with its controller manager's services, whatever ~enable_ros_network says
         # (the flag is gazebo_ros_api_plugin's; upstream's gazebo_ros_control reads none)
         # (C++ controllers with roscpp, as the compiled plugins have it; a package's RobotHWSim on their model)
-        GazeboRosControlPlugin.attach(self.sim, rospy, ensure_roscpp=self.plugins.compiled.ensure_roscpp,
+        GazeboRosControlPlugin.attach(self.sim, rospy, ensure_roscpp=self.plugins.compiled.roscpp.ensure,
                                       model_capsule=self.plugins.compiled.model_capsule)
         # gazebo_ros advertises in its node's namespace (a node `gazebo` in ns /sim serves /sim/gazebo/...)
         # and, with ~enable_ros_network false, nothing but /clock.
@@ -222,6 +248,7 @@ class WorldServer:
             rospy.loginfo('ROS gazebo topics/services are disabled (~enable_ros_network is false)')
         self.sim.spawn_world_robots()  # the world file's models with joints, plugins or sensors
         with self.sim.lock:
+            self.compiled.world_created()  # World::Load's last word, which system plugins wait for
             self.plugins.load_world_plugins()  # then its world plugins, as Gazebo's World loads them
         self.clock_msg = Clock()
         self.last_clock = -math.inf
@@ -341,8 +368,12 @@ class WorldServer:
     def shutdown(self):
         # roscpp first, as gzserver's gazebo_ros_api_plugin shuts ROS down on SIGINT before the world and its
         # sensors are finished: a plugin's destructor then finds ros::ok() false (velodyne_gazebo_plugins' queue
-        # thread reads its deleted NodeHandle unless ros::ok() is false already)
-        self.compiled.stop_roscpp()
+        # thread reads its deleted NodeHandle unless ros::ok() is false already); a signal's stop and sigInt events
+        # come before, as gzserver's Server::SigInt fires them
+        if STOP.received is not None:
+            with self.sim.lock:
+                self.compiled.sig_int()
+        self.compiled.roscpp.stop()
         if self.services is not None:
             self.services.shutdown()
             self.metrics.shutdown()
@@ -433,7 +464,8 @@ def main(argv=None, debugger=False, fallback_to_empty=False):
     """`debugger`: started as gazebo_ros's `debug` (empty_world.launch debug:=true). `fallback_to_empty`: a
     world file that cannot be loaded is replaced by worlds/empty.world, as gzserver does (gazebo_ros's
     gzserver sets it); racebot's own world_server keeps it fatal."""
-    argv = rospy.myargv(argv if argv is not None else sys.argv)[1:]
+    server_argv = list(argv if argv is not None else sys.argv)  # a system plugin's Load(argc, argv) gets it all
+    argv = rospy.myargv(server_argv)[1:]
     init_clock_source('gazebo')
     queued_publishing.install()  # before any publisher: no thread switch per message from the update loop
     queued_publishing.start_writer(rospy.logwarn)  # and no send either, where the compiled writer is built
@@ -450,7 +482,8 @@ def main(argv=None, debugger=False, fallback_to_empty=False):
                       'either way; there are no extra gzserver messages to show')
     path = resolve_world(world)
     try:
-        server = WorldServer(path, paused, bool(rospy.get_param('~gui', False)), fallback_to_empty)
+        server = WorldServer(path, paused, bool(rospy.get_param('~gui', False)), fallback_to_empty,
+                             server_plugins(argv), server_argv)
     except (sdf_reader.WorldError, PhysicsError) as err:
         rospy.logfatal('could not load world: %s' % err)
         rospy.signal_shutdown('could not load world')

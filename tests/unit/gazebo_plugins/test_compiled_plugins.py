@@ -6,7 +6,6 @@ world goes on."""
 import math
 import os
 import re
-import shutil
 import signal
 import subprocess
 import sys
@@ -21,7 +20,6 @@ from model_plugin_sim import PluginWorld
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 PROJECT = os.path.join(HERE, '..', '..', 'fixtures', 'gazebo_plugin_project')
-BUILD_TIMEOUT = 600  # s: five plugin files on sdformat's headers take about a minute on a busy 2-core machine
 ROTOR_IZZ = 0.002
 ROTOR_MASS = 0.5
 
@@ -46,20 +44,6 @@ def robot(*plugins):
 def driver(mode, target, report=0, joint='spin_joint', name='driver'):
     return ('<plugin name="%s" filename="libjoint_driver.so"><joint>%s</joint><mode>%s</mode><target>%s</target>'
             '<report>%d</report></plugin>' % (name, joint, mode, target, report))
-
-
-@pytest.fixture(scope='module')
-def plugin_dir(tmp_path_factory):
-    """The fixture project configured and built as a user would: cmake, make (racebot's devel space sourced, so
-    find_package(gazebo) finds racebot's config)."""
-    if not shutil.which('cmake'):
-        pytest.fail('cmake is missing: make setup installs it')
-    build = tmp_path_factory.mktemp('gazebo_plugins_build')
-    for command in (['cmake', os.path.abspath(PROJECT)], ['make', '-j2']):
-        done = subprocess.run(command, cwd=build, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True,
-                              timeout=BUILD_TIMEOUT)
-        assert done.returncode == 0, '%s failed:\n%s' % (' '.join(command), done.stdout[-4000:])
-    return str(build)
 
 
 @pytest.fixture

@@ -10,7 +10,9 @@ check, Load with the model and the <plugin> element, Init. The world update fire
 plugin's Reset and worldReset. Every physics call a plugin makes comes back to EngineAdapter, on the engine's
 objects. A plugin whose library cannot be loaded, is of another kind, or throws in Load, Init, Reset or an event
 callback is reported with its library and the reason, unloaded, and the world goes on. A <sensor>'s compiled
-plugins are loaded on a C++ sensor the host makes for it (load_sensor; compiled_sensors.py measures it).
+plugins are loaded on a C++ sensor the host makes for it (load_sensor; compiled_sensors.py measures it). gzserver's
+system plugins (-s LIBRARY) are loaded before the world's models with gzserver's command line (load_system) and
+meet the world at its worldCreated event (world_created).
 """
 import os
 import sys
@@ -18,6 +20,14 @@ import xml.etree.ElementTree as ET
 
 from racebot_sim_bridge.gazebo_plugins.gazebo_ros_ft_sensor import wrench_at_link_origin
 from racebot_sim_bridge.supported_table import WHERE as SUPPORTED_TABLE
+
+
+# The system plugins gazebo_ros's gzserver adds, which racebot's world server is itself: named, never loaded.
+OWN_SYSTEM_PLUGINS = {
+    'libgazebo_ros_api_plugin.so': "the /gazebo services and topics are racebot's world server's own",
+    'libgazebo_ros_paths_plugin.so': "the packages' gazebo_model_path, gazebo_media_path and plugin_path exports "
+                                     "are added by racebot's gzserver itself",
+}
 
 
 def find_library(filename, environ=None):
@@ -220,17 +230,16 @@ class EngineAdapter:
 
 
 class CompiledPlugins:
-    """The compiled model, world and sensor plugins of every spawned robot, one gazebo_host.Host for them all (made
-    at the first one). `rospy` logs; `sim` the Simulator, whose lock every call here runs under. `roscpp_name`:
-    where a master runs (the world server), the name roscpp's node gets when the first plugin loads (plugins make
-    NodeHandles, as in gzserver, where gazebo_ros_api_plugin has started roscpp); None: roscpp is not started (no
-    master)."""
+    """The compiled model, world and sensor plugins of every spawned robot and gzserver's system plugins, one
+    gazebo_host.Host for them all (made at the first one). `rospy` logs; `sim` the Simulator, whose lock every call
+    here runs under. `roscpp_name`: where a master runs (the world server), the name roscpp's node gets when the
+    first plugin loads (plugins make NodeHandles, as in gzserver, where gazebo_ros_api_plugin has started roscpp;
+    RoscppNode); None: roscpp is not started (no master)."""
 
     def __init__(self, rospy, sim, roscpp_name=None):
         self.rospy = rospy
         self.sim = sim
-        self.roscpp_name = roscpp_name
-        self.roscpp_started = False
+        self.roscpp = RoscppNode(rospy, roscpp_name)
         self.host = None
         self.adapter = None
         self.unavailable = None  # why the host cannot be made, once known
@@ -297,6 +306,54 @@ class CompiledPlugins:
             return False
         self._refresh()
         return True
+
+    def load_system(self, filenames, argv):
+        """gzserver's system plugins (-s LIBRARY, in order), as gazebo_shared::setup loads them before the world's
+        models: each library's Load(argc, argv) with gzserver's command line `argv`, then each one's Init. One that
+        is not found, is not a system plugin or throws gets an error naming it, and the world server goes on
+        without it. The number that run."""
+        loaded = []
+        for filename in filenames:
+            own = OWN_SYSTEM_PLUGINS.get(os.path.basename(filename))
+            if own is not None:
+                self.rospy.loginfo('system plugin %s: not loaded: %s' % (filename, own))
+                continue
+            path = find_library(filename)
+            label = 'system plugin %s' % filename
+            if path is None:
+                self.rospy.logerr('%s: not loaded: %s. The world server runs without it' % (
+                    label, self.missing(filename)))
+                continue
+            if not self._ensure_host():
+                self.rospy.logerr('%s: %s. The world server runs without it' % (label, self.unavailable))
+                return 0
+            self.host.set_server_args([str(a) for a in argv])
+            self.host.set_iterations(self.sim.steps)
+            plugin_id = self._load_one(None, 'gzserver', label, path, 'The world server runs without it', False,
+                                       lambda: self.host.load_system(path, filename))
+            if plugin_id is not None:
+                loaded.append(plugin_id)
+        for plugin_id in loaded:
+            try:
+                self.host.init_system(plugin_id)
+            except RuntimeError as err:
+                self.plugins.pop(plugin_id, None)
+                self.rospy.logerr('gzserver: %s. The world server runs without it; see %s' % (err, SUPPORTED_TABLE))
+        self._refresh()
+        return sum(1 for plugin_id in loaded if plugin_id in self.plugins)
+
+    def world_created(self):
+        """Gazebo's worldCreated event with the world's name, once the world file's models are in (World::Load
+        ends with it), for the plugins loaded by then (system plugins wait for it)."""
+        if self.plugins:
+            for name in list(self.sim.robots):
+                self._add_model(self.sim.robots[name])
+            self.host.world_created()
+
+    def sig_int(self):
+        """gzserver's Server::SigInt for the plugins loaded: the stop event, then sigInt."""
+        if self.plugins:
+            self.host.sig_int()
 
     def load_sensor(self, manager, robot, spec, plugins, fallbacks=()):
         """Hosts the compiled `plugins` (GazeboPlugin specs whose library find_library found) of the <sensor> `spec`
@@ -396,15 +453,7 @@ class CompiledPlugins:
             self.host.close()
         self.plugins = {}
         self._refresh()
-        self.stop_roscpp()
-
-    def stop_roscpp(self):
-        """Shuts roscpp in the world server down (once): the world server does it first when it stops, as
-        gazebo_ros_api_plugin does on SIGINT, so that plugins are finished with ros::ok() false, as in gzserver."""
-        if self.roscpp_started:
-            from racebot_sim_bridge.gazebo_plugins import gazebo_host
-            gazebo_host.stop_roscpp()
-            self.roscpp_started = False
+        self.roscpp.stop()
 
     def _ensure_host(self):
         if self.host is not None:
@@ -419,7 +468,7 @@ class CompiledPlugins:
             return False
         self.adapter = EngineAdapter(self.sim)
         self.host = gazebo_host.Host(self.adapter, self.sim.spec.name, self._notified)
-        self.ensure_roscpp()
+        self.roscpp.ensure()
         return True
 
     def model_capsule(self, robot):
@@ -429,39 +478,6 @@ class CompiledPlugins:
             raise RuntimeError(self.unavailable)
         self._add_model(robot)
         return self.host.model_capsule(robot.name)
-
-    def ensure_roscpp(self):
-        """Starts roscpp in the world server as node `roscpp_name`, once, where a master runs: what compiled plugins
-        and C++ controllers (ros_control/compiled_controllers.py) make their NodeHandles on. False when it cannot."""
-        if self.roscpp_started or not self.roscpp_name:
-            return self.roscpp_started
-        from racebot_sim_bridge.gazebo_plugins import gazebo_host
-        self.roscpp_started = gazebo_host.start_roscpp(self.roscpp_name, roscpp_remappings(sys.argv))
-        if self.roscpp_started:
-            copied = self._share_private_params()
-            self.rospy.loginfo("roscpp runs in the world server as node '%s'%s" % (
-                self.roscpp_name, "; the world server's private parameters are copied under it (%s)" % copied
-                if copied else ''))
-        return self.roscpp_started
-
-    def _share_private_params(self):
-        """In gzserver one roscpp node is /gazebo, so a plugin's NodeHandle("~") reads what a launch file loaded for
-        it there (fetch_gazebo's PID gains and default_controllers under gazebo:). Here roscpp's node has a name of
-        its own: the rospy node's private parameters, as they are now, are copied under it (parameters it already
-        has are kept). The names copied, comma-separated, or ''."""
-        own = self.rospy.get_name()
-        cpp = own.rsplit('/', 1)[0] + '/' + self.roscpp_name
-        try:
-            private = self.rospy.get_param(own, {})
-        except Exception as err:  # noqa: BLE001 (a master that went away: roscpp's own parameters only)
-            self.rospy.logwarn("could not read the world server's private parameters for roscpp: %s" % err)
-            return ''
-        copied = []
-        for key, value in sorted(private.items()) if isinstance(private, dict) else ():
-            if not self.rospy.has_param('%s/%s' % (cpp, key)):
-                self.rospy.set_param('%s/%s' % (cpp, key), value)
-                copied.append(key)
-        return ', '.join(copied)
 
     def _refresh(self):
         """gazebo_host's own methods as the step hooks while plugins are loaded (no Python between the world update
@@ -474,3 +490,55 @@ class CompiledPlugins:
         self.sim.set_step_hook('after_step', self.host.update_end, wanted and self.host.wants_end())
         if not wanted:
             self.host.idle()
+
+
+class RoscppNode:
+    """roscpp in the world server, as gazebo_ros_api_plugin starts it in gzserver: the node compiled plugins, C++
+    controllers and RobotHWSims make their NodeHandles on. `name`: its node name where a master runs; None: roscpp
+    is not started (no master)."""
+
+    def __init__(self, rospy, name=None):
+        self.rospy = rospy
+        self.name = name
+        self.started = False
+
+    def ensure(self):
+        """Starts roscpp in the world server as node `name`, once, where a master runs: what compiled plugins
+        and C++ controllers (ros_control/compiled_controllers.py) make their NodeHandles on. False when it cannot."""
+        if self.started or not self.name:
+            return self.started
+        from racebot_sim_bridge.gazebo_plugins import gazebo_host
+        self.started = gazebo_host.start_roscpp(self.name, roscpp_remappings(sys.argv))
+        if self.started:
+            copied = self._share_private_params()
+            self.rospy.loginfo("roscpp runs in the world server as node '%s'%s" % (
+                self.name, "; the world server's private parameters are copied under it (%s)" % copied
+                if copied else ''))
+        return self.started
+
+    def _share_private_params(self):
+        """In gzserver one roscpp node is /gazebo, so a plugin's NodeHandle("~") reads what a launch file loaded for
+        it there (fetch_gazebo's PID gains and default_controllers under gazebo:). Here roscpp's node has a name of
+        its own: the rospy node's private parameters, as they are now, are copied under it (parameters it already
+        has are kept). The names copied, comma-separated, or ''."""
+        own = self.rospy.get_name()
+        cpp = own.rsplit('/', 1)[0] + '/' + self.name
+        try:
+            private = self.rospy.get_param(own, {})
+        except Exception as err:  # noqa: BLE001 (a master that went away: roscpp's own parameters only)
+            self.rospy.logwarn("could not read the world server's private parameters for roscpp: %s" % err)
+            return ''
+        copied = []
+        for key, value in sorted(private.items()) if isinstance(private, dict) else ():
+            if not self.rospy.has_param('%s/%s' % (cpp, key)):
+                self.rospy.set_param('%s/%s' % (cpp, key), value)
+                copied.append(key)
+        return ', '.join(copied)
+
+    def stop(self):
+        """Shuts roscpp in the world server down (once): the world server does it first when it stops, as
+        gazebo_ros_api_plugin does on SIGINT, so that plugins are finished with ros::ok() false, as in gzserver."""
+        if self.started:
+            from racebot_sim_bridge.gazebo_plugins import gazebo_host
+            gazebo_host.stop_roscpp()
+            self.started = False
