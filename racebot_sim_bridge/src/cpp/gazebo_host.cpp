@@ -349,8 +349,8 @@ public:
     return this->LoadPlugin(_kind, _path, _filename, _name, _model, _xml, 0);
   }
 
-  // gzserver's command line, which a system plugin's Load(argc, argv) gets (gazebo_ros_api_plugin keeps the
-  // pointers for its ros::init at worldCreated: they live as long as the host).
+  // gzserver's command line, which a system plugin's Load(argc, argv) gets; set once, before the first LoadSystem
+  // (gazebo_ros_api_plugin keeps the pointers for its ros::init at worldCreated: they live as long as the host).
   void SetServerArgs(const std::vector<std::string> &_args)
   {
     this->serverArgs = _args;

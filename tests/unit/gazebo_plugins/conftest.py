@@ -1,10 +1,12 @@
 """The compiled plugins' fixture project (tests/fixtures/gazebo_plugin_project), built once per test process for the
-test files that load its libraries."""
+test files that load its libraries, and a world that finds them."""
 import os
 import shutil
 import subprocess
 
 import pytest
+
+from model_plugin_sim import PluginWorld
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 PROJECT = os.path.join(HERE, '..', '..', 'fixtures', 'gazebo_plugin_project')
@@ -23,3 +25,12 @@ def plugin_dir(tmp_path_factory):
                               timeout=BUILD_TIMEOUT)
         assert done.returncode == 0, '%s failed:\n%s' % (' '.join(command), done.stdout[-4000:])
     return str(build)
+
+
+@pytest.fixture
+def world(tmp_path, plugin_dir, monkeypatch):
+    """A PluginWorld whose GAZEBO_PLUGIN_PATH holds the fixture project's libraries."""
+    monkeypatch.setenv('GAZEBO_PLUGIN_PATH', plugin_dir)
+    w = PluginWorld(tmp_path)
+    yield w
+    w.close()

@@ -46,14 +46,6 @@ def driver(mode, target, report=0, joint='spin_joint', name='driver'):
             '<report>%d</report></plugin>' % (name, joint, mode, target, report))
 
 
-@pytest.fixture
-def world(tmp_path, plugin_dir, monkeypatch):
-    monkeypatch.setenv('GAZEBO_PLUGIN_PATH', plugin_dir)
-    w = PluginWorld(tmp_path)
-    yield w
-    w.close()
-
-
 def lines(out, prefix):
     return [line for line in out.splitlines() if prefix in line]
 

@@ -7,19 +7,10 @@ import pytest
 
 from racebot_sim_bridge.world_server import parse_args, server_plugins
 
-from model_plugin_sim import PluginWorld
 from test_compiled_plugins import driver, joint_state, lines, robot
 
 ARGV = ['/opt/ros/noetic/lib/gazebo_ros/gzserver', '-e', 'ode', '-s', 'libsystem_probe.so', 'worlds/empty.world',
         '__name:=gazebo']
-
-
-@pytest.fixture
-def world(tmp_path, plugin_dir, monkeypatch):
-    monkeypatch.setenv('GAZEBO_PLUGIN_PATH', plugin_dir)
-    w = PluginWorld(tmp_path)
-    yield w
-    w.close()
 
 
 def test_gzservers_command_line_names_its_system_plugins_in_order():
@@ -60,6 +51,19 @@ def test_a_system_plugin_loads_before_the_world_then_meets_it_at_world_created(w
         '[Msg] SystemProbe destroyed after 300 updates']
     assert world.errors() == []
 
+
+
+def test_two_system_plugins_are_each_loaded_before_either_is_initialised(world, capfd):
+    """gazebo_shared::setup: every system plugin's Load, then every one's Init; both meet the world."""
+    compiled = world.manager.compiled
+    assert compiled.load_system(['libsystem_probe.so', 'libsystem_probe.so'], ARGV) == 2
+    said = [line.split(' with ')[0].split(' argc ')[0] for line in lines(capfd.readouterr().out, 'SystemProbe')]
+    assert said == ['[Msg] SystemProbe Load', '[Msg] SystemProbe Load', '[Msg] SystemProbe Init',
+                    '[Msg] SystemProbe Init']
+    world.spawn('spinner', robot(), '/', (0.0, 0.0, 0.1))
+    compiled.world_created()
+    assert lines(capfd.readouterr().out, 'SystemProbe') == [
+        '[Msg] SystemProbe worldCreated default models spinner first arg -e'] * 2
 
 def test_gazebo_ros_system_plugins_are_the_world_server_itself(world):
     compiled = world.manager.compiled

@@ -297,8 +297,7 @@ class CompiledPlugins:
         if not self._ensure_host():
             self.rospy.logerr('%s: %s. The world goes on without it' % (label, self.unavailable))
             return False
-        for name in list(self.sim.robots):
-            self._add_model(self.sim.robots[name])
+        self._add_models()
         self.host.set_iterations(self.sim.steps)
         plugin_id = self._load_one(None, 'world', label, path, 'The world goes on without it', False,
                                    lambda: self.host.load('world', path, plugin.filename, plugin.name, '', plugin.xml))
@@ -312,24 +311,30 @@ class CompiledPlugins:
         models: each library's Load(argc, argv) with gzserver's command line `argv`, then each one's Init. One that
         is not found, is not a system plugin or throws gets an error naming it, and the world server goes on
         without it. The number that run."""
-        loaded = []
+        found = []
         for filename in filenames:
             own = OWN_SYSTEM_PLUGINS.get(os.path.basename(filename))
+            path = None if own is not None else find_library(filename)
             if own is not None:
                 self.rospy.loginfo('system plugin %s: not loaded: %s' % (filename, own))
-                continue
-            path = find_library(filename)
-            label = 'system plugin %s' % filename
-            if path is None:
-                self.rospy.logerr('%s: not loaded: %s. The world server runs without it' % (
-                    label, self.missing(filename)))
-                continue
-            if not self._ensure_host():
-                self.rospy.logerr('%s: %s. The world server runs without it' % (label, self.unavailable))
-                return 0
-            self.host.set_server_args([str(a) for a in argv])
-            self.host.set_iterations(self.sim.steps)
-            plugin_id = self._load_one(None, 'gzserver', label, path, 'The world server runs without it', False,
+            elif path is None:
+                self.rospy.logerr('system plugin %s: not loaded: %s. The world server runs without it' % (
+                    filename, self.missing(filename)))
+            else:
+                found.append((filename, path))
+        if not found:
+            return 0
+        if not self._ensure_host():
+            self.rospy.logerr('system plugins %s: %s. The world server runs without them' % (
+                ', '.join(filename for filename, _ in found), self.unavailable))
+            return 0
+        # once: a plugin may keep the argv pointers its Load got (gazebo_ros_api_plugin does)
+        self.host.set_server_args([str(a) for a in argv])
+        self.host.set_iterations(self.sim.steps)
+        loaded = []
+        for filename, path in found:
+            plugin_id = self._load_one(None, 'gzserver', 'system plugin %s' % filename, path,
+                                       'The world server runs without it', False,
                                        lambda: self.host.load_system(path, filename))
             if plugin_id is not None:
                 loaded.append(plugin_id)
@@ -346,8 +351,7 @@ class CompiledPlugins:
         """Gazebo's worldCreated event with the world's name, once the world file's models are in (World::Load
         ends with it), for the plugins loaded by then (system plugins wait for it)."""
         if self.plugins:
-            for name in list(self.sim.robots):
-                self._add_model(self.sim.robots[name])
+            self._add_models()
             self.host.world_created()
 
     def sig_int(self):
@@ -417,6 +421,11 @@ class CompiledPlugins:
         """A robot spawned once the host runs: its world plugins' World::ModelByName finds it."""
         if self.host is not None:
             self._add_model(robot)
+
+    def _add_models(self):
+        """Every robot of the simulator in the host (a world-wide plugin's World::Models lists them)."""
+        for name in list(self.sim.robots):
+            self._add_model(self.sim.robots[name])
 
     def _add_model(self, robot):
         if robot.name not in self.models:
