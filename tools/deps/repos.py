@@ -175,9 +175,39 @@ def _name_object(error, url, version):
     return error if path is None else error[:found.end()] + ' (%s)' % path + error[found.end():]
 
 
-def checkout(repos, src, work, clones=None, mirrors=None):
+def _checkout_lacking(url, version, dest):
+    """Checks out `version` of the local copy `url` in `dest` without the files whose objects the copy lacks (a
+    sparse checkout leaving out exactly those; the objects are read from the copy, as `clone --shared` reads them,
+    so no missing one is ever packed); the paths left out, or [] when none is missing or the checkout fails."""
+    shutil.rmtree(dest, ignore_errors=True)
+    if subprocess.run(['git', 'clone', '-q', '--shared', '--no-checkout', url, dest], stdout=subprocess.DEVNULL,
+                      stderr=subprocess.DEVNULL).returncode != 0:
+        return []
+    listing = _git(['ls-tree', '-r', '-z', version], dest).stdout.split('\0')
+    blobs = [(line.split()[2], line.split('\t', 1)[1]) for line in listing
+             if '\t' in line and line.split()[1] == 'blob']
+    check = subprocess.run(['git', 'cat-file', '--batch-check'], cwd=dest,
+                           input=''.join(sha + '\n' for sha, _ in blobs), stdout=subprocess.PIPE,
+                           stderr=subprocess.DEVNULL, text=True).stdout.splitlines()
+    missing = [path for (sha, path), line in zip(blobs, check) if line.endswith(' missing')]
+    if not missing:
+        shutil.rmtree(dest, ignore_errors=True)
+        return []
+    _git(['config', 'core.sparseCheckout', 'true'], dest)
+    with open(os.path.join(dest, '.git', 'info', 'sparse-checkout'), 'w') as f:
+        f.write('/*\n' + ''.join('!/%s\n' % re.sub(r'([\\*?\[\]!# ])', r'\\\1', path) for path in missing))
+    if _git(['checkout', '-q', '--detach', version], dest).returncode != 0 or not at_version(dest, version):
+        shutil.rmtree(dest, ignore_errors=True)
+        return []
+    return missing
+
+
+def checkout(repos, src, work, clones=None, mirrors=None, say=print):
     """Checks out every repository of `repos` ({local name: entry}) in `src` at its version with `vcs import`,
-    each from its local copy when there is one; {local name: one-line error} for those that failed."""
+    each from its local copy when there is one; {local name: one-line error} for those that failed. A local copy
+    that lacks some of the version's files (git cannot read their objects) is checked out without them, in one
+    line to `say`: the build goes on where it does not need them (a test's recorded bag), and fails as before, on
+    the file, where it does."""
     wanted = {name: dict(entry, url=local_copy(entry['url'], clones, mirrors) or entry['url'])
               for name, entry in repos.items() if not at_version(os.path.join(src, name), str(entry['version']))}
     if not wanted:
@@ -192,6 +222,14 @@ def checkout(repos, src, work, clones=None, mirrors=None):
             shutil.rmtree(os.path.join(src, name), ignore_errors=True)
         if again:
             errors.update(_vcs_import(again, src, work, log))
+    for name, entry in wanted.items():
+        if name in errors and UNREADABLE.search(errors[name]) and os.path.isdir(entry['url']):
+            left_out = _checkout_lacking(entry['url'], str(entry['version']), os.path.join(src, name))
+            if left_out:
+                say('racebot deps: %s at %s checked out without %s: %s lacks %s (a snapshot that left large files '
+                    'out; a clone from the network has them)' % (
+                        name, entry['version'], ', '.join(left_out), entry['url'],
+                        'it' if len(left_out) == 1 else 'them'))
     failed = {}
     for name, entry in wanted.items():
         if not at_version(os.path.join(src, name), str(entry['version'])):

@@ -59,7 +59,8 @@ def _checkout(result, data, ctx):
     new = {k: v for k, v in data.items() if result.repos.get(k) != v}
     result.repos.update(data)
     started = time.time()
-    failed = repos_mod.checkout(new, ctx['ws'].src, ctx['ws'].root, ctx.get('clones'), ctx.get('mirrors'))
+    failed = repos_mod.checkout(new, ctx['ws'].src, ctx['ws'].root, ctx.get('clones'), ctx.get('mirrors'),
+                                say=ctx.get('say', print))
     if new:
         ctx.get('say', print)('racebot deps: vcs import of %d repositories (%.0f s)' % (
             len(new), time.time() - started))

@@ -136,32 +136,59 @@ def test_a_shallow_fetch_of_a_copy_lacking_an_object_names_the_object_in_either_
     assert repos._vcs_errors(output) == {'models': 'fatal: unable to read %s' % sha}
 
 
-def test_a_clone_whose_checkout_fails_is_reported_with_gits_error_not_vcstools_retry(tmp_path):
-    """A copy lacking a blob (a snapshot that left large files out) clones but cannot check out; vcstool's retry
-    then cloned into the half-written folder and said only "destination path '.' already exists"."""
+def _copy_lacking(tmp_path, lacking):
+    """A mirror of a repository tagged 0.5.2 (small.txt, mesh.stl, test/data/run.bag) whose objects of the paths
+    `lacking` (files: their blobs; folders: their trees) were left out, as a snapshot that leaves large files out."""
     import subprocess
 
     def git(*args, cwd=None):
-        subprocess.run(['git', '-c', 'user.email=t@t', '-c', 'user.name=t'] + list(args), cwd=cwd, check=True,
-                       capture_output=True)
+        return subprocess.run(['git', '-c', 'user.email=t@t', '-c', 'user.name=t'] + list(args), cwd=cwd,
+                              check=True, capture_output=True, text=True).stdout.strip()
     work = tmp_path / 'source'
-    work.mkdir()
+    (work / 'test' / 'data').mkdir(parents=True)
     (work / 'small.txt').write_text('a\n')
     (work / 'mesh.stl').write_bytes(b'solid x\n' * 100)
+    (work / 'test' / 'data' / 'run.bag').write_bytes(b'#ROSBAG\n' * 100)
     git('init', '-q', cwd=work)
     git('add', '.', cwd=work)
     git('commit', '-qm', 'one', cwd=work)
     git('tag', '0.5.2', cwd=work)
     mirror = tmp_path / 'mirror.git'
     git('clone', '-q', '--mirror', str(work), str(mirror))
-    blob = subprocess.run(['git', 'rev-parse', 'HEAD:mesh.stl'], cwd=work, capture_output=True, text=True,
-                          check=True).stdout.strip()
-    (mirror / 'objects' / blob[:2] / blob[2:]).unlink()
+    for path in lacking:
+        sha = git('rev-parse', 'HEAD:' + path, cwd=work)
+        (mirror / 'objects' / sha[:2] / sha[2:]).unlink()
     (tmp_path / 'build').mkdir()
+    return mirror
+
+
+def test_a_copy_lacking_some_files_is_checked_out_without_them_and_says_which(tmp_path):
+    """ridgeback's EKF: the snapshot of robot_localization's release repository lacks test/test3.bag, which its
+    build (tests off) never reads; vcstool's clone fails on it, so the release is checked out without it."""
+    mirror = _copy_lacking(tmp_path, ['mesh.stl', 'test/data/run.bag'])
+    said = []
     failed = repos.checkout({'models': {'type': 'git', 'url': str(mirror), 'version': '0.5.2'}},
-                            str(tmp_path / 'src'), str(tmp_path / 'build'))
+                            str(tmp_path / 'src'), str(tmp_path / 'build'), say=said.append)
+    assert failed == {}
+    checkout = tmp_path / 'src' / 'models'
+    assert repos.at_version(str(checkout), '0.5.2')
+    assert (checkout / 'small.txt').read_text() == 'a\n'
+    assert not (checkout / 'mesh.stl').exists() and not (checkout / 'test' / 'data' / 'run.bag').exists()
+    assert len(said) == 1 and 'without mesh.stl, test/data/run.bag' in said[0], said
+    # a second run finds it at its version and checks nothing out
+    assert repos.checkout({'models': {'type': 'git', 'url': str(mirror), 'version': '0.5.2'}},
+                          str(tmp_path / 'src'), str(tmp_path / 'build'), say=said.append) == {}
+    assert len(said) == 1
+
+
+def test_a_copy_lacking_a_folder_is_reported_with_gits_error_not_vcstools_retry(tmp_path):
+    """A copy lacking a tree cannot say which files it lacks, so it is not checked out: the error is git's (vcstool's
+    retry cloned into the half-written folder and said only "destination path '.' already exists")."""
+    mirror = _copy_lacking(tmp_path, ['test'])
+    failed = repos.checkout({'models': {'type': 'git', 'url': str(mirror), 'version': '0.5.2'}},
+                            str(tmp_path / 'src'), str(tmp_path / 'build'), say=lambda line: None)
     assert list(failed) == ['models']
-    assert 'mesh.stl' in failed['models'] and 'unable to read' in failed['models'], failed
+    assert 'unable to read' in failed['models'] or 'bad tree' in failed['models'], failed
     assert 'already exists' not in failed['models']
     assert not (tmp_path / 'src' / 'models').exists()  # nothing half checked out is left to build
 
@@ -257,7 +284,7 @@ def test_the_walk_fetches_what_nobody_provides_and_follows_the_fetched_package_x
                 for n in names if n in released}
         return data, {n for n in names if n not in released}, ''
 
-    def checkout(wanted, src, work, clones=None, mirrors=None):
+    def checkout(wanted, src, work, clones=None, mirrors=None, say=print):
         files = {'navigation/nav/package.xml': deps_fixture.package_xml('nav', ['nav_core', 'roscpp']),
                  'navigation/nav_core/package.xml': deps_fixture.package_xml('nav_core', ['roscpp']),
                  'twist_mux/package.xml': deps_fixture.package_xml('twist_mux', ['roscpp'])}
@@ -296,7 +323,7 @@ def test_a_source_tag_missing_from_its_copy_is_taken_from_the_release_repository
             'type': 'git', 'url': 'https://github.com/o/%s-release.git' % holders[n],
             'version': 'release/noetic/%s/2.7.7-1' % n} for n in names}, set(), ''
 
-    def checkout(wanted, src, work, clones=None, mirrors=None):
+    def checkout(wanted, src, work, clones=None, mirrors=None, say=print):
         if 'robot_localization-release/loc' in wanted:
             write(src, {'robot_localization-release/loc/package.xml': deps_fixture.package_xml('loc', ['roscpp'])})
         return {name: 'cannot check out %s: %s' % (name, name.split('/')[0]) for name in wanted
