@@ -7,6 +7,10 @@ debian:bookworm), one process for every name, as `rosdep resolve` does; rospack 
 import os
 
 DEBIAN = ('debian', 'bookworm')
+# rosdep keys of Gazebo 11's development files (rosdistro's base.yaml: Ubuntu rules only), which packages name
+# beside or instead of `gazebo` (ridgeback_gazebo_plugins: <build_depend>libgazebo11-dev</build_depend>): the
+# find_package(gazebo) racebot answers answers them too
+GAZEBO_KEYS = ('gazebo11', 'libgazebo11-dev')
 
 
 class Provider:
@@ -41,7 +45,7 @@ class Providers:
         if path:
             kind = 'racebot' if path.startswith(self.racebot_root + os.sep) else 'installed'
             return Provider(kind, path)
-        config = self.cmake_config(name)
+        config = self.cmake_config('gazebo' if name in GAZEBO_KEYS else name)
         if config:
             return Provider('racebot', config)
         resolved, packages, why = self._rosdep.resolve(name)

@@ -436,6 +436,11 @@ def test_a_cmake_package_racebot_configures_is_racebots(tmp_path, monkeypatch):
     monkeypatch.setenv('CMAKE_PREFIX_PATH', os.pathsep.join(['/opt/other', str(root / 'devel')]))
     assert providers.cmake_config('gazebo') == str(config)
     assert providers.cmake_config('ignition-math6') is None
+    # the rosdep keys of Gazebo 11's development files (ridgeback_gazebo_plugins names libgazebo11-dev) are the same
+    providers.give_way = set()
+    providers.rospack = type('NoPackages', (), {'get_path': lambda self, name: (_ for _ in ()).throw(KeyError(name))})()
+    for key in ('libgazebo11-dev', 'gazebo11'):
+        assert (providers.provider(key).kind, providers.provider(key).where) == ('racebot', str(config))
 
 
 def test_a_failed_exec_dependency_leaves_a_package_buildable(tmp_path):
