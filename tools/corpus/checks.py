@@ -24,6 +24,7 @@ import rospy  # noqa: E402
 from corpus import floor, sensors  # noqa: E402
 from corpus.drive_path import travelled  # noqa: E402
 from corpus.flight_check import check_flight  # noqa: E402
+from corpus.topics_agree import check_topics_agree  # noqa: E402
 from corpus.ros_io import (MESSAGE_TIMEOUT_S, WALL_MARGIN_S, CheckFailed, Commander, Latest, message,  # noqa: E402
                            model_pose, service, sim_sleep, yaw_of)
 
@@ -632,7 +633,7 @@ def check_navigation(check, row):
 KINDS = {'controllers': check_controllers, 'drive': check_drive, 'joint_position': check_joint_position,
          'trajectory': check_trajectory, 'gripper': check_gripper, 'sensors': check_sensors, 'world': check_world,
          'floor': check_floor, 'map': check_map, 'navigation': check_navigation,
-         'plugin_output': check_plugin_output, 'flight': check_flight}
+         'plugin_output': check_plugin_output, 'flight': check_flight, 'topics_agree': check_topics_agree}
 
 
 def run(row):

@@ -33,13 +33,14 @@ CHECK_KEYS = {
     'plugin_output': ('text', 'count'),
     'flight': ('cmd_topic', 'climb', 'climb_seconds', 'hold_seconds', 'hold_drift', 'command_timeout',
                'estop_seconds', 'estop_deceleration', 'tolerance'),
+    'topics_agree': ('topics', 'type', 'messages', 'tolerance'),
 }
 # the numbers a kind is judged by: at least one must be in a row
 NUMERIC = {'drive': ('expect_speed', 'tolerance'), 'joint_position': ('target', 'tolerance'),
            'trajectory': ('tolerance',), 'gripper': ('position', 'tolerance'), 'sensors': ('count',),
            'controllers': (), 'world': ('min_models',), 'floor': ('tolerance',),
            'map': ('on_walls', 'explored'), 'navigation': ('localisation_tolerance', 'xy_goal_tolerance'),
-           'plugin_output': ('count',), 'flight': ('climb', 'tolerance')}
+           'plugin_output': ('count',), 'flight': ('climb', 'tolerance'), 'topics_agree': ('messages', 'tolerance')}
 FILE_NAME = re.compile(r'^[A-Za-z0-9_][A-Za-z0-9_.-]*$')
 
 
@@ -87,6 +88,7 @@ def validate(rows):
                 errors.append('%s: file name %r is not a plain name in the row\'s folder' % (where, file_name))
             if not isinstance(text, str) or not text.strip():
                 errors.append('%s: file %s has no text' % (where, file_name))
+        errors += ['%s: %s' % (where, e) for e in _user_package_errors(row.get('user_packages') or {})]
         for package, why in (row.get('blacklist') or {}).items():
             if not why:
                 errors.append('%s: blacklisted %s without a reason' % (where, package))
@@ -97,6 +99,27 @@ def validate(rows):
             numeric += has_number
         if row.get('checks') and not numeric:
             errors.append('%s: no check with a number' % where)
+    return errors
+
+
+def _user_package_errors(packages):
+    """The row's own catkin packages (`user_packages`: package name -> {path in it: text}), as a user keeps one in
+    the workspace beside the packages they took."""
+    if not isinstance(packages, dict):
+        return ['user_packages must map a package name to its files']
+    errors = []
+    for package, files in packages.items():
+        if not isinstance(package, str) or not NAME.match(package):
+            errors.append('user package %r: its name must be lower_case_with_underscores' % (package,))
+        if not isinstance(files, dict) or 'package.xml' not in files or 'CMakeLists.txt' not in files:
+            errors.append('user package %s: needs at least package.xml and CMakeLists.txt' % package)
+            continue
+        for path, text in files.items():
+            parts = str(path).split('/')
+            if not all(FILE_NAME.match(part) for part in parts):
+                errors.append('user package %s: %r is not a path inside the package' % (package, path))
+            if not isinstance(text, str) or not text.strip():
+                errors.append('user package %s: %s has no text' % (package, path))
     return errors
 
 

@@ -18,6 +18,7 @@ import json
 import os
 import re
 import shlex
+import shutil
 import signal
 import socket
 import subprocess
@@ -126,7 +127,8 @@ def shell_env(script, base):
 
 
 def make_workspace(row, trees, ws):
-    """ws/src holding a link to each package folder the row takes; returns the package folder names."""
+    """ws/src holding a link to each package folder the row takes and the row's own packages (`user_packages`);
+    returns the package folder names."""
     src = os.path.join(ws, 'src')
     os.makedirs(src, exist_ok=True)
     for entry in os.listdir(src):
@@ -141,6 +143,14 @@ def make_workspace(row, trees, ws):
             name = repo['repo'].split('/')[1] if package == '.' else os.path.basename(package.rstrip('/'))
             os.symlink(target, os.path.join(src, name))
             names.append(name)
+    for name, files in sorted((row.get('user_packages') or {}).items()):  # the user's own, written afresh
+        shutil.rmtree(os.path.join(src, name), ignore_errors=True)
+        for path, text in sorted(files.items()):
+            path = os.path.join(src, name, path)
+            os.makedirs(os.path.dirname(path), exist_ok=True)
+            with open(path, 'w') as f:
+                f.write(text)
+        names.append(name)
     return names
 
 
@@ -362,7 +372,8 @@ def run_row(row, out, env_base):
     logs = os.path.join(out, 'logs', row['name'])
     os.makedirs(logs, exist_ok=True)
     result = {'name': row['name'], 'covers': row['covers'], 'commands': row['commands'], 'env': row.get('env') or {},
-              'blacklist': row.get('blacklist') or {}, 'files': sorted(row.get('files') or {}), 'repos': [],
+              'blacklist': row.get('blacklist') or {}, 'files': sorted(row.get('files') or {}),
+              'user_packages': sorted(row.get('user_packages') or {}), 'repos': [],
               'checks': [], 'notes': [], 'build': 'not run'}
     trees = checkout_row(row, logs, env_base, result)
     if trees is None:

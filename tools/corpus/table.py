@@ -71,6 +71,9 @@ def markdown(results, header):
         if r.get('files'):
             lines.append("- the user's own files, in the folder the commands run in (the row's files in the manifest): "
                          + ', '.join('`%s`' % name for name in r['files']))
+        if r.get('user_packages'):
+            lines.append("- the user's own catkin packages, built in the workspace beside the row's (in the manifest): "
+                         + ', '.join('`%s`' % name for name in r['user_packages']))
         for command in r.get('commands', []):
             lines.append('- `%s`' % command)
         if r.get('blacklist'):

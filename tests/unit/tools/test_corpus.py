@@ -90,6 +90,17 @@ def test_a_rows_own_files_validate_and_bad_names_or_empty_texts_are_refused():
         assert any(words in e for e in errors), (files, errors)
 
 
+def test_a_rows_own_packages_need_their_manifest_and_cmakelists_and_stay_inside():
+    package = {'package.xml': '<package/>', 'CMakeLists.txt': 'project(p)', 'src/p.cpp': 'int x;'}
+    assert manifest.validate([good_row(user_packages={'p3d_upstream': package})]) == []
+    for packages, words in (({'p': {'package.xml': '<package/>'}}, 'needs at least'),
+                            ({'p': dict(package, **{'../x.cpp': 'int y;'})}, 'not a path inside'),
+                            ({'p': dict(package, **{'src/q.cpp': ' '})}, 'has no text'),
+                            ({'Bad-Name': package}, 'lower_case'), (['p'], 'must map a package name')):
+        errors = manifest.validate([good_row(user_packages=packages)])
+        assert any(words in e for e in errors), (packages, errors)
+
+
 def test_a_floor_check_needs_its_world_and_a_tolerance():
     check = {'kind': 'floor', 'world': '$(find w)/worlds/w.world', 'tolerance': 0.01, 'from': 'urdf'}
     assert manifest.validate([good_row(checks=[check])]) == []
