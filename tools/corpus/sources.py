@@ -8,9 +8,12 @@ Three sources, first match wins:
   otherwise                    https://github.com/<owner>/<name>.git (RACEBOT_CORPUS_URL overrides the
                                pattern, with {owner} and {name})
 Clones go to the cache (RACEBOT_CORPUS_CACHE, default ~/.cache/racebot/corpus): one clone per repository
-in git/, one checkout per (repository, commit) in src/. resolve() is pure; checkout() runs git.
+in git/, one checkout per (repository, commit) in src/. resolve() is pure; checkout() runs git. A copy that lacks
+some files of the commit (a snapshot that left large files out: a mesh, a recorded bag) is checked out without
+exactly those, and the row's note names them (make deps checks its sources out the same way).
 """
 import os
+import re
 import subprocess
 
 DEFAULT_URL = 'https://github.com/{owner}/{name}.git'
@@ -70,6 +73,11 @@ class SourceError(RuntimeError):
     """A repository could not be had at its commit; the message says why."""
 
 
+def _dirty(tree):
+    """Whether a tracked file of the checkout `tree` differs from its commit (one git could not write)."""
+    return bool(_git(['status', '--porcelain', '--untracked-files=no'], cwd=tree).stdout.strip())
+
+
 def head_commit(path):
     if not os.path.isdir(path):
         return None
@@ -93,6 +101,51 @@ def cached(repo, commit, env=os.environ):
     return os.path.isdir(bare) and _git(['cat-file', '-e', commit + '^{commit}'], cwd=bare).returncode == 0
 
 
+def missing_files(git_dir, version):
+    """The paths of `version`'s files whose objects the clone at `git_dir` (or the copy its objects come from)
+    lacks; [] when none is missing or the version's tree cannot be listed (a folder's tree is missing too)."""
+    listing = subprocess.run(['git', 'ls-tree', '-r', '-z', version], cwd=git_dir, stdout=subprocess.PIPE,
+                             stderr=subprocess.DEVNULL, text=True)
+    if listing.returncode != 0:
+        return []
+    blobs = [(line.split()[2], line.split('\t', 1)[1]) for line in listing.stdout.split('\0')
+             if '\t' in line and line.split()[1] == 'blob']
+    check = subprocess.run(['git', 'cat-file', '--batch-check'], cwd=git_dir,
+                           input=''.join(sha + '\n' for sha, _ in blobs), stdout=subprocess.PIPE,
+                           stderr=subprocess.DEVNULL, text=True).stdout.splitlines()
+    return [path for (_, path), line in zip(blobs, check) if line.endswith(' missing')]
+
+
+def checkout_without(tree, version, paths):
+    """Checks `version` out in the clone `tree` without the files `paths` (a sparse checkout leaving out exactly
+    those, so their objects are never read); True when git says it did."""
+    subprocess.run(['git', 'config', 'core.sparseCheckout', 'true'], cwd=tree, stdout=subprocess.DEVNULL,
+                   stderr=subprocess.DEVNULL)
+    with open(os.path.join(tree, '.git', 'info', 'sparse-checkout'), 'w') as f:
+        f.write('/*\n' + ''.join('!/%s\n' % re.sub(r'([\\*?\[\]!# ])', r'\\\1', path) for path in paths))
+    done = subprocess.run(['git', 'checkout', '-q', '--detach', '--force', version], cwd=tree,
+                          stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    return done.returncode == 0
+
+
+def left_out(tree):
+    """The files a sparse checkout_without left out of `tree` ([] for a whole checkout)."""
+    sparse = os.path.join(tree, '.git', 'info', 'sparse-checkout')
+    if not os.path.isfile(sparse):
+        return []
+    with open(sparse) as f:
+        return [re.sub(r'\\(.)', r'\1', line.strip()[2:]) for line in f if line.startswith('!/')]
+
+
+def lacking_note(tree, where):
+    """The row's note on a checkout that left files out, or ''."""
+    paths = left_out(tree)
+    if not paths:
+        return ''
+    return 'checked out without %s: %s lacks %s (a snapshot that left large files out; a clone from the network ' \
+        'has them)' % (', '.join(paths), where, 'it' if len(paths) == 1 else 'them')
+
+
 def checkout(repo, commit, env=os.environ, log=None):
     """(path of a work tree of `repo` at `commit`, note): a checkout in the cache, or with
     RACEBOT_CORPUS_DIR the user's clone as it is (the note says when its HEAD is not the pinned commit)."""
@@ -105,7 +158,7 @@ def checkout(repo, commit, env=os.environ, log=None):
         return where, note
     bare, tree = _cache_paths(repo, commit, env)
     if head_commit(tree) == commit:
-        return tree, ''
+        return tree, lacking_note(tree, where)
     if not os.path.isdir(bare):
         os.makedirs(os.path.dirname(bare), exist_ok=True)
         done = _git(['clone', '--quiet', '--bare', where, bare], log=log)
@@ -124,6 +177,12 @@ def checkout(repo, commit, env=os.environ, log=None):
         done = _git(['clone', '--quiet', '--shared', '--no-checkout', bare, tree], log=log)
         if done.returncode == 0:
             done = _git(['checkout', '--quiet', '--detach', commit], cwd=tree, log=log)
-    if done.returncode != 0 or head_commit(tree) != commit:
+    # a copy lacking some of the commit's files (git's checkout says "unable to read" and may still exit 0, with
+    # those files missing from the tree): the rest, and the note names them
+    if done.returncode != 0 or _dirty(tree):
+        missing = missing_files(tree, commit)
+        if missing and checkout_without(tree, commit, missing):
+            done = subprocess.CompletedProcess(done.args, 0, done.stdout)
+    if done.returncode != 0 or head_commit(tree) != commit or _dirty(tree):
         raise SourceError('checkout of %s at %s failed: %s' % (repo, commit[:12], done.stdout.strip()[-300:]))
-    return tree, ''
+    return tree, lacking_note(tree, where)

@@ -22,7 +22,8 @@ GITHUB = re.compile(r'^https://github\.com/([^/]+)/([^/]+?)(?:\.git)?/?$')
 UNRELEASED = re.compile(r'following unreleased packages/stacks will be ignored: (.*)')
 CHECKOUT_FAILED = 'cannot check out'
 VCS_SECTION = re.compile(r'^=== (\S+) \((\w+)\) ===$')
-UNREADABLE = re.compile(r'unable to read ([0-9a-f]{40})\b')  # a fetch names the object only
+# the object a copy lacks, as the remote side of a fetch names it (a blob: unable to read; a folder: bad tree object)
+UNREADABLE = re.compile(r'(?:unable to read|bad tree object|bad object) ([0-9a-f]{40})\b')
 
 
 def generate(names, env, upstream=True):
@@ -169,34 +170,22 @@ def _name_object(error, url, version):
     found = UNREADABLE.search(error)
     if not found or not os.path.isdir(url):
         return error
-    listing = _git(['ls-tree', '-r', version], url).stdout
+    listing = _git(['ls-tree', '-r', '-t', version], url).stdout
     path = next((line.split('\t', 1)[1] for line in listing.splitlines()
                  if '\t' in line and line.split()[2] == found.group(1)), None)
     return error if path is None else error[:found.end()] + ' (%s)' % path + error[found.end():]
 
 
 def _checkout_lacking(url, version, dest):
-    """Checks out `version` of the local copy `url` in `dest` without the files whose objects the copy lacks (a
-    sparse checkout leaving out exactly those; the objects are read from the copy, as `clone --shared` reads them,
-    so no missing one is ever packed); the paths left out, or [] when none is missing or the checkout fails."""
+    """Checks out `version` of the local copy `url` in `dest` without the files whose objects the copy lacks
+    (corpus_sources.checkout_without; the objects are read from the copy, as `clone --shared` reads them, so no
+    missing one is ever packed); the paths left out, or [] when none is missing or the checkout fails."""
     shutil.rmtree(dest, ignore_errors=True)
     if subprocess.run(['git', 'clone', '-q', '--shared', '--no-checkout', url, dest], stdout=subprocess.DEVNULL,
                       stderr=subprocess.DEVNULL).returncode != 0:
         return []
-    listing = _git(['ls-tree', '-r', '-z', version], dest).stdout.split('\0')
-    blobs = [(line.split()[2], line.split('\t', 1)[1]) for line in listing
-             if '\t' in line and line.split()[1] == 'blob']
-    check = subprocess.run(['git', 'cat-file', '--batch-check'], cwd=dest,
-                           input=''.join(sha + '\n' for sha, _ in blobs), stdout=subprocess.PIPE,
-                           stderr=subprocess.DEVNULL, text=True).stdout.splitlines()
-    missing = [path for (sha, path), line in zip(blobs, check) if line.endswith(' missing')]
-    if not missing:
-        shutil.rmtree(dest, ignore_errors=True)
-        return []
-    _git(['config', 'core.sparseCheckout', 'true'], dest)
-    with open(os.path.join(dest, '.git', 'info', 'sparse-checkout'), 'w') as f:
-        f.write('/*\n' + ''.join('!/%s\n' % re.sub(r'([\\*?\[\]!# ])', r'\\\1', path) for path in missing))
-    if _git(['checkout', '-q', '--detach', version], dest).returncode != 0 or not at_version(dest, version):
+    missing = corpus_sources.missing_files(dest, version)
+    if not missing or not corpus_sources.checkout_without(dest, version, missing) or not at_version(dest, version):
         shutil.rmtree(dest, ignore_errors=True)
         return []
     return missing
@@ -223,7 +212,9 @@ def checkout(repos, src, work, clones=None, mirrors=None, say=print):
         if again:
             errors.update(_vcs_import(again, src, work, log))
     for name, entry in wanted.items():
-        if name in errors and UNREADABLE.search(errors[name]) and os.path.isdir(entry['url']):
+        # a local copy not checked out at its version (git could not read some of its objects, and says so in
+        # the error or, from a checkout that exits 0, only in the files it leaves missing)
+        if os.path.isdir(entry['url']) and not at_version(os.path.join(src, name), str(entry['version'])):
             left_out = _checkout_lacking(entry['url'], str(entry['version']), os.path.join(src, name))
             if left_out:
                 say('racebot deps: %s at %s checked out without %s: %s lacks %s (a snapshot that left large files '

@@ -208,6 +208,33 @@ def test_a_mirror_is_cloned_and_checked_out_at_the_pinned_commit(tmp_path, upstr
         sources.checkout('owner/one', '0' * 40, env)
 
 
+def test_a_mirror_lacking_a_file_of_the_commit_is_checked_out_without_it_and_the_note_says_so(tmp_path):
+    """ugv_gazebo_sim's snapshot lacks hunter's base_link.STL: the rest is checked out, the row's note names it."""
+    import subprocess
+
+    def git(*args, cwd=None):
+        return subprocess.run(['git', '-c', 'user.email=t@t', '-c', 'user.name=t'] + list(args), cwd=cwd,
+                              check=True, capture_output=True, text=True).stdout.strip()
+    work = tmp_path / 'work'
+    (work / 'hunter' / 'meshes').mkdir(parents=True)
+    (work / 'package.xml').write_text('<package><name>one</name></package>\n')
+    (work / 'hunter' / 'meshes' / 'base link.STL').write_bytes(b'solid x\n' * 100)
+    git('init', '-q', cwd=work)
+    git('add', '.', cwd=work)
+    git('commit', '-qm', 'one', cwd=work)
+    commit = git('rev-parse', 'HEAD', cwd=work)
+    mirror = tmp_path / 'mirrors' / 'owner+one' / 'repo'
+    git('clone', '-q', '--mirror', str(work), str(mirror))
+    blob = git('rev-parse', 'HEAD:hunter/meshes/base link.STL', cwd=work)
+    (mirror / 'objects' / blob[:2] / blob[2:]).unlink()
+    env = {'RACEBOT_CORPUS_MIRRORS': str(tmp_path / 'mirrors'), 'RACEBOT_CORPUS_CACHE': str(tmp_path / 'cache')}
+    tree, note = sources.checkout('owner/one', commit, env)
+    assert sources.head_commit(tree) == commit and (Path(tree) / 'package.xml').is_file()
+    assert not (Path(tree) / 'hunter' / 'meshes' / 'base link.STL').exists()
+    assert note.startswith('checked out without hunter/meshes/base link.STL: ') and str(mirror) in note, note
+    assert sources.checkout('owner/one', commit, env) == (tree, note)  # from the cache, the same note
+
+
 def test_a_users_clone_is_used_as_it_is_and_a_other_head_is_said(tmp_path, upstream):
     path, first, second = upstream
     env = {'RACEBOT_CORPUS_DIR': str(path.parent)}

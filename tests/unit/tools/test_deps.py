@@ -188,7 +188,7 @@ def test_a_copy_lacking_a_folder_is_reported_with_gits_error_not_vcstools_retry(
     failed = repos.checkout({'models': {'type': 'git', 'url': str(mirror), 'version': '0.5.2'}},
                             str(tmp_path / 'src'), str(tmp_path / 'build'), say=lambda line: None)
     assert list(failed) == ['models']
-    assert 'unable to read' in failed['models'] or 'bad tree' in failed['models'], failed
+    assert 'bad tree object' in failed['models'] and '(test)' in failed['models'], failed  # the folder, named
     assert 'already exists' not in failed['models']
     assert not (tmp_path / 'src' / 'models').exists()  # nothing half checked out is left to build
 
