@@ -228,7 +228,7 @@ def checkout_row(row, logs, env_base, result):
     for repo in row['repos']:
         git_log = []
         try:
-            tree, note = sources.checkout(repo['repo'], repo['commit'], env_base, git_log)
+            tree, note = sources.checkout(repo['repo'], repo['commit'], env_base, git_log, repo['packages'])
         except sources.SourceError as err:
             result.update(status='not run', reason='source: %s' % err)
             return None

@@ -137,18 +137,25 @@ def left_out(tree):
         return [re.sub(r'\\(.)', r'\1', line.strip()[2:]) for line in f if line.startswith('!/')]
 
 
-def lacking_note(tree, where):
-    """The row's note on a checkout that left files out, or ''."""
+def lacking_note(tree, where, under=('.',)):
+    """The row's note on a checkout that left out files of the folders `under` (the row's packages; '.' the whole
+    repository), naming them and counting the others; '' when it left none of those out."""
     paths = left_out(tree)
     if not paths:
         return ''
-    return 'checked out without %s: %s lacks %s (a snapshot that left large files out; a clone from the network ' \
-        'has them)' % (', '.join(paths), where, 'it' if len(paths) == 1 else 'them')
+    folders = [u.strip('/') for u in under]
+    mine = [p for p in paths if any(f in ('', '.') or p == f or p.startswith(f + '/') for f in folders)]
+    if not mine:  # nothing the row takes
+        return ''
+    others = len(paths) - len(mine)
+    return 'checked out without %s%s: %s lacks them (a snapshot that left large files out; a clone from the ' \
+        'network has them)' % (', '.join(mine), ' (and %d files of other folders)' % others if others else '', where)
 
 
-def checkout(repo, commit, env=os.environ, log=None):
+def checkout(repo, commit, env=os.environ, log=None, packages=('.',)):
     """(path of a work tree of `repo` at `commit`, note): a checkout in the cache, or with
-    RACEBOT_CORPUS_DIR the user's clone as it is (the note says when its HEAD is not the pinned commit)."""
+    RACEBOT_CORPUS_DIR the user's clone as it is (the note says when its HEAD is not the pinned commit, or which
+    files of the folders `packages` the copy lacked)."""
     kind, where = resolve(repo, env)
     if kind == 'missing':
         raise SourceError(where)
@@ -158,7 +165,7 @@ def checkout(repo, commit, env=os.environ, log=None):
         return where, note
     bare, tree = _cache_paths(repo, commit, env)
     if head_commit(tree) == commit:
-        return tree, lacking_note(tree, where)
+        return tree, lacking_note(tree, where, packages)
     if not os.path.isdir(bare):
         os.makedirs(os.path.dirname(bare), exist_ok=True)
         done = _git(['clone', '--quiet', '--bare', where, bare], log=log)
@@ -185,4 +192,4 @@ def checkout(repo, commit, env=os.environ, log=None):
             done = subprocess.CompletedProcess(done.args, 0, done.stdout)
     if done.returncode != 0 or head_commit(tree) != commit or _dirty(tree):
         raise SourceError('checkout of %s at %s failed: %s' % (repo, commit[:12], done.stdout.strip()[-300:]))
-    return tree, lacking_note(tree, where)
+    return tree, lacking_note(tree, where, packages)

@@ -233,6 +233,9 @@ def test_a_mirror_lacking_a_file_of_the_commit_is_checked_out_without_it_and_the
     assert not (Path(tree) / 'hunter' / 'meshes' / 'base link.STL').exists()
     assert note.startswith('checked out without hunter/meshes/base link.STL: ') and str(mirror) in note, note
     assert sources.checkout('owner/one', commit, env) == (tree, note)  # from the cache, the same note
+    # a row taking other folders hears nothing of files it does not take
+    assert sources.checkout('owner/one', commit, env, packages=['scout'])[1] == ''
+    assert sources.checkout('owner/one', commit, env, packages=['hunter'])[1] == note
 
 
 def test_a_users_clone_is_used_as_it_is_and_a_other_head_is_said(tmp_path, upstream):
