@@ -73,7 +73,7 @@ class SourceError(RuntimeError):
     """A repository could not be had at its commit; the message says why."""
 
 
-def _dirty(tree):
+def dirty(tree):
     """Whether a tracked file of the checkout `tree` differs from its commit (one git could not write)."""
     return bool(_git(['status', '--porcelain', '--untracked-files=no'], cwd=tree).stdout.strip())
 
@@ -104,8 +104,7 @@ def cached(repo, commit, env=os.environ):
 def missing_files(git_dir, version):
     """The paths of `version`'s files whose objects the clone at `git_dir` (or the copy its objects come from)
     lacks; [] when none is missing or the version's tree cannot be listed (a folder's tree is missing too)."""
-    listing = subprocess.run(['git', 'ls-tree', '-r', '-z', version], cwd=git_dir, stdout=subprocess.PIPE,
-                             stderr=subprocess.DEVNULL, text=True)
+    listing = _git(['ls-tree', '-r', '-z', version], cwd=git_dir)
     if listing.returncode != 0:
         return []
     blobs = [(line.split()[2], line.split('\t', 1)[1]) for line in listing.stdout.split('\0')
@@ -119,13 +118,10 @@ def missing_files(git_dir, version):
 def checkout_without(tree, version, paths):
     """Checks `version` out in the clone `tree` without the files `paths` (a sparse checkout leaving out exactly
     those, so their objects are never read); True when git says it did."""
-    subprocess.run(['git', 'config', 'core.sparseCheckout', 'true'], cwd=tree, stdout=subprocess.DEVNULL,
-                   stderr=subprocess.DEVNULL)
+    _git(['config', 'core.sparseCheckout', 'true'], cwd=tree)
     with open(os.path.join(tree, '.git', 'info', 'sparse-checkout'), 'w') as f:
         f.write('/*\n' + ''.join('!/%s\n' % re.sub(r'([\\*?\[\]!# ])', r'\\\1', path) for path in paths))
-    done = subprocess.run(['git', 'checkout', '-q', '--detach', '--force', version], cwd=tree,
-                          stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
-    return done.returncode == 0
+    return _git(['checkout', '-q', '--detach', '--force', version], cwd=tree).returncode == 0
 
 
 def left_out(tree):
@@ -186,10 +182,10 @@ def checkout(repo, commit, env=os.environ, log=None, packages=('.',)):
             done = _git(['checkout', '--quiet', '--detach', commit], cwd=tree, log=log)
     # a copy lacking some of the commit's files (git's checkout says "unable to read" and may still exit 0, with
     # those files missing from the tree): the rest, and the note names them
-    if done.returncode != 0 or _dirty(tree):
+    whole = done.returncode == 0 and not dirty(tree)
+    if not whole:
         missing = missing_files(tree, commit)
-        if missing and checkout_without(tree, commit, missing):
-            done = subprocess.CompletedProcess(done.args, 0, done.stdout)
-    if done.returncode != 0 or head_commit(tree) != commit or _dirty(tree):
+        whole = bool(missing) and checkout_without(tree, commit, missing) and not dirty(tree)
+    if not whole or head_commit(tree) != commit:
         raise SourceError('checkout of %s at %s failed: %s' % (repo, commit[:12], done.stdout.strip()[-300:]))
     return tree, lacking_note(tree, where, packages)

@@ -25,6 +25,8 @@ def fields(msg, prefix=''):
 
 # filled in by each publisher's transport, not by the plugin: a count of what that publisher sent so far
 TRANSPORT_FIELDS = ('header.seq',)
+# the time a message is of, which moves in every stream: no sign that the body did
+STAMP_FIELDS = ('header.stamp.secs', 'header.stamp.nsecs')
 
 
 def differences(a, b):
@@ -51,10 +53,10 @@ def moving_fields(messages):
     columns = {}
     for msg in messages:
         for name, value in fields(msg):
-            if name not in TRANSPORT_FIELDS and isinstance(value, (int, float)) and not isinstance(value, bool):
+            if name not in TRANSPORT_FIELDS + STAMP_FIELDS and isinstance(value, (int, float)) \
+                    and not isinstance(value, bool):
                 columns.setdefault(name, set()).add(value)
-    return sorted(name for name, values in columns.items() if len(values) > 1 and name != 'header.stamp.secs'
-                  and name != 'header.stamp.nsecs')
+    return sorted(name for name, values in columns.items() if len(values) > 1)
 
 
 def check_topics_agree(check, row):

@@ -102,8 +102,7 @@ def at_version(path, version):
         return False
     head = _git(['rev-parse', 'HEAD'], path).stdout.strip()
     want = _git(['rev-parse', '--verify', '-q', version + '^{commit}'], path).stdout.strip()
-    return bool(head) and head == want and \
-        not _git(['status', '--porcelain', '--untracked-files=no'], path).stdout.strip()
+    return bool(head) and head == want and not corpus_sources.dirty(path)
 
 
 def vcs():
@@ -179,16 +178,16 @@ def _name_object(error, url, version):
 def _checkout_lacking(url, version, dest):
     """Checks out `version` of the local copy `url` in `dest` without the files whose objects the copy lacks
     (corpus_sources.checkout_without; the objects are read from the copy, as `clone --shared` reads them, so no
-    missing one is ever packed); the paths left out, or [] when none is missing or the checkout fails."""
+    missing one is ever packed); whether it did (False when none is missing or the checkout fails)."""
     shutil.rmtree(dest, ignore_errors=True)
     if subprocess.run(['git', 'clone', '-q', '--shared', '--no-checkout', url, dest], stdout=subprocess.DEVNULL,
                       stderr=subprocess.DEVNULL).returncode != 0:
-        return []
+        return False
     missing = corpus_sources.missing_files(dest, version)
     if not missing or not corpus_sources.checkout_without(dest, version, missing) or not at_version(dest, version):
         shutil.rmtree(dest, ignore_errors=True)
-        return []
-    return missing
+        return False
+    return True
 
 
 def checkout(repos, src, work, clones=None, mirrors=None, say=print):
@@ -215,12 +214,10 @@ def checkout(repos, src, work, clones=None, mirrors=None, say=print):
         # a local copy not checked out at its version (git could not read some of its objects, and says so in
         # the error or, from a checkout that exits 0, only in the files it leaves missing)
         if os.path.isdir(entry['url']) and not at_version(os.path.join(src, name), str(entry['version'])):
-            left_out = _checkout_lacking(entry['url'], str(entry['version']), os.path.join(src, name))
-            if left_out:
-                say('racebot deps: %s at %s checked out without %s: %s lacks %s (a snapshot that left large files '
-                    'out; a clone from the network has them)' % (
-                        name, entry['version'], ', '.join(left_out), entry['url'],
-                        'it' if len(left_out) == 1 else 'them'))
+            dest = os.path.join(src, name)
+            if _checkout_lacking(entry['url'], str(entry['version']), dest):
+                say('racebot deps: %s at %s %s' % (name, entry['version'],
+                                                  corpus_sources.lacking_note(dest, entry['url'])))
     failed = {}
     for name, entry in wanted.items():
         if not at_version(os.path.join(src, name), str(entry['version'])):

@@ -10,6 +10,7 @@ from pathlib import Path
 import pytest
 
 from corpus import floor, manifest, sensors, sources, table
+import git_mirror
 from corpus import run as corpus_run
 
 REPO = Path(__file__).resolve().parents[3]
@@ -210,23 +211,10 @@ def test_a_mirror_is_cloned_and_checked_out_at_the_pinned_commit(tmp_path, upstr
 
 def test_a_mirror_lacking_a_file_of_the_commit_is_checked_out_without_it_and_the_note_says_so(tmp_path):
     """ugv_gazebo_sim's snapshot lacks hunter's base_link.STL: the rest is checked out, the row's note names it."""
-    import subprocess
-
-    def git(*args, cwd=None):
-        return subprocess.run(['git', '-c', 'user.email=t@t', '-c', 'user.name=t'] + list(args), cwd=cwd,
-                              check=True, capture_output=True, text=True).stdout.strip()
-    work = tmp_path / 'work'
-    (work / 'hunter' / 'meshes').mkdir(parents=True)
-    (work / 'package.xml').write_text('<package><name>one</name></package>\n')
-    (work / 'hunter' / 'meshes' / 'base link.STL').write_bytes(b'solid x\n' * 100)
-    git('init', '-q', cwd=work)
-    git('add', '.', cwd=work)
-    git('commit', '-qm', 'one', cwd=work)
-    commit = git('rev-parse', 'HEAD', cwd=work)
     mirror = tmp_path / 'mirrors' / 'owner+one' / 'repo'
-    git('clone', '-q', '--mirror', str(work), str(mirror))
-    blob = git('rev-parse', 'HEAD:hunter/meshes/base link.STL', cwd=work)
-    (mirror / 'objects' / blob[:2] / blob[2:]).unlink()
+    commit = git_mirror.mirror_lacking(tmp_path / 'work', {'package.xml': b'<package><name>one</name></package>\n',
+                                                           'hunter/meshes/base link.STL': b'solid x\n' * 100},
+                                       mirror, ['hunter/meshes/base link.STL'])
     env = {'RACEBOT_CORPUS_MIRRORS': str(tmp_path / 'mirrors'), 'RACEBOT_CORPUS_CACHE': str(tmp_path / 'cache')}
     tree, note = sources.checkout('owner/one', commit, env)
     assert sources.head_commit(tree) == commit and (Path(tree) / 'package.xml').is_file()

@@ -7,6 +7,7 @@ from pathlib import Path
 import pytest
 
 import deps_fixture
+import git_mirror
 from deps import index, needs, provide, repos, resolve, underlay
 from deps import run as deps_run
 
@@ -139,25 +140,10 @@ def test_a_shallow_fetch_of_a_copy_lacking_an_object_names_the_object_in_either_
 def _copy_lacking(tmp_path, lacking):
     """A mirror of a repository tagged 0.5.2 (small.txt, mesh.stl, test/data/run.bag) whose objects of the paths
     `lacking` (files: their blobs; folders: their trees) were left out, as a snapshot that leaves large files out."""
-    import subprocess
-
-    def git(*args, cwd=None):
-        return subprocess.run(['git', '-c', 'user.email=t@t', '-c', 'user.name=t'] + list(args), cwd=cwd,
-                              check=True, capture_output=True, text=True).stdout.strip()
-    work = tmp_path / 'source'
-    (work / 'test' / 'data').mkdir(parents=True)
-    (work / 'small.txt').write_text('a\n')
-    (work / 'mesh.stl').write_bytes(b'solid x\n' * 100)
-    (work / 'test' / 'data' / 'run.bag').write_bytes(b'#ROSBAG\n' * 100)
-    git('init', '-q', cwd=work)
-    git('add', '.', cwd=work)
-    git('commit', '-qm', 'one', cwd=work)
-    git('tag', '0.5.2', cwd=work)
     mirror = tmp_path / 'mirror.git'
-    git('clone', '-q', '--mirror', str(work), str(mirror))
-    for path in lacking:
-        sha = git('rev-parse', 'HEAD:' + path, cwd=work)
-        (mirror / 'objects' / sha[:2] / sha[2:]).unlink()
+    git_mirror.mirror_lacking(tmp_path / 'source', {'small.txt': b'a\n', 'mesh.stl': b'solid x\n' * 100,
+                                                    'test/data/run.bag': b'#ROSBAG\n' * 100},
+                              mirror, lacking, tag='0.5.2')
     (tmp_path / 'build').mkdir()
     return mirror
 
