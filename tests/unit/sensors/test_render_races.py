@@ -225,6 +225,12 @@ def test_frames_in_the_worker_are_counted_right_from_both_threads():
             while worker.submitted < 20000 and not stalled():
                 sensor.capture(0.0, None, {'image'}, False)
             worker.queue.join()
+            # and published: each answered frame keeps its buffer until the camera's own publisher thread has run
+            # it, which a loaded machine may not have done yet (a capture then finds no free buffer, not a full
+            # worker); that thread runs its jobs in order, so one more job done means the frames' are
+            published = threading.Event()
+            sensor.publisher.run(published.set)
+            assert published.wait(WAIT), 'the camera\'s publisher thread did not run its frames'
         assert worker.submitted == 20000, 'the camera stopped sending frames after %d' % worker.submitted
         assert worker.most_held <= gazebo_ros_camera.FRAMES_IN_WORKER, (
             'the worker held %d frames at once' % worker.most_held)
